@@ -1,0 +1,103 @@
+"""Field declarations for level dataclasses.
+
+Every configurable number of the model is declared with :func:`param`, which
+records its SI unit, a one-line description and the allowed range in the
+dataclass field metadata. The level loader (``chainfountain.level.io``) uses
+that metadata to validate files and to build error messages that name the
+field, the value and what is allowed; the app uses it to bound sliders.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import Any
+
+
+def param(
+    default: Any,
+    *,
+    unit: str,
+    doc: str,
+    min: float | None = None,  # noqa: A002 - mirrors the metadata key
+    max: float | None = None,  # noqa: A002
+    min_inclusive: bool = True,
+    max_inclusive: bool = True,
+    choices: tuple[Any, ...] | None = None,
+    live: bool = False,
+) -> Any:
+    """Declare a level parameter.
+
+    Parameters
+    ----------
+    default:
+        Value used when the level file omits the field. Use ``REQUIRED`` for
+        fields a file must give.
+    unit:
+        SI unit ("m", "kg", "kg/m", "s", "N", "rad", "N*m/rad", "1" for
+        dimensionless, "" for text).
+    doc:
+        One line shown in ``docs/levels.md``, in error messages and as a tooltip.
+    min, max, min_inclusive, max_inclusive:
+        Allowed numeric range.
+    choices:
+        Allowed values for a text or enumerated field.
+    live:
+        True when a running simulation can take a change of this field without
+        a rebuild (the app applies it live).
+    """
+    meta = {
+        "unit": unit,
+        "doc": doc,
+        "min": min,
+        "max": max,
+        "min_inclusive": min_inclusive,
+        "max_inclusive": max_inclusive,
+        "choices": choices,
+        "live": live,
+    }
+    if default is REQUIRED:
+        return dataclasses.field(metadata=meta)
+    if isinstance(default, list | dict):
+        return dataclasses.field(default_factory=lambda: type(default)(default), metadata=meta)
+    return dataclasses.field(default=default, metadata=meta)
+
+
+class _Required:
+    def __repr__(self) -> str:
+        return "REQUIRED"
+
+
+REQUIRED: Any = _Required()
+
+
+def allowed_text(meta: dict[str, Any]) -> str:
+    """Human-readable description of what a field allows, e.g. ``a number > 0 (m)``."""
+    if meta.get("choices"):
+        return "one of " + ", ".join(repr(c) for c in meta["choices"])
+    lo, hi = meta.get("min"), meta.get("max")
+    unit = meta.get("unit") or ""
+    suffix = f" ({unit})" if unit and unit != "1" else ""
+    lo_op = ">=" if meta.get("min_inclusive", True) else ">"
+    hi_op = "<=" if meta.get("max_inclusive", True) else "<"
+    if lo is not None and hi is not None:
+        lo_br = "[" if meta.get("min_inclusive", True) else "("
+        hi_br = "]" if meta.get("max_inclusive", True) else ")"
+        return f"a number in {lo_br}{lo:g}, {hi:g}{hi_br}{suffix}"
+    if lo is not None:
+        return f"a number {lo_op} {lo:g}{suffix}"
+    if hi is not None:
+        return f"a number {hi_op} {hi:g}{suffix}"
+    return f"a finite number{suffix}"
+
+
+def in_range(value: float, meta: dict[str, Any]) -> bool:
+    """True when ``value`` is finite and inside the range declared in ``meta``."""
+    if not math.isfinite(value):
+        return False
+    lo, hi = meta.get("min"), meta.get("max")
+    if lo is not None and (value < lo or (value == lo and not meta.get("min_inclusive", True))):
+        return False
+    if hi is not None and (value > hi or (value == hi and not meta.get("max_inclusive", True))):
+        return False
+    return True
