@@ -1,0 +1,1 @@
+"""Sub-commands of the ``chainfountain`` command line."""

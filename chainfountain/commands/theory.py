@@ -1,0 +1,151 @@
+"""``chainfountain theory``: the paper's analytic fountain for a geometry and speed."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+
+from chainfountain.commands.args import number
+from chainfountain.errors import UserError
+from chainfountain.theory import G0, Fountain
+
+LENGTH = "a length in m"
+
+
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "theory",
+        help="the paper's steady fountain for a geometry (l, h, H) and speed",
+        description=(
+            "Inverted-catenary fountain of Mayet & Pfeiffer for the horizontal span --l, "
+            "overshoot --h and drop --H (metres), at speed --v (m/s) or k = g/v^2 (--k, 1/m). "
+            "Without --k/--v it reports the admissible range of k."
+        ),
+        allow_abbrev=False,
+    )
+    p.add_argument("--l", type=number(LENGTH, min=0, min_inclusive=False), required=True,
+                   metavar="L", help="horizontal distance start to end (m)")
+    p.add_argument("--h", type=number(LENGTH, min=0), required=True, metavar="OVERSHOOT",
+                   help="height of the vertex above the start (m)")
+    p.add_argument("--H", type=number(LENGTH, min=0, min_inclusive=False), required=True,
+                   metavar="DROP", help="drop from the start to the end (m)")
+    speed = p.add_mutually_exclusive_group()
+    speed.add_argument("--k", type=number("k = g/v^2 in 1/m", min=0, min_inclusive=False),
+                       help="k = g/v^2 (1/m)")
+    speed.add_argument("--v", type=number("a speed in m/s", min=0, min_inclusive=False),
+                       help="chain speed (m/s)")
+    p.add_argument("--g", type=number("gravity in m/s^2", min=0, min_inclusive=False),
+                   default=G0, help=f"gravitational acceleration (default {G0})")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(func=run)
+
+
+def _range_report(f: Fountain) -> dict:
+    k_lo, k_hi = f.k_range()
+    r = f.force_ranges()
+    return {
+        "q": f.q,
+        "qH": f.qH,
+        "k_range": [k_lo, k_hi],
+        "k_range_empty": r.empty,
+        "k_max": k_hi,
+        "v_min": f.v_min,
+        "v_kmax": f.v_kmax,
+        "v_max": f.v_max,
+        "T0_bar_range": list(r.T0),
+        "TE_bar_range": list(r.TE),
+        "alpha0_deg": math.degrees(f.alpha0),
+        "alphaE_deg": math.degrees(f.alphaE),
+        "start": list(f.start),
+        "end": list(f.end),
+    }
+
+
+def _table(rows: list[tuple[str, str, str]]) -> str:
+    w0 = max(len(r[0]) for r in rows)
+    w1 = max(len(r[1]) for r in rows)
+    return "\n".join(f"  {a:<{w0}}  {b:>{w1}}  {c}" for a, b, c in rows)
+
+
+def run(args: argparse.Namespace) -> int:
+    try:
+        # k is a placeholder here; it only matters once the user gives a speed.
+        base = Fountain(l=args.l, h=args.h, H=args.H, k=1.0, g=args.g)
+    except ValueError as exc:
+        raise UserError(str(exc)) from None
+    if args.k is None and args.v is None:
+        rep = _range_report(base)
+        if args.json:
+            print(json.dumps(rep, indent=2))
+            return 0
+        k_lo, k_hi = rep["k_range"]
+        print(f"Fountain with l = {args.l:g} m, h = {args.h:g} m, H = {args.H:g} m "
+              f"(xi = {base.xi:.4g}, kappa = {base.kappa:.4g}):")
+        print(_table([
+            ("q", f"{base.q:.6g}", "1/m   shape, from q*l = acosh(1+q(h+H)) + acosh(1+qh)"),
+            ("q*H", f"{base.qH:.6g}", ""),
+            ("k range", f"({k_lo:.4g}, {k_hi:.4g}]", "1/m   energy bound < k <= k_max"),
+            ("v range", f"[{base.v_kmax:.4g}, {base.v_max:.4g})", "m/s   v(k_max) <= v < v_max"),
+            ("v_min", f"{base.v_min:.4g}", "m/s   sqrt(g(h+H)), the paper's looser bound"),
+            ("Tbar_0 range", f"[{rep['T0_bar_range'][0]:.4g}, {rep['T0_bar_range'][1]:.4g})", ""),
+            ("Tbar_E range", f"[{rep['TE_bar_range'][0]:.4g}, {rep['TE_bar_range'][1]:.4g})", ""),
+            ("alpha0", f"{rep['alpha0_deg']:.4g}", "deg   launch angle above horizontal"),
+            ("alphaE", f"{rep['alphaE_deg']:.4g}", "deg   landing angle below horizontal"),
+        ]))
+        if rep["k_range_empty"]:
+            print("  note: the energy bound leaves no admissible speed (q*H*(1-xi) <= 1)")
+        print("Give --k or --v for the tensions.")
+        return 0
+
+    if args.k is not None:
+        f = base.with_k(args.k)
+        flag, val = "--k", args.k
+    else:
+        f = base.with_k(args.g / args.v**2)
+        flag, val = "--v", args.v
+    if f.TE_bar < -1e-12:
+        allowed = (f"k <= k_max = {f.k_max:.6g} 1/m" if flag == "--k"
+                   else f"v >= sqrt(g/k_max) = {f.v_kmax:.6g} m/s")
+        raise UserError(
+            f"argument {flag}: {val:g} gives a pushing end force (Tbar_E = {f.TE_bar:.4g} < 0), "
+            f"impossible for a chain; allowed: {allowed}"
+        )
+    b = f.bounds()
+    if not b.below_v_max:
+        print(f"warning: v = {f.v:.4g} m/s is not below the rough energy bound "
+              f"v_max = {f.v_max:.4g} m/s (k <= 1/(2H)); bounds_ok is false", file=sys.stderr)
+    if args.json:
+        print(json.dumps(f.to_dict(), indent=2))
+        return 0
+    sx, sy = f.start
+    ex, ey = f.end
+    yes = {True: "holds", False: "FAILS"}
+    print(f"Fountain with l = {f.l:g} m, h = {f.h:g} m, H = {f.H:g} m, g = {f.g:g} m/s^2:")
+    print(_table([
+        ("q", f"{f.q:.6g}", "1/m"),
+        ("q*H", f"{f.qH:.6g}", ""),
+        ("k", f"{f.k:.6g}", "1/m   g/v^2"),
+        ("v", f"{f.v:.6g}", "m/s"),
+        ("k_max", f"{f.k_max:.6g}", "1/m   zero end tension"),
+        ("v(k_max)", f"{f.v_kmax:.6g}", "m/s"),
+        ("v_min", f"{f.v_min:.6g}", "m/s   sqrt(g(h+H))"),
+        ("v_max", f"{f.v_max:.6g}", "m/s   sqrt(2gH)"),
+        ("Tbar_0", f"{f.T0_bar:.6g}", "      start tension / (lambda v^2)"),
+        ("Tbar_E", f"{f.TE_bar:.6g}", "      end tension / (lambda v^2)"),
+        ("vertex", "(0, 0)", "m"),
+        ("start", f"({sx:.4g}, {sy:.4g})", "m     beaker"),
+        ("end", f"({ex:.4g}, {ey:.4g})", "m     floor"),
+        ("alpha0", f"{math.degrees(f.alpha0):.4g}", "deg"),
+        ("alphaE", f"{math.degrees(f.alphaE):.4g}", "deg"),
+        ("chain in flight", f"{f.length:.4g}", "m"),
+    ]))
+    print("Bounds:")
+    print(_table([
+        ("Tbar_0 >= 0", yes[b.tensile_start], ""),
+        ("Tbar_E >= 0 (k <= k_max)", yes[b.tensile_end], ""),
+        ("v >= v_min", yes[b.above_v_min], ""),
+        ("v < v_max", yes[b.below_v_max], ""),
+    ]))
+    return 0

@@ -1,0 +1,114 @@
+"""The pulley apparatus that generates a steady fountain.
+
+Paper, section "Generating Steady-State Chain Fountains": the chain is
+unfolded by a roller (scaled force 1/2), rises ``xi2*H`` to the fountain start
+(the "beaker" lies ``xi2*H`` below it), flies, lands at the fountain end and
+is folded back to rest ``xi3*H`` above it (the raised "bottom"). Carts on
+inclined tracks add the scaled forces ``Tbar_uc`` (upper) and ``Tbar_lc``
+(lower):
+
+    Tbar_E = 1/2 + Tbar_lc - xi3*k*H
+    Tbar_0 = 1/2 + Tbar_uc + xi2*k*H
+
+and steady state needs ``Tbar_0 - Tbar_E = k*H``, i.e.
+``Tbar_uc = Tbar_lc + k*H*(1 - xi2 - xi3)``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from chainfountain.theory.constants import G0
+
+
+def cart_force_bar(mass: float, slope: float, lam: float, v: float, g: float = G0) -> float:
+    """Scaled force of a cart on an incline, ``m*g*sin(beta)/(lambda*v**2)`` (as the paper
+    uses it)."""
+    return mass * g * math.sin(slope) / (lam * v**2)
+
+
+def cart_mass(force_bar: float, slope: float, lam: float, v: float, g: float = G0) -> float:
+    """Cart mass giving the scaled force ``force_bar`` on a track of slope ``beta`` (inverse of
+    :func:`cart_force_bar`)."""
+    return force_bar * lam * v**2 / (g * math.sin(slope))
+
+
+def apparatus_TE_bar(T_lc: float, xi3: float, k: float, H: float) -> float:
+    """End tension the lower mechanism supplies: ``1/2 + Tbar_lc - xi3*k*H``."""
+    return 0.5 + T_lc - xi3 * k * H
+
+
+def apparatus_T0_bar(T_uc: float, xi2: float, k: float, H: float) -> float:
+    """Start tension the upper mechanism supplies: ``1/2 + Tbar_uc + xi2*k*H``."""
+    return 0.5 + T_uc + xi2 * k * H
+
+
+def balanced_upper_cart(T_lc: float, xi2: float, xi3: float, k: float, H: float) -> float:
+    """Steady-state condition: ``Tbar_uc = Tbar_lc + k*H*(1 - xi2 - xi3)``."""
+    return T_lc + k * H * (1.0 - xi2 - xi3)
+
+
+def imbalance_bar(T_uc: float, T_lc: float, xi2: float, xi3: float, k: float, H: float) -> float:
+    """Scaled net force ``Tbar_0 - Tbar_E - k*H`` that the apparatus leaves unbalanced.
+
+    Zero in steady state. Positive means the mechanism holds the chain back
+    more than gravity on the free fountain pulls it (the chain decelerates).
+    """
+    return apparatus_T0_bar(T_uc, xi2, k, H) - apparatus_TE_bar(T_lc, xi3, k, H) - k * H
+
+
+@dataclass(frozen=True)
+class ApparatusSettings:
+    """Offsets and scaled cart forces of one apparatus, with the end tensions they supply."""
+
+    xi2: float
+    xi3: float
+    T_uc: float
+    T_lc: float
+    k: float
+    H: float
+
+    @property
+    def T0_bar(self) -> float:
+        return apparatus_T0_bar(self.T_uc, self.xi2, self.k, self.H)
+
+    @property
+    def TE_bar(self) -> float:
+        return apparatus_TE_bar(self.T_lc, self.xi3, self.k, self.H)
+
+    @property
+    def feasible(self) -> bool:
+        """Both carts pull (``Tbar_uc >= 0`` and ``Tbar_lc >= 0``), as the paper requires."""
+        return self.T_uc >= 0.0 and self.T_lc >= 0.0
+
+    @property
+    def balanced(self) -> bool:
+        return abs(imbalance_bar(self.T_uc, self.T_lc, self.xi2, self.xi3, self.k, self.H)) < 1e-9
+
+
+def settings_for(TE_bar: float, k: float, H: float, xi2: float, xi3: float) -> ApparatusSettings:
+    """Cart forces that make an apparatus with offsets ``xi2, xi3`` supply a fountain's end
+    tension ``Tbar_E`` in steady state (the paper's two-step design procedure).
+
+    ``Tbar_lc = Tbar_E - 1/2 + xi3*k*H`` and the balanced ``Tbar_uc``. Carts can
+    only pull, so both must be ``>= 0``; the caller checks :attr:`feasible`.
+    """
+    T_lc = TE_bar - 0.5 + xi3 * k * H
+    T_uc = balanced_upper_cart(T_lc, xi2, xi3, k, H)
+    return ApparatusSettings(xi2=xi2, xi3=xi3, T_uc=T_uc, T_lc=T_lc, k=k, H=H)
+
+
+def special_case_k(q: float, h: float, H: float) -> float:
+    """``k`` of the special case ``xi2 = xi3 = 1/2``, ``Tbar_lc = 0``.
+
+    Then ``Tbar_0 = 1/2 + k*H/2`` must equal ``1 - k/q - k*h``, so
+    ``k = 1/2 / (1/q + h + H/2)``.
+    """
+    return 0.5 / (1.0 / q + h + 0.5 * H)
+
+
+def limit_case_xi3(k: float, H: float) -> float:
+    """``xi3 = 1/(2*k*H)`` of the limit case ``k = k_max``, ``Tbar_lc = 0``
+    (then ``Tbar_E = 0``)."""
+    return 1.0 / (2.0 * k * H)
