@@ -1,0 +1,235 @@
+"""Headless runs: step a level without a window, record, compare with theory, write files.
+
+Outputs (all written atomically into the output folder):
+
+- ``summary.json``: headline measurements over the steady window and the
+  paper's prediction with relative errors;
+- ``tensions.csv``: time, joint index, arc length, x, y, signed tension (N),
+  scaled tension, decimated to at most ``MAX_TENSION_SAMPLES`` time samples;
+- ``speed.csv``: one row per recorded sample (speed, vertex, stretch, ...);
+- ``snapshot.png``: the chain at the end with the predicted catenary (metres).
+"""
+
+from __future__ import annotations
+
+import csv
+import dataclasses
+import io as _io
+import json
+import math
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from chainfountain import atomic
+from chainfountain.level.io import Level
+from chainfountain.sim.recorder import Recorder
+from chainfountain.sim.world import Simulation
+
+MAX_TENSION_SAMPLES = 200
+DEFAULT_DURATION = 8.0
+
+
+def _progress(total: float, enabled: bool):
+    from tqdm import tqdm
+
+    return tqdm(total=round(total, 3), unit="sim s", disable=None if enabled else True,
+                bar_format="{l_bar}{bar}| {n:.2f}/{total:.2f} sim s [{elapsed}<{remaining}]",
+                file=sys.stderr, leave=False)
+
+
+def simulate(level: Level, duration: float, *, seed: int | None = None,
+             progress: bool = True) -> tuple[Simulation, Recorder, float]:
+    """Build and run a level for ``duration`` simulated seconds; returns sim, recorder, wall s."""
+    sim_cfg = level.sim
+    if seed is not None:
+        sim_cfg = dataclasses.replace(
+            sim_cfg, initial=dataclasses.replace(sim_cfg.initial, seed=int(seed)))
+    sim = Simulation(sim_cfg)
+    rec = Recorder(sim)
+    n_steps = int(round(duration / sim.dt))
+    chunk = max(1, int(round(0.05 / sim.dt)))
+    t0 = time.perf_counter()
+    with _progress(duration, progress) as bar:
+        done = 0
+        step = sim.step
+        while done < n_steps:
+            m = min(chunk, n_steps - done)
+            for _ in range(m):
+                step()
+            done += m
+            bar.update(m * sim.dt)
+    wall = time.perf_counter() - t0
+    return sim, rec, wall
+
+
+def _f(x: Any) -> Any:
+    """JSON-safe float (NaN/inf become null)."""
+    if x is None:
+        return None
+    x = float(x)
+    return x if math.isfinite(x) else None
+
+
+def summarize(level: Level, sim: Simulation, rec: Recorder, duration: float,
+              wall: float) -> dict[str, Any]:
+    """The ``summary.json`` object."""
+    full = rec.summary(window=duration)  # for the steady-state time
+    steady = full.steady_from
+    window_start = steady if steady is not None else max(0.0, sim.time - rec.cfg.window)
+    s = rec.summary(window=sim.time - window_start)
+    ref = sim.reference
+    tb = s.extras.get("tension_bar")
+    TE_bar = float(tb[-1]) if tb is not None and len(tb) else float("nan")
+    speed_cv = s.speed_uniformity
+    out: dict[str, Any] = {
+        "level": level.meta.name,
+        "kind": level.sim.kind,
+        "duration_s": _f(sim.time),
+        "steps": sim.steps,
+        "links": sim.n_links,
+        "links_free": sim.n_free,
+        "link_length": level.sim.chain.link_length,
+        "dt": sim.dt,
+        "wall_s": _f(wall),
+        "realtime_factor": _f(sim.time / wall) if wall > 0 else None,
+        "steady": steady is not None,
+        "steady_since_s": _f(steady),
+        "window": [_f(s.t0), _f(s.t1)],
+        "samples": s.samples,
+        "speed_mean": _f(s.speed_mean),
+        "speed_cv": _f(speed_cv),
+        "speed_spread": _f(s.speed_spread_inst),
+        "max_stretch": _f(s.stretch_max),
+        "vertex": [_f(s.vertex_x), _f(s.vertex_y)],
+        "start": [0.0, 0.0],
+        "end": [_f(s.landing_x), _f(-level.sim.feed.drop)],
+        "h": _f(s.vertex_y),
+        "l": _f(s.landing_x),
+        "H": level.sim.feed.drop,
+        "q_fit": _f(s.q_fit),
+        "k": _f(sim.g / s.speed_mean**2) if s.speed_mean > 0 else None,
+        "T0_bar": _f(s.T0_bar),
+        "TE_bar": _f(TE_bar),
+        "tension_rms": _f(s.tension_rms),
+    }
+    if ref is not None:
+        errs = s.errors(ref)
+        out["theory"] = {
+            "h": ref.h,
+            "vertex": [ref.x_rise, ref.h],
+            "l": ref.landing_x,
+            "q": ref.q,
+            "k": ref.k,
+            "v": ref.v,
+            "T0_bar": ref.T0_bar,
+            "TE_bar": 0.0,
+            "rel_error": {
+                "h": _f(errs["vertex_y"]),
+                "vertex_x": _f(errs["vertex_x"]),
+                "l": _f(errs["landing_x"]),
+                "q": _f(errs["q"]),
+                "speed": _f(errs["speed"]),
+            },
+            "abs_error": {
+                "T0_bar": _f(errs["T0_bar"]),
+                "TE_bar": _f(TE_bar),
+                "tension_rms": _f(s.tension_rms),
+            },
+        }
+    else:
+        out["theory"] = None
+    return out
+
+
+def _write_tensions(path: Path, rec: Recorder, lam: float) -> None:
+    profs = rec.profiles
+    samples = rec.samples
+    if not profs:
+        atomic.write_text(path, "t,joint,s,x,y,tension_N,tension_bar\n")
+        return
+    idx = np.unique(np.linspace(0, len(profs) - 1, min(MAX_TENSION_SAMPLES, len(profs)))
+                    .round().astype(int))
+    buf = _io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(["t", "joint", "s", "x", "y", "tension_N", "tension_bar"])
+    for i in idx:
+        p, smp = profs[i], samples[i]
+        v = smp.speed_mean if smp.speed_mean > 0 else 1.0
+        xy = np.column_stack([p.x, p.y])
+        s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(xy, axis=0), axis=1))])
+        scale = lam * v * v
+        for j in range(len(p.tension_bar)):
+            w.writerow([f"{smp.t:.6g}", j, f"{s[j]:.6g}", f"{p.x[j]:.6g}", f"{p.y[j]:.6g}",
+                        f"{p.tension_bar[j] * scale:.6g}", f"{p.tension_bar[j]:.6g}"])
+    atomic.write_text(path, buf.getvalue())
+
+
+def _write_speed(path: Path, rec: Recorder) -> None:
+    buf = _io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    cols = [f.name for f in dataclasses.fields(rec.samples[0])] if rec.samples else ["t"]
+    w.writerow(cols)
+    for smp in rec.samples:
+        w.writerow([f"{getattr(smp, c):.6g}" for c in cols])
+    atomic.write_text(path, buf.getvalue())
+
+
+def write_snapshot(path: Path, sim: Simulation, summary: dict[str, Any], title: str) -> None:
+    """The chain at the end of the run over the predicted catenary, axes in metres."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    pts = sim.chain_polyline()
+    fig, ax = plt.subplots(figsize=(6.4, 6.4), dpi=100)
+    ax.plot(pts[:, 0], pts[:, 1], "-", color="#333333", lw=1.6, label="simulated chain")
+    ref = sim.reference
+    if ref is not None:
+        x = np.linspace(0.0, ref.landing_x, 300)
+        ax.plot(x, ref.y_of_x(x), "--", color="#d62728", lw=1.2,
+                label=f"inverted catenary (theory), q = {ref.q:.3g} 1/m")
+        ax.plot(*ref.vertex, "x", color="#d62728", ms=9, mew=2, label="predicted vertex")
+    vx, vy = summary["vertex"]
+    if vx is not None and vy is not None:
+        ax.plot(vx, vy, "o", mfc="none", color="#1f77b4", ms=9, mew=1.5,
+                label="measured vertex (window mean)")
+    fy, fx0, fx1, mode = sim.floor_geometry()
+    ax.plot([fx0, fx1], [fy, fy], color="#8c564b", lw=3, label=f"{mode} floor")
+    (gx, gy), (ux, uy) = sim.guide_geometry()
+    ax.plot([gx - 0.15 * ux, gx], [gy - 0.15 * uy, gy], color="#2ca02c", lw=4, label="feed guide")
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.grid(alpha=0.3)
+    xs = np.concatenate([pts[:, 0], [fx0, fx1]]) if ref is None else pts[:, 0]
+    ax.set_xlim(min(xs.min(), -0.2) - 0.1, max(xs.max(), 0.2) + 0.1)
+    ax.set_title(title, fontsize=10)
+    ax.legend(loc="lower left", fontsize=8, framealpha=0.9)
+    fig.tight_layout()
+    with atomic.atomic_path(path) as tmp:
+        fig.savefig(tmp, format="png")
+    plt.close(fig)
+
+
+def run_level(level: Level, out_dir: Path, duration: float | None = None, *,
+              seed: int | None = None, progress: bool = True) -> Path:
+    """Run ``level`` headless and write the outputs into ``out_dir``; returns summary.json."""
+    duration = DEFAULT_DURATION if duration is None else float(duration)
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    sim, rec, wall = simulate(level, duration, seed=seed, progress=progress)
+    summary = summarize(level, sim, rec, duration, wall)
+    lam = level.sim.chain.linear_density
+    _write_tensions(out_dir / "tensions.csv", rec, lam)
+    _write_speed(out_dir / "speed.csv", rec)
+    title = (f"{level.meta.name}: t = {sim.time:.2f} s, v = {summary['speed_mean'] or 0:.3f} m/s"
+             + ("" if summary["steady"] else " (not steady)"))
+    write_snapshot(out_dir / "snapshot.png", sim, summary, title)
+    path = out_dir / "summary.json"
+    atomic.write_text(path, json.dumps(summary, indent=2) + "\n")
+    return path

@@ -1,0 +1,59 @@
+"""Where levels live: the shipped ``levels/`` folder, the user's folder, the built-in default."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+from chainfountain.level import io
+
+DEFAULT_LEVEL_NAME = "paper_tall"
+"""Stem of the level ``chainfountain`` opens with no arguments."""
+
+
+def shipped_dir() -> Path:
+    """The repository's ``levels/`` folder (next to the package in a checkout)."""
+    return Path(__file__).resolve().parents[2] / "levels"
+
+
+def user_dir(create: bool = False) -> Path:
+    """The user's level folder: ``$CHAINFOUNTAIN_HOME/levels`` or
+    ``~/.local/share/chainfountain/levels``."""
+    home = os.environ.get("CHAINFOUNTAIN_HOME")
+    base = Path(home) if home else Path.home() / ".local" / "share" / "chainfountain"
+    d = base / "levels"
+    if create:
+        d.mkdir(parents=True, exist_ok=True)
+    return d
+
+
+def available() -> list[Path]:
+    """All level files: shipped ones first, then the user's, each sorted by name."""
+    out: list[Path] = []
+    for d in (shipped_dir(), user_dir()):
+        if d.is_dir():
+            out.extend(sorted(d.glob("*.toml")))
+    return out
+
+
+def resolve(name_or_path: str | os.PathLike[str]) -> Path:
+    """A level path from a file path or a bare level name (``paper_tall``)."""
+    p = Path(name_or_path)
+    if p.suffix == ".toml" or p.exists():
+        return p
+    for d in (shipped_dir(), user_dir()):
+        cand = d / f"{p.name}.toml"
+        if cand.exists():
+            return cand
+    names = ", ".join(sorted(x.stem for x in available())) or "none found"
+    raise io.LevelError(f"{name_or_path}: no such level file or level name; known levels: {names}")
+
+
+def default_level() -> io.Level:
+    """The built-in default level (``levels/paper_tall.toml``; the code defaults if absent)."""
+    path = shipped_dir() / f"{DEFAULT_LEVEL_NAME}.toml"
+    if path.exists():
+        return io.load(path)
+    return io.make_level(
+        "default", "Built-in default: a fed fountain with the simulator's default settings."
+    )

@@ -1,0 +1,72 @@
+"""Headless runner: files, keys, determinism, errors."""
+
+import csv
+import json
+import subprocess
+import sys
+
+import pytest
+
+from chainfountain.headless import run_level
+from chainfountain.level import io
+
+KEYS = ["level", "duration_s", "steps", "links", "wall_s", "realtime_factor", "steady_since_s",
+        "speed_mean", "speed_cv", "max_stretch", "vertex", "start", "end", "h", "l", "H",
+        "q_fit", "T0_bar", "TE_bar", "theory"]
+
+
+@pytest.fixture(scope="module")
+def quick_level():
+    return io.make_level("quick", "short headless test run")
+
+
+def _numbers(summary):
+    s = dict(summary)
+    s.pop("wall_s")
+    s.pop("realtime_factor")
+    return s
+
+
+def test_run_writes_all_files_and_keys(tmp_path, quick_level):
+    path = run_level(quick_level, tmp_path, 0.3, progress=False)
+    s = json.loads(path.read_text())
+    for k in KEYS:
+        assert k in s, k
+    for k in ("h", "vertex", "q", "T0_bar", "TE_bar", "rel_error"):
+        assert k in s["theory"], k
+    assert s["steps"] == 600 and s["level"] == "quick"
+    with open(tmp_path / "tensions.csv") as fh:
+        rows = list(csv.DictReader(fh))
+    assert rows and set(rows[0]) == {"t", "joint", "s", "x", "y", "tension_N", "tension_bar"}
+    with open(tmp_path / "speed.csv") as fh:
+        assert len(list(csv.DictReader(fh))) == 30
+    png = (tmp_path / "snapshot.png").read_bytes()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 10_000
+    assert not [p for p in tmp_path.iterdir() if ".part" in p.name]
+
+
+def test_same_level_and_seed_give_identical_numbers(tmp_path, quick_level):
+    a = json.loads(run_level(quick_level, tmp_path / "a", 0.2, seed=3, progress=False).read_text())
+    b = json.loads(run_level(quick_level, tmp_path / "b", 0.2, seed=3, progress=False).read_text())
+    assert _numbers(a) == _numbers(b)
+    assert (tmp_path / "a" / "tensions.csv").read_text() == \
+        (tmp_path / "b" / "tensions.csv").read_text()
+
+
+def _cli(*args, cwd=None):
+    return subprocess.run([sys.executable, "-m", "chainfountain", *args], capture_output=True,
+                          text=True, timeout=120, cwd=cwd)
+
+
+def test_cli_run_and_bad_flags(tmp_path, quick_level):
+    lvl = io.save(quick_level, tmp_path / "quick.toml")
+    ok = _cli("run", str(lvl), "--headless", "--duration", "0.1", "--out", str(tmp_path / "o"))
+    assert ok.returncode == 0, ok.stderr
+    assert "summary.json" in ok.stdout and (tmp_path / "o" / "summary.json").exists()
+    for bad, flag in ((["--duration", "-1"], "--duration"), (["--duration", "x"], "--duration"),
+                      (["--seed", "-2"], "--seed")):
+        r = _cli("run", str(lvl), *bad)
+        assert r.returncode != 0 and "Traceback" not in r.stderr
+        assert flag in r.stderr and len(r.stderr.strip().splitlines()) == 1
+    r = _cli("run", str(tmp_path / "missing.toml"))
+    assert r.returncode == 2 and "no such file" in r.stderr and "Traceback" not in r.stderr
