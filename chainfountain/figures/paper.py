@@ -1,0 +1,187 @@
+"""The paper's figures recomputed from ``chainfountain.theory``.
+
+Each ``fig_<name>()`` returns ``(figure, caption)``; nothing is written here
+(see :func:`chainfountain.figures.main`). Example geometry of the paper:
+``H = 2 m``, ``xi = h/H = 0.14``, ``kappa = l/H = 0.165``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from matplotlib.colors import LogNorm
+from matplotlib.figure import Figure
+
+from chainfountain.figures._io import plt
+from chainfountain.theory import Fountain, solve_qH
+from chainfountain.theory.belt import PAPER_FOUNTAINS, BeltFountain, belt_fountain
+
+__all__ = [
+    "EXAMPLE",
+    "example_fountain",
+    "fig_force_ranges",
+    "fig_schematic_chain_fountain",
+    "fig_sol",
+    "paper_belt_fountains",
+]
+
+EXAMPLE = {"H": 2.0, "xi": 0.14, "kappa": 0.165, "k": 0.377}
+
+
+def example_fountain(k: float = EXAMPLE["k"]) -> Fountain:
+    """The paper's example fountain (``l = 0.33, h = 0.28, H = 2`` m) at ``k``."""
+    H = EXAMPLE["H"]
+    return Fountain.from_geometry(l=EXAMPLE["kappa"] * H, h=EXAMPLE["xi"] * H, H=H, k=k)
+
+
+def fig_sol(n: int = 240) -> tuple[Figure, str]:
+    """Fig. "sol": ``qbar = H*q`` from Eq. (kinemat_constraint) over ``(xi, kappa)``."""
+    xi = np.linspace(0.0, 0.99, n)
+    kappa = np.geomspace(0.05, 2.0, n)
+    XI, KA = np.meshgrid(xi, kappa)
+    QB = np.asarray(solve_qH(XI, KA))
+    ex = example_fountain()
+    fig, ax = plt.subplots(figsize=(6.4, 4.6), layout="constrained")
+    levels = np.array([1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000])
+    levels = levels[(levels >= QB.min()) & (levels <= QB.max() * 1.01)]
+    fill = ax.contourf(
+        XI, KA, QB, levels=np.geomspace(QB.min(), QB.max(), 60), norm=LogNorm(), cmap="viridis"
+    )
+    fill.set_rasterized(True)  # keeps the SVG small
+    lines = ax.contour(XI, KA, QB, levels=levels, colors="white", linewidths=0.8)
+    ax.clabel(lines, fmt="%g", fontsize=8)
+    cb = fig.colorbar(fill, ax=ax, ticks=levels)
+    cb.ax.set_yticklabels([f"{v:g}" for v in levels])
+    cb.set_label(r"$\bar q = Hq$")
+    ax.set_yscale("log")
+    ax.plot(ex.xi, ex.kappa, "r*", ms=12, mec="k")
+    ax.annotate(
+        rf"example $\xi={ex.xi:.2f}$, $\kappa={ex.kappa:.3f}$" + "\n" + rf"$\bar q={ex.qH:.2f}$",
+        (ex.xi, ex.kappa),
+        xytext=(0.3, 0.09),
+        color="white",
+        fontsize=9,
+        arrowprops={"arrowstyle": "->", "color": "white"},
+    )
+    ax.set_xlabel(r"$\xi = h/H$")
+    ax.set_ylabel(r"$\kappa = l/H$")
+    ax.set_title(r"Shape parameter from $ql = \mathrm{acosh}(1+q(h+H)) + \mathrm{acosh}(1+qh)$")
+    caption = (
+        "Fig. sol: numerical solution qbar = H*q of the kinematic constraint "
+        "q*l = acosh(1 + q*(h+H)) + acosh(1 + q*h) (paper Eq. kinemat_constraint) over "
+        "xi = h/H in [0, 0.99] and kappa = l/H in [0.05, 2] (log scale). The shape of a "
+        "string fountain depends on l, h, H only. Star: the paper's example xi = 0.14, "
+        f"kappa = 0.165, qbar = {ex.qH:.2f} (the paper's caption quotes 44.4)."
+    )
+    return fig, caption
+
+
+def paper_belt_fountains() -> dict[str, BeltFountain]:
+    """Fountains A, B, C, D (k = 0.377) and D' (k = 0.430) of Fig. "schematic_chain_fountain".
+
+    Launch held fixed: start point, angle, tension and curvature of the example
+    catenary (``qH = 44.20`` from ``xi, kappa``; see :mod:`chainfountain.theory.belt`).
+    """
+    base = example_fountain()
+    return {
+        name: belt_fountain(base.q, base.h, base.H, k, eps)
+        for name, (eps, k) in PAPER_FOUNTAINS.items()
+    }
+
+
+_COLORS = {"A": "tab:green", "B": "tab:red", "C": "tab:purple", "D": "tab:blue", "D'": "tab:orange"}
+
+
+def fig_schematic_chain_fountain(
+    fountains: dict[str, BeltFountain] | None = None,
+) -> tuple[Figure, str]:
+    """Fig. "schematic_chain_fountain": belt fountains A-D, shape, ``Tbar(s)``, ``alpha(s)``."""
+    fs = paper_belt_fountains() if fountains is None else fountains
+    fig = plt.figure(figsize=(9.0, 6.4), layout="constrained")
+    gs = fig.add_gridspec(2, 2, width_ratios=[1, 1.6])
+    ax_shape = fig.add_subplot(gs[:, 0])
+    ax_T = fig.add_subplot(gs[0, 1])
+    ax_a = fig.add_subplot(gs[1, 1], sharex=ax_T)
+    for name, b in fs.items():
+        eps = b.eps
+        if name.startswith("D"):
+            label = f"{name}: e=0, k={b.k:.3f}"
+        else:
+            label = f"{name}: e1={eps.e1:.0e}, e2={eps.e2:.0e}"
+        lw = 1.0 if name.startswith("D") else 1.2
+        ls = "--" if name == "D'" else "-"
+        c = _COLORS.get(name)
+        x0 = b.x[0]
+        ax_shape.plot(b.x - x0, b.y - b.y[0], color=c, lw=lw, ls=ls, label=label)
+        ax_T.plot(b.s, b.T, color=c, lw=lw, ls=ls)
+        ax_a.plot(b.s, b.alpha, color=c, lw=lw, ls=ls)
+    any_b = next(iter(fs.values()))
+    ax_shape.axhline(-any_b.H, color="0.5", lw=0.8)
+    ax_shape.set_aspect("equal")
+    ax_shape.set_xlabel("x from start [m]")
+    ax_shape.set_ylabel("y from start [m]")
+    fig.legend(fontsize=8, loc="outside lower center", ncols=3)
+    ax_shape.set_title("fountain")
+    ax_T.axhline(0, color="0.5", lw=0.6)
+    ax_T.set_ylabel(r"$\bar T = T/(\lambda v^2)$")
+    ax_T.set_title("scaled tension")
+    ax_a.set_ylabel(r"$\alpha$ [rad]")
+    ax_a.set_xlabel("arc length s from start [m]")
+    rows = ", ".join(
+        f"{n}: h={b.overshoot:.3f} m, l={b.distance:.3f} m" for n, b in fs.items() if n != "D'"
+    )
+    caption = (
+        "Fig. schematic_chain_fountain: belt approximation with joint resistance "
+        "Qbar = -(e0 + e1*T)*alpha' - (e2 + e3*T)*alpha'' (paper Eq. 2), H = 2 m, "
+        "xi = 0.14, kappa = 0.165 (qH = 44.20), e0 = e3 = 0. Each fountain starts with the "
+        "catenary's start point, angle, curvature and tension (k = 0.377 for A-D, 0.430 "
+        "for D' dashed) and is integrated to the floor y = -H. Overshoot height and landing "
+        f"distance: {rows} (catenary: h = 0.280, l = 0.330). D and D' have the same shape; "
+        "only the tension differs (Tbar_E = 0.123 and ~0). The bending term excites "
+        "stationary waves of wavenumber sqrt((1 - T)/e2) on the falling branch."
+    )
+    return fig, caption
+
+
+def fig_force_ranges(n: int = 200) -> tuple[Figure, str]:
+    """Fig. "force_ranges": admissible ``Tbar_0``, ``Tbar_E`` against ``k`` (Eq. range_forces)."""
+    f = example_fountain()
+    k_lo, k_hi = f.k_range()
+    k = np.linspace(k_lo, k_hi, n)
+    T0 = 1 - k / f.q - k * f.h
+    TE = 1 - k / f.q - k * (f.h + f.H)
+    fig, ax = plt.subplots(figsize=(6.4, 4.4), layout="constrained")
+    ax.axhspan(0.5, 1.0, color="tab:blue", alpha=0.12, label=r"paper: $\bar T_0\in(1/2,1)$")
+    ax.axhspan(0.0, 0.5, color="tab:orange", alpha=0.12, label=r"paper: $\bar T_E\in[0,1/2)$")
+    ax.plot(k, T0, color="tab:blue", lw=2, label=r"$\bar T_0 = 1 - k/q - kh$")
+    ax.plot(k, TE, color="tab:orange", lw=2, label=r"$\bar T_E = 1 - k/q - k(h+H)$")
+    for kk, txt in ((0.377, "k = 0.377 (5.1 m/s)"), (f.k_max, f"k_max = {f.k_max:.4f}")):
+        ax.axvline(kk, color="0.3", lw=0.8, ls=":")
+        ax.text(kk, 1.02, txt, rotation=0, ha="center", va="bottom", fontsize=8)
+    ax.axvline(k_lo, color="0.3", lw=0.8, ls=":")
+    ax.text(k_lo, 1.02, r"$1/(2H)$", ha="center", va="bottom", fontsize=8)
+    ax.set_xlim(k_lo - 0.02, k_hi + 0.02)
+    ax.set_ylim(-0.05, 1.1)
+    ax.set_xlabel(r"$k = g/v^2$ [1/m]")
+    ax.set_ylabel("scaled end tension")
+    ax.legend(fontsize=8, loc="center left")
+    g = f.g
+    sec = ax.secondary_xaxis(
+        "bottom",
+        functions=(
+            lambda kk: np.sqrt(g / np.clip(kk, 1e-9, None)),
+            lambda v: g / np.clip(v, 1e-9, None) ** 2,
+        ),
+    )
+    sec.set_xlabel("v [m/s]")
+    sec.spines["bottom"].set_position(("outward", 36))
+    fr = f.force_ranges()
+    caption = (
+        "Fig. force_ranges: end tensions of the example fountain (H = 2 m, xi = 0.14, "
+        f"kappa = 0.165, qH = {f.qH:.2f}) over the admissible k in (1/(2H), k_max] = "
+        f"({k_lo:.3f}, {k_hi:.4f}] (paper Eq. k_upper_bound and the energy bound v < "
+        f"sqrt(2gH)). Tbar_0 spans [{fr.T0[0]:.3f}, {fr.T0[1]:.3f}), Tbar_E spans "
+        f"[{fr.TE[0]:.3f}, {fr.TE[1]:.3f}); shaded: the paper's general ranges "
+        "(1/2, 1) and [0, 1/2) (Eq. range_forces). Tbar_0 - Tbar_E = k*H throughout; "
+        "at k_max the floor force vanishes."
+    )
+    return fig, caption
