@@ -1,0 +1,229 @@
+"""The chain: rigid rod links joined by pivot joints and rotary spring-dampers.
+
+Links are kept in chain order: index 0 is the downstream (free, landing) end,
+the last index the upstream end (the feed). Each link body's local ``+x`` axis
+points downstream, so its front end is at ``(+L/2, 0)`` and its back end at
+``(-L/2, 0)``; link ``i``'s back end is pinned to link ``i+1``'s front end.
+The joint and the spring that connect link ``i`` to its upstream neighbour are
+stored on link ``i`` (``up_joint``, ``up_spring``), so removing the front link
+removes exactly its own constraints.
+
+The rotary spring ``c`` and damper ``d`` are the joint resistance of the
+paper's angular momentum balance (section "Equations of Motion"); ``c = d = 0``
+gives the string model whose steady solution is the inverted catenary.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import pymunk
+
+from chainfountain.sim.config import ChainConfig, SolverConfig
+
+LINK_GROUP = 1
+"""Shape-filter group of chain links (links do not collide with each other)."""
+
+CHAIN_CATEGORY = 0b10
+"""Collision category bit of chain links."""
+
+
+@dataclass(eq=False)
+class Link:
+    """One rigid rod link and the constraints to its upstream neighbour."""
+
+    body: pymunk.Body
+    shape: pymunk.Segment | None = None
+    id: int = 0
+    """``body.id`` cached (reading it from pymunk is slow)."""
+    up_joint: pymunk.PivotJoint | None = None
+    up_spring: pymunk.DampedRotarySpring | None = None
+
+
+class Chain:
+    """A chain of rod links living in a :class:`pymunk.Space`.
+
+    Parameters
+    ----------
+    space:
+        The space to add bodies and constraints to.
+    chain:
+        Link geometry, density, joint resistance and friction.
+    solver:
+        Supplies the joint ``error_bias``.
+    shapes:
+        Give links collision shapes (needed for floors, rollers, carts; costs
+        about 70 % more per step, so fountains over an absorbing floor go without).
+    """
+
+    def __init__(
+        self, space: pymunk.Space, chain: ChainConfig, solver: SolverConfig, *, shapes: bool
+    ) -> None:
+        self.space = space
+        self.cfg = chain
+        self.solver = solver
+        self.shapes = shapes
+        self.L = float(chain.link_length)
+        self.mass = float(chain.linear_density) * self.L
+        self.moment = self.mass * self.L**2 / 12.0
+        self.links: list[Link] = []
+        self.version = 0
+        """Incremented whenever links are added, removed or change type (cache key)."""
+        if chain.self_collision:
+            self._filter = pymunk.ShapeFilter(categories=CHAIN_CATEGORY)
+        else:
+            self._filter = pymunk.ShapeFilter(group=LINK_GROUP, categories=CHAIN_CATEGORY)
+
+    # ------------------------------------------------------------------ creation
+    def make_body(self, center: tuple[float, float], angle: float, *,
+                  kinematic: bool = False,
+                  velocity: tuple[float, float] = (0.0, 0.0),
+                  angular_velocity: float = 0.0) -> Link:
+        """Create (not yet added) a link centred at ``center`` pointing downstream at ``angle``."""
+        if kinematic:
+            body = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
+        else:
+            body = pymunk.Body(self.mass, self.moment)
+        body.position = center
+        body.angle = angle
+        body.velocity = velocity
+        body.angular_velocity = angular_velocity
+        shape = None
+        if self.shapes:
+            h = 0.5 * self.L
+            shape = pymunk.Segment(body, (-h, 0.0), (h, 0.0), self.cfg.link_radius)
+            shape.friction = self.cfg.friction
+            shape.filter = self._filter
+        return Link(body=body, shape=shape, id=body.id)
+
+    def _add_link_objects(self, link: Link) -> None:
+        if link.shape is not None:
+            self.space.add(link.body, link.shape)
+        else:
+            self.space.add(link.body)
+
+    def _connect(self, down: Link, up: Link) -> None:
+        """Pin ``down``'s back end to ``up``'s front end and add the rotary spring."""
+        h = 0.5 * self.L
+        joint = pymunk.PivotJoint(down.body, up.body, (-h, 0.0), (h, 0.0))
+        joint.error_bias = self.solver.joint_error_bias
+        joint.collide_bodies = False
+        down.up_joint = joint
+        self.space.add(joint)
+        if self.cfg.bending_stiffness > 0.0 or self.cfg.bending_damping > 0.0:
+            spring = pymunk.DampedRotarySpring(
+                down.body, up.body, 0.0, self.cfg.bending_stiffness, self.cfg.bending_damping
+            )
+            spring.collide_bodies = False
+            down.up_spring = spring
+            self.space.add(spring)
+
+    def append(self, link: Link) -> None:
+        """Add ``link`` at the upstream end and connect it to the current last link."""
+        self._add_link_objects(link)
+        if self.links:
+            last = self.links[-1]
+            if last.body.body_type != pymunk.Body.DYNAMIC and \
+                    link.body.body_type != pymunk.Body.DYNAMIC:
+                raise ValueError("cannot join two non-dynamic links")
+            self.links.append(link)
+            self._connect(last, link)
+        else:
+            self.links.append(link)
+        self.version += 1
+
+    def append_unjoined(self, link: Link) -> None:
+        """Add ``link`` at the upstream end without a joint (for kinematic guide links)."""
+        self._add_link_objects(link)
+        self.links.append(link)
+        self.version += 1
+
+    def join(self, i: int) -> None:
+        """Create the joint between link ``i`` and link ``i+1`` (if it is missing)."""
+        down, up = self.links[i], self.links[i + 1]
+        if down.up_joint is None:
+            self._connect(down, up)
+            self.version += 1
+
+    def pop_front(self) -> Link:
+        """Remove the downstream end link (with its constraints) from the space."""
+        link = self.links.pop(0)
+        self._remove_objects(link)
+        self.version += 1
+        return link
+
+    def _remove_objects(self, link: Link) -> None:
+        objs: list = [link.body]
+        if link.shape is not None:
+            objs.append(link.shape)
+        if link.up_joint is not None:
+            objs.append(link.up_joint)
+        if link.up_spring is not None:
+            objs.append(link.up_spring)
+        self.space.remove(*objs)
+        link.up_joint = None
+        link.up_spring = None
+
+    def clear(self) -> None:
+        """Remove all links."""
+        while self.links:
+            self.pop_front()
+
+    def make_dynamic(self, link: Link) -> None:
+        """Turn a kinematic link into a dynamic one, keeping its velocity."""
+        vel = link.body.velocity
+        w = link.body.angular_velocity
+        link.body.body_type = pymunk.Body.DYNAMIC
+        link.body.mass = self.mass
+        link.body.moment = self.moment
+        link.body.velocity = vel
+        link.body.angular_velocity = w
+        self.version += 1
+
+    # ------------------------------------------------------------------ live settings
+    def set_bending(self, stiffness: float | None = None, damping: float | None = None) -> None:
+        """Change ``c`` and/or ``d`` of all joints live (adds springs that were skipped at zero)."""
+        if stiffness is not None:
+            self.cfg.bending_stiffness = float(stiffness)
+        if damping is not None:
+            self.cfg.bending_damping = float(damping)
+        c, d = self.cfg.bending_stiffness, self.cfg.bending_damping
+        for i, link in enumerate(self.links[:-1]):
+            if link.up_joint is None:
+                continue
+            if link.up_spring is None:
+                if c > 0.0 or d > 0.0:
+                    up = self.links[i + 1]
+                    spring = pymunk.DampedRotarySpring(link.body, up.body, 0.0, c, d)
+                    spring.collide_bodies = False
+                    link.up_spring = spring
+                    self.space.add(spring)
+            elif c == 0.0 and d == 0.0:
+                self.space.remove(link.up_spring)
+                link.up_spring = None
+            else:
+                link.up_spring.stiffness = c
+                link.up_spring.damping = d
+
+    def set_error_bias(self, error_bias: float) -> None:
+        """Change the pivot joints' ``error_bias`` live."""
+        self.solver.joint_error_bias = float(error_bias)
+        for link in self.links:
+            if link.up_joint is not None:
+                link.up_joint.error_bias = error_bias
+
+    def set_friction(self, friction: float) -> None:
+        """Change the links' friction coefficient live."""
+        self.cfg.friction = float(friction)
+        for link in self.links:
+            if link.shape is not None:
+                link.shape.friction = friction
+
+    # ------------------------------------------------------------------ helpers
+    def ends(self, link: Link) -> tuple[pymunk.Vec2d, pymunk.Vec2d]:
+        """World positions ``(front, back)`` of one link."""
+        h = 0.5 * self.L
+        return link.body.local_to_world((h, 0.0)), link.body.local_to_world((-h, 0.0))
+
+    def __len__(self) -> int:
+        return len(self.links)

@@ -1,0 +1,203 @@
+"""Configuration dataclasses of the physics core (SI units: m, kg, s, N, rad).
+
+Every numeric field is declared with :func:`chainfountain.level.fields.param`
+(unit, one-line doc, allowed range, ``live`` flag), so a generic level loader
+can read, validate and document them. The classes are plain nested dataclasses
+of numbers, strings, bools and tuples; :class:`SimConfig` is the top level.
+
+Only ``kind = "feed"`` (a motor-driven beaker feeding the chain at a set speed
+and launch angle, with an absorbing or solid floor ``H`` below the launch point)
+is simulated today. ``rollers`` and ``carts`` are the building blocks of the
+later ``"apparatus"`` kind; they can already be added to a feed level.
+
+The defaults come from the convergence study in ``docs/convergence.md``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from chainfountain.level.fields import param
+
+KINDS: tuple[str, ...] = ("feed",)
+"""Level kinds the simulator can build (``"apparatus"`` follows in a later issue)."""
+
+
+@dataclass
+class ChainConfig:
+    """The chain: rigid rod links joined by pivots with a rotary spring-damper.
+
+    The spring ``c`` and damper ``d`` between consecutive links are the joint
+    resistance of the paper's angular momentum balance (section "Equations of
+    Motion"): ``Qbar = -J*alpha'' - c/(lambda*v^2)*alpha' - d/(lambda*v)*alpha''``.
+    """
+
+    link_length: float = param(
+        0.02, unit="m", doc="Length of one rigid link (pivot to pivot)", min=1e-3, max=0.2
+    )
+    linear_density: float = param(
+        0.05, unit="kg/m", doc="Mass per length of the chain (lambda)", min=1e-4, max=10.0,
+        min_inclusive=False,
+    )
+    bending_stiffness: float = param(
+        0.0, unit="N*m/rad", doc="Rotary spring c between consecutive links (0 = free pivot)",
+        min=0.0, max=10.0, live=True,
+    )
+    bending_damping: float = param(
+        0.0, unit="N*m*s/rad", doc="Rotary damper d between consecutive links (0 = none)",
+        min=0.0, max=1.0, live=True,
+    )
+    friction: float = param(
+        0.6, unit="1", doc="Coulomb friction coefficient of links against floor, rollers, carts",
+        min=0.0, max=5.0, live=True,
+    )
+    link_radius: float = param(
+        0.002, unit="m", doc="Radius of the link capsules (contacts and drawing)",
+        min=1e-4, max=0.05,
+    )
+    self_collision: bool = param(
+        False, unit="", doc="Let links collide with each other (costly; off for fountains)"
+    )
+
+
+@dataclass
+class FeedConfig:
+    """The motor-driven beaker: chain leaves a straight guide at speed ``v`` and angle ``alpha0``.
+
+    With an absorbing floor the end tension is zero and the paper's inverted
+    catenary is fully determined: ``Tbar_0 = k*H``, ``q = k/(cos(alpha0)*(1 - k*H))``
+    (Eq. for ``Tbar_0 - Tbar_E = k*H`` with ``Tbar_E = 0``).
+    """
+
+    speed: float = param(
+        5.0, unit="m/s", doc="Feed speed v of the chain leaving the guide", min=0.0, max=30.0,
+        live=True,
+    )
+    launch_angle: float = param(
+        math.radians(75.0), unit="rad", doc="Launch angle alpha0 of the guide above horizontal",
+        min=math.radians(5.0), max=math.radians(89.0),
+    )
+    drop: float = param(
+        1.0, unit="m", doc="Height H of the floor below the launch point", min=0.05, max=20.0,
+        min_inclusive=False,
+    )
+    chain_length: float = param(
+        0.0, unit="m", doc="Total chain length to feed; 0 = infinite feed", min=0.0, max=1e4,
+    )
+    floor: str = param(
+        "absorbing", unit="", doc="Floor under the fountain: 'absorbing' removes landing links, "
+        "'solid' is a static segment links land and pile on",
+        choices=("absorbing", "solid"),
+    )
+    floor_width: float = param(
+        6.0, unit="m", doc="Length of the solid floor segment, centred under the fountain",
+        min=0.1, max=100.0,
+    )
+    guide_links: int = param(
+        2, unit="1", doc="Kinematic links kept inside the guide (upstream of the launch point)",
+        min=1, max=20,
+    )
+
+
+@dataclass
+class SolverConfig:
+    """Integrator and constraint solver settings (pymunk / Chipmunk2D)."""
+
+    dt: float = param(
+        2.5e-4, unit="s", doc="Fixed physics time step", min=1e-6, max=0.02, min_inclusive=False
+    )
+    iterations: int = param(
+        10, unit="1", doc="Constraint solver iterations per step", min=1, max=1000, live=True
+    )
+    joint_error_bias: float = param(
+        1e-10, unit="1", doc="Fraction of pivot-joint error left uncorrected after 1 s "
+        "(tiny = stiff joints)", min=0.0, max=1.0, live=True,
+    )
+    collision_slop: float = param(
+        1e-4, unit="m", doc="Allowed contact overlap", min=0.0, max=0.01, live=True
+    )
+
+
+@dataclass
+class InitialConfig:
+    """How the chain starts."""
+
+    mode: str = param(
+        "catenary", unit="", doc="'catenary': laid along the predicted fountain moving at v; "
+        "'stub': a short straight stub at the guide", choices=("stub", "catenary"),
+    )
+    stub_length: float = param(
+        0.1, unit="m", doc="Free length of the initial stub (mode 'stub')", min=0.0, max=10.0
+    )
+    jitter: float = param(
+        1e-3, unit="rad", doc="Random angle perturbation per link at start (rad)",
+        min=0.0, max=0.5,
+    )
+    seed: int = param(0, unit="1", doc="Random seed for the initial perturbation", min=0)
+
+
+@dataclass
+class RecordingConfig:
+    """Measurement sampling and averaging."""
+
+    sample_interval: float = param(
+        0.01, unit="s", doc="Time between recorded samples", min=1e-4, max=10.0,
+        min_inclusive=False,
+    )
+    window: float = param(
+        2.0, unit="s", doc="Averaging window at the end of a run", min=0.01, max=1e4
+    )
+    steady_tolerance: float = param(
+        0.01, unit="1", doc="Relative band for steady-state detection (vertex height, speed)",
+        min=0.0, max=1.0, min_inclusive=False,
+    )
+    smoothing: float = param(
+        0.25, unit="s", doc="Moving-average span applied before steady-state detection",
+        min=0.0, max=100.0,
+    )
+
+
+@dataclass
+class RollerConfig:
+    """A kinematic roller (circle) spinning at a set angular speed (apparatus building block)."""
+
+    x: float = param(0.0, unit="m", doc="Centre x relative to the launch point")
+    y: float = param(0.0, unit="m", doc="Centre y relative to the launch point")
+    radius: float = param(0.03, unit="m", doc="Roller radius", min=1e-3, max=2.0)
+    angular_speed: float = param(
+        0.0, unit="rad/s", doc="Spin rate, counter-clockwise positive", live=True
+    )
+    friction: float = param(1.0, unit="1", doc="Friction coefficient", min=0.0, max=5.0)
+
+
+@dataclass
+class CartConfig:
+    """A dynamic cart on a straight inclined track (GrooveJoint), apparatus building block."""
+
+    x: float = param(0.0, unit="m", doc="Start position x of the cart centre (launch frame)")
+    y: float = param(0.0, unit="m", doc="Start position y of the cart centre (launch frame)")
+    incline: float = param(
+        0.0, unit="rad", doc="Track angle beta above horizontal (+x uphill for beta > 0)",
+        min=-math.pi / 2, max=math.pi / 2,
+    )
+    track_length: float = param(2.0, unit="m", doc="Track length, centred on the start", min=0.01)
+    mass: float = param(0.1, unit="kg", doc="Cart mass", min=1e-6, min_inclusive=False)
+    width: float = param(0.05, unit="m", doc="Cart box width", min=1e-3)
+    height: float = param(0.02, unit="m", doc="Cart box height", min=1e-3)
+
+
+@dataclass
+class SimConfig:
+    """A complete simulation setup (one level)."""
+
+    kind: str = param("feed", unit="", doc="Level kind", choices=KINDS)
+    name: str = param("", unit="", doc="Short name of the level")
+    gravity: float = param(9.81, unit="m/s^2", doc="Gravitational acceleration g", min=0.0)
+    chain: ChainConfig = field(default_factory=ChainConfig)
+    feed: FeedConfig = field(default_factory=FeedConfig)
+    solver: SolverConfig = field(default_factory=SolverConfig)
+    initial: InitialConfig = field(default_factory=InitialConfig)
+    recording: RecordingConfig = field(default_factory=RecordingConfig)
+    rollers: tuple[RollerConfig, ...] = ()
+    carts: tuple[CartConfig, ...] = ()

@@ -1,0 +1,161 @@
+"""Recording measurements of a running :class:`~chainfountain.sim.world.Simulation`.
+
+A :class:`Recorder` attached to a simulation samples every ``sample_interval``
+seconds: it reads all link velocities just before the sampled step and the full
+state right after it (two batch calls), then derives the signed joint tension
+(momentum balance, see :mod:`chainfountain.sim.measure`), chain speed, stretch
+and geometry. :meth:`Recorder.summary` time-averages over a window and
+compares with the paper's prediction.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from chainfountain.sim.config import RecordingConfig
+from chainfountain.sim.measure import (
+    ChainState,
+    Profiles,
+    Sample,
+    Summary,
+    fit_catenary,
+    joint_forces,
+    landing_x,
+    link_ends,
+    polyline,
+    signed_tension,
+    steady_time,
+    vertex_of,
+)
+
+if TYPE_CHECKING:
+    from chainfountain.sim.world import Simulation
+
+
+class Recorder:
+    """Samples measurements of the free chain of a fed fountain.
+
+    Parameters
+    ----------
+    sim:
+        The simulation; the recorder attaches itself (``sim.recorder = self``).
+    cfg:
+        Sampling interval, averaging window, steady-state tolerance; defaults to
+        ``sim.config.recording``.
+    profiles:
+        Also keep per-link profiles (tension, position, speed) of every sample,
+        needed for the tension comparison in :meth:`summary`.
+    """
+
+    def __init__(self, sim: Simulation, cfg: RecordingConfig | None = None, *,
+                 profiles: bool = True) -> None:
+        self.sim = sim
+        self.cfg = cfg if cfg is not None else sim.config.recording
+        self.every = max(1, int(round(self.cfg.sample_interval / sim.dt)))
+        self.keep_profiles = profiles
+        self.samples: list[Sample] = []
+        self.profiles: list[Profiles] = []
+        sim.recorder = self
+
+    def wants(self, step_index: int) -> bool:
+        """True when step number ``step_index`` (1-based) is to be sampled."""
+        return step_index % self.every == 0
+
+    def clear(self) -> None:
+        """Forget all samples."""
+        self.samples.clear()
+        self.profiles.clear()
+
+    # ------------------------------------------------------------------ sampling
+    def take(self, pre: ChainState, post: ChainState) -> None:
+        """Record one sample from the states before and after the last step."""
+        sim = self.sim
+        chain = sim.chain
+        L = chain.L
+        n = sim.n_free
+        if n < 2:
+            return
+        contacts = sim.reader.contact_impulses() if chain.shapes else None
+        forces = joint_forces(pre, post, chain.mass, sim.dt, sim.g, n, contacts)
+        tension, _ = signed_tension(forces, post, n)
+        v = sim.feed.speed if sim.feed.speed > 0 else 1.0
+        tbar = tension / (chain.cfg.linear_density * v * v)
+        pts = polyline(post, L)
+        free = pts[: n + 1]
+        front, back = link_ends(post, L)
+        m = min(n, len(front) - 1)
+        gaps = np.linalg.norm(back[:m] - front[1 : m + 1], axis=1)
+        stretch = float(gaps.sum() / (n * L))
+        speed = np.hypot(post.velocity[:n, 0], post.velocity[:n, 1])
+        xv, yv = vertex_of(free)
+        sm = float(speed.mean())
+        self.samples.append(Sample(
+            t=sim.time, vertex_x=xv, vertex_y=yv,
+            landing_x=landing_x(post, L, sim.feed.floor_y),
+            speed_mean=sm, speed_min=float(speed.min()), speed_max=float(speed.max()),
+            stretch=stretch, n_free=n, T0_bar=float(tbar[n - 1]),
+        ))
+        if self.keep_profiles:
+            self.profiles.append(Profiles(
+                tension_bar=tbar[::-1].copy(), x=free[1:, 0][::-1].copy(),
+                y=free[1:, 1][::-1].copy(), speed=speed[::-1].copy(),
+            ))
+
+    # ------------------------------------------------------------------ readout
+    def series(self, name: str) -> np.ndarray:
+        """One recorded scalar (a :class:`Sample` field) as an array over samples."""
+        return np.array([getattr(s, name) for s in self.samples], dtype=float)
+
+    def summary(self, window: float | None = None, t_end: float | None = None) -> Summary:
+        """Time averages over the last ``window`` seconds (ending at ``t_end``)."""
+        if not self.samples:
+            raise ValueError("no samples recorded")
+        window = self.cfg.window if window is None else window
+        t = self.series("t")
+        t1 = float(t[-1]) if t_end is None else t_end
+        sel = np.flatnonzero((t >= t1 - window - 1e-12) & (t <= t1 + 1e-12))
+        if len(sel) == 0:
+            raise ValueError("no samples in the window")
+
+        def mean(name: str) -> float:
+            return float(np.mean(self.series(name)[sel]))
+
+        spread = (self.series("speed_max") - self.series("speed_min")) / self.series("speed_mean")
+        tension_rms = float("nan")
+        q_fit = float("nan")
+        uniform = float("nan")
+        extras: dict = {}
+        if self.keep_profiles and self.profiles:
+            profs = [self.profiles[i] for i in sel]
+            nmin = min(len(p.tension_bar) for p in profs)
+            tb = np.mean([p.tension_bar[:nmin] for p in profs], axis=0)
+            ya = np.mean([p.y[:nmin] for p in profs], axis=0)
+            xa = np.mean([p.x[:nmin] for p in profs], axis=0)
+            nsp = min(len(p.speed) for p in profs)
+            sp = np.mean([p.speed[:nsp] for p in profs], axis=0)
+            uniform = float(np.max(np.abs(sp - sp.mean())) / sp.mean())
+            extras.update(tension_bar=tb, x=xa, y=ya, speed=sp)
+            pts = np.column_stack((xa, ya))
+            xv0, yv0 = vertex_of(pts)
+            q0 = self.sim.reference.q if self.sim.reference is not None else 1.0
+            _, _, q_fit = fit_catenary(pts, xv0, yv0, q0)
+            ref = self.sim.reference
+            if ref is not None:
+                resid = tb - ref.tension_bar(ya)
+                tension_rms = float(np.sqrt(np.mean(resid**2)))
+                extras["tension_resid"] = resid
+        tol = self.cfg.steady_tolerance
+        ts = steady_time(t, self.series("vertex_y"), tol, self.cfg.smoothing, window)
+        tv = steady_time(t, self.series("speed_mean"), tol, self.cfg.smoothing, window)
+        steady = None if ts is None or tv is None else max(ts, tv)
+        return Summary(
+            t0=float(t[sel[0]]), t1=float(t[sel[-1]]), samples=len(sel),
+            vertex_x=mean("vertex_x"), vertex_y=mean("vertex_y"),
+            landing_x=mean("landing_x"), q_fit=q_fit,
+            speed_mean=mean("speed_mean"), speed_uniformity=uniform,
+            speed_spread_inst=float(np.mean(spread[sel])),
+            stretch_max=float(np.max(self.series("stretch")[sel])),
+            T0_bar=mean("T0_bar"), tension_rms=tension_rms, steady_from=steady, extras=extras,
+        )

@@ -1,0 +1,102 @@
+"""Theory reference for a fed fountain, expressed in the simulator's launch frame.
+
+The simulator puts the launch point (guide exit) at the origin; the paper puts
+the vertex there. :class:`LaunchReference` holds the paper's prediction for a
+feed at speed ``v`` and angle ``alpha0`` with zero end tension ``H`` below the
+launch point (section "Inverted Catenary")::
+
+    Tbar_0 = k*H,   q = k/(cos(alpha0)*(1 - k*H)),   h = (1/cos(alpha0) - 1)/q,
+    vertex at (acosh(1 + q*h)/q, h),  landing at x = (acosh(1 + q*h) + acosh(1 + q*(h+H)))/q,
+    Tbar(y) = 1 - k/q + k*y  (y from the vertex).
+
+It uses :class:`chainfountain.theory.Fountain` when that is importable and
+the same closed forms otherwise.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+
+@dataclass(frozen=True)
+class LaunchReference:
+    """Predicted steady fountain for a launch at the origin (y up, chain moving in +x)."""
+
+    v: float
+    alpha0: float
+    H: float
+    g: float
+    k: float
+    q: float
+    h: float
+    T0_bar: float
+
+    @classmethod
+    def from_launch(cls, v: float, alpha0: float, H: float, g: float = 9.81) -> LaunchReference:
+        """Closed-form prediction with zero end tension (``Tbar_E = 0``)."""
+        try:  # prefer the project's theory package when it is there
+            from chainfountain.theory import Fountain  # type: ignore[attr-defined]
+
+            f = Fountain.from_launch(v=v, alpha0=alpha0, H=H, TE_bar=0.0, g=g)
+            return cls(v=v, alpha0=alpha0, H=H, g=g, k=float(f.k), q=float(f.q), h=float(f.h),
+                       T0_bar=float(f.T0_bar))
+        except (ImportError, AttributeError, TypeError):
+            pass
+        k = g / v**2
+        if k * H >= 1.0:
+            raise ValueError(f"no tensile fountain: k*H = {k * H:.3f} >= 1 (feed too slow)")
+        q = k / (math.cos(alpha0) * (1.0 - k * H))
+        h = (1.0 / math.cos(alpha0) - 1.0) / q
+        return cls(v=v, alpha0=alpha0, H=H, g=g, k=k, q=q, h=h, T0_bar=k * H)
+
+    @property
+    def x_rise(self) -> float:
+        """Horizontal distance launch -> vertex: ``acosh(1 + q*h)/q``."""
+        return math.acosh(1.0 + self.q * self.h) / self.q
+
+    @property
+    def x_fall(self) -> float:
+        """Horizontal distance vertex -> landing: ``acosh(1 + q*(h+H))/q``."""
+        return math.acosh(1.0 + self.q * (self.h + self.H)) / self.q
+
+    @property
+    def vertex(self) -> tuple[float, float]:
+        """Vertex position in the launch frame."""
+        return (self.x_rise, self.h)
+
+    @property
+    def landing_x(self) -> float:
+        """Landing point x (= the paper's ``l``) in the launch frame."""
+        return self.x_rise + self.x_fall
+
+    @property
+    def arc_length(self) -> float:
+        """Length of chain in flight: ``(sinh(q*x_rise) + sinh(q*x_fall))/q``."""
+        return (math.sinh(self.q * self.x_rise) + math.sinh(self.q * self.x_fall)) / self.q
+
+    def y_of_x(self, x: ArrayLike) -> NDArray[np.float64]:
+        """Launch-frame height of the catenary ``q*y = 1 - cosh(q*x)`` (paper Eq. func_graph)."""
+        xv = np.asarray(x, dtype=float) - self.x_rise
+        return self.h + (1.0 - np.cosh(self.q * xv)) / self.q
+
+    def tension_bar(self, y: ArrayLike) -> NDArray[np.float64]:
+        """Scaled tension ``1 - k/q + k*y_vertex`` at launch-frame height ``y``."""
+        yv = np.asarray(y, dtype=float) - self.h
+        return 1.0 - self.k / self.q + self.k * yv
+
+    def points_at_arc(self, s: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64],
+                                                    NDArray[np.float64]]:
+        """Position ``(x, y)`` and tangent angle at arc length ``s`` from the launch point.
+
+        Arc length from the vertex is ``sinh(q*x)/q``, so ``x = asinh(q*s_v)/q``.
+        """
+        s_v = np.asarray(s, dtype=float) - math.sinh(self.q * self.x_rise) / self.q
+        xv = np.arcsinh(self.q * s_v) / self.q
+        x = xv + self.x_rise
+        y = self.h + (1.0 - np.cosh(self.q * xv)) / self.q
+        angle = -np.arctan(np.sinh(self.q * xv))
+        return x, y, angle

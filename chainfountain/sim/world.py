@@ -1,0 +1,262 @@
+"""The :class:`Simulation`: builds a level from a :class:`SimConfig` and steps it.
+
+Frame: the launch point (guide exit) is the origin, ``y`` up, the chain moves
+in ``+x``. The absorbing (or solid) floor is at ``y = -H``. Runs are
+deterministic: the same config (including ``initial.seed``) gives the same
+trajectory bit for bit.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+import pymunk
+
+from chainfountain.sim.bodies import Cart, Floor, Roller
+from chainfountain.sim.chain import Chain
+from chainfountain.sim.config import SimConfig
+from chainfountain.sim.feed import Feed
+from chainfountain.sim.measure import ChainReader, ChainState, link_ends, polyline
+from chainfountain.sim.reference import LaunchReference
+
+if TYPE_CHECKING:
+    from chainfountain.sim.recorder import Recorder
+
+
+class Simulation:
+    """A running level (``kind = "feed"``).
+
+    Attributes
+    ----------
+    config:
+        The live configuration (live changes are written back into it, and
+        :meth:`reset` rebuilds from it).
+    space, chain, feed, floor, rollers, carts:
+        The pymunk objects; read them, change them through the methods here.
+    reference:
+        The paper's prediction for this feed (``None`` when the feed is too slow
+        for a tensile fountain, ``k*H >= 1``).
+    time, steps:
+        Simulated time (s) and number of physics steps since the last build.
+    """
+
+    def __init__(self, config: SimConfig) -> None:
+        if config.kind != "feed":
+            raise ValueError(f"unsupported level kind {config.kind!r} (supported: 'feed')")
+        self.config = copy.deepcopy(config)
+        self.recorder: Recorder | None = None
+        self._build()
+
+    # ------------------------------------------------------------------ building
+    def _build(self) -> None:
+        cfg = self.config
+        space = pymunk.Space()
+        space.gravity = (0.0, -cfg.gravity)
+        space.iterations = cfg.solver.iterations
+        space.collision_slop = cfg.solver.collision_slop
+        space.damping = 1.0
+        self.space = space
+        needs_shapes = (cfg.feed.floor == "solid" or bool(cfg.rollers) or bool(cfg.carts)
+                        or cfg.chain.self_collision)
+        self.chain = Chain(space, cfg.chain, cfg.solver, shapes=needs_shapes)
+        self.floor: Floor | None = None
+        if cfg.feed.floor == "solid":
+            w = cfg.feed.floor_width
+            self.floor = Floor.add(space, -cfg.feed.drop, -0.5 * w, 0.5 * w,
+                                   friction=cfg.chain.friction)
+        self.rollers = [Roller.add(space, r) for r in cfg.rollers]
+        self.carts = [Cart.add(space, c, error_bias=cfg.solver.joint_error_bias)
+                      for c in cfg.carts]
+        try:
+            self.reference: LaunchReference | None = LaunchReference.from_launch(
+                cfg.feed.speed, cfg.feed.launch_angle, cfg.feed.drop, cfg.gravity)
+        except ValueError:
+            self.reference = None
+        self.feed = Feed(self.chain, cfg.feed)
+        self.feed.initialise(cfg.initial, self.reference)
+        self.reader = ChainReader(space, self.chain)
+        self.time = 0.0
+        self.steps = 0
+        self._mouse_body: pymunk.Body | None = None
+        self._mouse_joint: pymunk.PivotJoint | None = None
+        self._grabbed: int | None = None
+        if self.recorder is not None:
+            self.recorder.clear()
+
+    def reset(self) -> None:
+        """Rebuild from the current configuration (time back to 0, recorder cleared)."""
+        self._build()
+
+    # ------------------------------------------------------------------ stepping
+    @property
+    def dt(self) -> float:
+        return float(self.config.solver.dt)
+
+    @property
+    def g(self) -> float:
+        return float(self.config.gravity)
+
+    def step(self) -> None:
+        """Advance by one fixed physics step ``dt``."""
+        rec = self.recorder
+        pre: ChainState | None = None
+        if rec is not None and rec.wants(self.steps + 1):
+            pre = self.reader.read()
+        self.space.step(self.dt)
+        self.steps += 1
+        self.time = self.steps * self.dt
+        if pre is not None and rec is not None:
+            rec.take(pre, self.reader.read())
+        self.feed.after_step(self.dt)
+
+    def advance(self, seconds: float) -> int:
+        """Step for ``seconds`` of simulated time (rounded to whole steps); returns steps taken."""
+        n = int(round(seconds / self.dt))
+        step = self.step
+        for _ in range(n):
+            step()
+        return n
+
+    # ------------------------------------------------------------------ commands
+    def set_feed_speed(self, v: float) -> None:
+        """Change the feed speed live (m/s); the reference is recomputed."""
+        self.feed.set_speed(v)
+        try:
+            self.reference = LaunchReference.from_launch(
+                v, self.config.feed.launch_angle, self.config.feed.drop, self.g)
+        except ValueError:
+            self.reference = None
+
+    def set_bending(self, stiffness: float | None = None, damping: float | None = None) -> None:
+        """Change the joint spring ``c`` (N*m/rad) and/or damper ``d`` (N*m*s/rad) live."""
+        self.chain.set_bending(stiffness, damping)
+
+    def set_iterations(self, iterations: int) -> None:
+        """Change the solver iterations live."""
+        self.config.solver.iterations = int(iterations)
+        self.space.iterations = int(iterations)
+
+    def set_roller_speed(self, index: int, angular_speed: float) -> None:
+        """Spin roller ``index`` at ``angular_speed`` (rad/s) live."""
+        self.rollers[index].set_angular_speed(angular_speed)
+
+    def nearest_link(self, point: tuple[float, float]) -> int:
+        """Index (chain order) of the link whose centre is nearest to ``point``."""
+        st = self.reader.read()
+        d = np.hypot(st.position[:, 0] - point[0], st.position[:, 1] - point[1])
+        return int(np.argmin(d))
+
+    def grab(self, point: tuple[float, float], max_force: float | None = None) -> int | None:
+        """Start dragging the free link nearest to ``point``; returns its index or ``None``.
+
+        A kinematic mouse body is pinned to the link by a pivot joint whose
+        force is capped at ``max_force`` (default: 50 times the weight of the
+        chain in flight). While a link is held, tension readings are invalid
+        (the drag force is not in the momentum balance).
+        """
+        self.release()
+        if self.n_free == 0:
+            return None
+        st = self.reader.read()
+        pos = st.position[: self.n_free]
+        i = int(np.argmin(np.hypot(pos[:, 0] - point[0], pos[:, 1] - point[1])))
+        body = self.chain.links[i].body
+        mouse = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
+        mouse.position = point
+        joint = pymunk.PivotJoint(mouse, body, point)
+        if max_force is None:
+            max_force = 50.0 * self.chain.mass * max(self.n_free, 1) * max(self.g, 1.0)
+        joint.max_force = max_force
+        joint.error_bias = 0.1 ** 60
+        self.space.add(joint)
+        self._mouse_body, self._mouse_joint, self._grabbed = mouse, joint, i
+        return i
+
+    def drag_to(self, point: tuple[float, float]) -> None:
+        """Move the drag target to ``point`` (call every frame while dragging)."""
+        if self._mouse_body is None:
+            return
+        old = self._mouse_body.position
+        self._mouse_body.position = point
+        self._mouse_body.velocity = ((point[0] - old.x) / self.dt, (point[1] - old.y) / self.dt)
+
+    def release(self) -> None:
+        """Stop dragging."""
+        if self._mouse_joint is not None and self._mouse_joint in self.space.constraints:
+            self.space.remove(self._mouse_joint)
+        self._mouse_body = self._mouse_joint = self._grabbed = None
+
+    @property
+    def dragging(self) -> bool:
+        """True while a link is held."""
+        return self._mouse_joint is not None and self._mouse_joint in self.space.constraints
+
+    # ------------------------------------------------------------------ views
+    @property
+    def n_free(self) -> int:
+        """Number of dynamic (free) links, counted from the downstream end."""
+        return self.feed.n_free
+
+    @property
+    def n_links(self) -> int:
+        """All links in the space (free plus guide)."""
+        return len(self.chain.links)
+
+    def state(self) -> ChainState:
+        """Positions, angles and velocities of all links (chain order, downstream first)."""
+        return self.reader.read()
+
+    def chain_polyline(self) -> np.ndarray:
+        """All links as one polyline ``(n+1, 2)`` (free chain first, then the guide links)."""
+        return polyline(self.reader.read(), self.chain.L)
+
+    def link_endpoints(self) -> tuple[np.ndarray, np.ndarray]:
+        """Front and back end of every link, each ``(n, 2)``, chain order."""
+        return link_ends(self.reader.read(), self.chain.L)
+
+    def guide_geometry(self) -> tuple[tuple[float, float], tuple[float, float]]:
+        """Launch point and unit launch direction."""
+        return (0.0, 0.0), self.feed.u
+
+    def floor_geometry(self) -> tuple[float, float, float, str]:
+        """``(y, x0, x1, mode)`` of the floor; for an absorbing floor x0/x1 span the scene."""
+        f = self.config.feed
+        if self.floor is not None:
+            return self.floor.y, self.floor.x0, self.floor.x1, "solid"
+        span = 0.5 * f.floor_width
+        return -f.drop, -span, span, "absorbing"
+
+    def roller_geometry(self) -> list[tuple[float, float, float, float]]:
+        """``(x, y, radius, angle)`` of every roller."""
+        return [(r.body.position.x, r.body.position.y, r.cfg.radius, r.body.angle)
+                for r in self.rollers]
+
+    def cart_geometry(self) -> list[np.ndarray]:
+        """World vertices ``(4, 2)`` of every cart box."""
+        out = []
+        for c in self.carts:
+            out.append(np.array([tuple(c.body.local_to_world(v)) for v in c.shape.get_vertices()]))
+        return out
+
+    def track_geometry(self) -> list[tuple[tuple[float, float], tuple[float, float]]]:
+        """End points of every cart track."""
+        return [(c.track_start, c.track_end) for c in self.carts]
+
+    def kinetic_energy(self) -> float:
+        """Kinetic energy of the free links (J)."""
+        st = self.reader.read()
+        n = self.n_free
+        m, moment = self.chain.mass, self.chain.moment
+        v2 = np.sum(st.velocity[:n] ** 2)
+        return float(0.5 * m * v2 + 0.5 * moment * np.sum(st.angular_velocity[:n] ** 2))
+
+    def describe(self) -> str:
+        """One line about the running level."""
+        r = self.reference
+        pred = "" if r is None else f", predicted h={r.h:.3f} m, l={r.landing_x:.3f} m"
+        return (f"{self.config.name or 'feed'}: t={self.time:.3f} s, {self.n_free} free links "
+                f"of {self.chain.L * 1e3:.1f} mm, v={self.feed.speed:.2f} m/s, "
+                f"alpha0={math.degrees(self.config.feed.launch_angle):.1f} deg{pred}")
