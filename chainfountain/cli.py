@@ -6,11 +6,11 @@ import sys
 from collections.abc import Sequence
 
 from chainfountain import __version__
-from chainfountain.commands import levels, run, theory
+from chainfountain.commands import figures, levels, run, theory
 from chainfountain.commands.args import OneLineParser
 from chainfountain.errors import UserError
 
-_COMMANDS = [theory, levels, run]
+_COMMANDS = [theory, levels, run, figures]
 
 
 def build_parser() -> OneLineParser:
