@@ -6,11 +6,11 @@ import sys
 from collections.abc import Sequence
 
 from chainfountain import __version__
-from chainfountain.commands import figures, levels, run, theory
+from chainfountain.commands import figures, levels, play, run, theory
 from chainfountain.commands.args import OneLineParser
 from chainfountain.errors import UserError
 
-_COMMANDS = [theory, levels, run, figures]
+_COMMANDS = [play, theory, levels, run, figures]
 
 
 def build_parser() -> OneLineParser:
@@ -28,8 +28,13 @@ def build_parser() -> OneLineParser:
 
 
 def default_job() -> int:
-    """What ``chainfountain`` with no command does: the paper's example fountain."""
-    return main(["theory", "--l", "0.33", "--h", "0.28", "--H", "2", "--k", "0.377"])
+    """What ``chainfountain`` with no command does: the window on the default level.
+
+    Without a display it says so and runs the default level headless.
+    """
+    from chainfountain.app.launch import run_default
+
+    return run_default()
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -1,0 +1,202 @@
+"""Screenshots and clips, written in background threads so the window never stalls.
+
+Clips are MP4 when ``imageio`` with its ffmpeg plugin is installed and an
+animated GIF otherwise (GIF frames are encoded with Pillow, which comes with
+matplotlib). Frames are handed over as raw RGB bytes through a queue; the
+writer thread converts, quantises and writes them.
+"""
+
+from __future__ import annotations
+
+import queue
+import threading
+import time
+from pathlib import Path
+
+import pygame
+
+
+def timestamp() -> str:
+    return time.strftime("%Y%m%d-%H%M%S")
+
+
+def unique_path(folder: Path, stem: str, suffix: str) -> Path:
+    """``folder/stem.suffix``, or with ``-2``, ``-3``... when that exists."""
+    p = folder / f"{stem}{suffix}"
+    i = 2
+    while p.exists():
+        p = folder / f"{stem}-{i}{suffix}"
+        i += 1
+    return p
+
+
+def save_png(surface: pygame.Surface, path: Path) -> Path:
+    """Write ``surface`` to ``path`` as PNG (parent created), atomically."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(path.name + ".part.png")
+    pygame.image.save(surface, str(tmp))
+    tmp.replace(path)
+    return path
+
+
+class BackgroundSaver:
+    """Saves PNG copies of surfaces in a worker thread."""
+
+    def __init__(self) -> None:
+        self._threads: list[threading.Thread] = []
+        self.errors: list[str] = []
+        self.done: list[Path] = []
+
+    def save(self, surface: pygame.Surface, path: Path) -> None:
+        copy = surface.copy()
+
+        def work() -> None:
+            try:
+                self.done.append(save_png(copy, path))
+            except (OSError, pygame.error) as exc:
+                self.errors.append(f"screenshot failed: {exc}")
+
+        t = threading.Thread(target=work, name="chainfountain-png", daemon=False)
+        t.start()
+        self._threads.append(t)
+        self._threads = [th for th in self._threads if th.is_alive()]
+
+    def wait(self, timeout: float = 30.0) -> None:
+        for t in self._threads:
+            t.join(timeout)
+        self._threads.clear()
+
+
+def mp4_available() -> bool:
+    """True when imageio with an ffmpeg backend can write MP4."""
+    try:
+        import imageio.v2  # noqa: F401
+        import imageio_ffmpeg  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+class ClipRecorder:
+    """Collects frames and writes an animated GIF (or MP4) in a worker thread.
+
+    Call :meth:`offer` every drawn frame; it keeps one frame per ``1/fps`` s of
+    wall time (or every call when ``every_call``), scales it by ``scale`` and
+    queues it. :meth:`stop` finishes the file in the background;
+    :meth:`wait` blocks until it is written.
+    """
+
+    def __init__(self, path: Path, fps: float = 15.0, scale: float = 0.5,
+                 max_seconds: float = 40.0, crop: pygame.Rect | None = None,
+                 every_call: bool = False) -> None:
+        self.path = path
+        self.fps = fps
+        self.scale = scale
+        self.crop = crop
+        self.every_call = every_call
+        self.max_frames = int(max_seconds * fps)
+        self.frames = 0
+        self.error: str | None = None
+        self.finished = False
+        self._last = -1e9
+        self._q: queue.Queue = queue.Queue(maxsize=64)
+        self._mp4 = path.suffix.lower() == ".mp4"
+        path.parent.mkdir(parents=True, exist_ok=True)
+        self._thread = threading.Thread(target=self._work, name="chainfountain-clip",
+                                        daemon=False)
+        self._thread.start()
+        self.recording = True
+
+    def offer(self, surface: pygame.Surface, now: float | None = None) -> bool:
+        """Maybe take this frame; returns False once the clip is full (then it stops itself)."""
+        if not self.recording:
+            return False
+        now = time.perf_counter() if now is None else now
+        if not self.every_call and now - self._last < 1.0 / self.fps - 1e-4:
+            return True
+        self._last = now
+        src = surface.subsurface(self.crop) if self.crop is not None else surface
+        if self.scale != 1.0:
+            w = max(2, int(src.get_width() * self.scale) // 2 * 2)
+            h = max(2, int(src.get_height() * self.scale) // 2 * 2)
+            src = pygame.transform.smoothscale(src, (w, h))
+        data = pygame.image.tobytes(src, "RGB")
+        try:
+            self._q.put_nowait((src.get_size(), data))
+        except queue.Full:
+            return True  # the writer is behind: drop this frame rather than stall
+        self.frames += 1
+        if self.frames >= self.max_frames:
+            self.stop()
+            return False
+        return True
+
+    def stop(self) -> None:
+        """Stop taking frames; the file is finished in the background."""
+        if self.recording:
+            self.recording = False
+            self._q.put(None)
+
+    def wait(self, timeout: float | None = 120.0) -> bool:
+        """Block until the file is written; True on success."""
+        self.stop()
+        self._thread.join(timeout)
+        return self.finished and self.error is None
+
+    @property
+    def busy(self) -> bool:
+        return self._thread.is_alive()
+
+    # ------------------------------------------------------------------ worker
+    def _work(self) -> None:
+        try:
+            if self._mp4:
+                self._work_mp4()
+            else:
+                self._work_gif()
+            self.finished = True
+        except Exception as exc:  # noqa: BLE001 - reported in the window, never raised
+            self.error = f"clip failed: {exc}"
+            while True:  # drain so offer() never blocks
+                try:
+                    if self._q.get_nowait() is None:
+                        break
+                except queue.Empty:
+                    break
+
+    def _work_gif(self) -> None:
+        from PIL import Image
+
+        frames: list = []
+        while True:
+            item = self._q.get()
+            if item is None:
+                break
+            size, data = item
+            img = Image.frombytes("RGB", size, data)
+            frames.append(img.quantize(colors=64, method=Image.Quantize.MEDIANCUT,
+                                       dither=Image.Dither.NONE))
+        if not frames:
+            raise RuntimeError("no frames recorded")
+        tmp = self.path.with_name(self.path.name + ".part.gif")
+        frames[0].save(tmp, save_all=True, append_images=frames[1:],
+                       duration=int(round(1000 / self.fps)), loop=0, optimize=False,
+                       disposal=1)
+        tmp.replace(self.path)
+
+    def _work_mp4(self) -> None:
+        import imageio.v2 as iio
+        import numpy as np
+
+        tmp = self.path.with_name(self.path.stem + ".part.mp4")
+        writer = iio.get_writer(tmp, fps=self.fps, codec="libx264", quality=7)
+        try:
+            while True:
+                item = self._q.get()
+                if item is None:
+                    break
+                (w, h), data = item
+                writer.append_data(np.frombuffer(data, dtype=np.uint8).reshape(h, w, 3))
+        finally:
+            writer.close()
+        tmp.replace(self.path)

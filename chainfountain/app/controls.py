@@ -1,0 +1,298 @@
+"""Control specifications generated from the level schema (no pygame here).
+
+Every number a level has is declared with :func:`chainfountain.level.fields.param`
+(unit, doc, min, max, live). :func:`control_fields` walks a level's
+:class:`~chainfountain.sim.config.SimConfig` instance (so array entries such as
+``carts[1].mass`` appear when the level has carts) and returns a
+:class:`FieldSpec` for every field that matches :data:`CONTROL_PATTERNS`, in
+that order. The panel builds one slider and one text field per spec; a value
+outside the declared range is clamped by :meth:`FieldSpec.clamp`, which says so.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import re
+import typing
+from dataclasses import dataclass
+from typing import Any
+
+from chainfountain.level.fields import allowed_text
+
+CONTROL_PATTERNS: tuple[str, ...] = (
+    r"feed\.speed",
+    r"feed\.launch_angle",
+    r"feed\.drop",
+    r"(.*\.)?xi2",
+    r"(.*\.)?xi3",
+    r"carts\[\d+\]\.mass",
+    r"carts\[\d+\]\.incline",
+    r"(.*\.)?launch_speed",
+    r"chain\.bending_stiffness",
+    r"chain\.bending_damping",
+    r"chain\.link_length",
+    r"chain\.friction",
+    r"rollers\[\d+\]\.angular_speed",
+)
+"""Which schema fields get a control, in panel order (full-match regular expressions)."""
+
+LABELS: dict[str, str] = {
+    "feed.speed": "launch speed v",
+    "feed.launch_angle": "launch angle alpha0",
+    "feed.drop": "drop H",
+    "chain.bending_stiffness": "bending stiffness c",
+    "chain.bending_damping": "bending damping d",
+    "chain.link_length": "link length",
+    "chain.friction": "friction",
+}
+
+SLIDER_STEPS = 1000
+"""Slider positions 0 .. SLIDER_STEPS map onto a field's range (linear or logarithmic)."""
+
+_TOKEN = re.compile(r"([A-Za-z_][A-Za-z0-9_]*)(?:\[(\d+)\])?")
+
+
+def parse_path(path: str) -> list[tuple[str, int | None]]:
+    """``"carts[1].mass"`` -> ``[("carts", 1), ("mass", None)]``."""
+    out: list[tuple[str, int | None]] = []
+    for part in path.split("."):
+        m = _TOKEN.fullmatch(part)
+        if m is None:
+            raise KeyError(path)
+        out.append((m.group(1), None if m.group(2) is None else int(m.group(2))))
+    return out
+
+
+def _owner(obj: Any, path: str) -> tuple[Any, str]:
+    parts = parse_path(path)
+    for name, idx in parts[:-1]:
+        obj = getattr(obj, name)
+        if idx is not None:
+            obj = obj[idx]
+    name, idx = parts[-1]
+    if idx is not None:
+        raise KeyError(path)
+    if not hasattr(obj, name):
+        raise KeyError(path)
+    return obj, name
+
+
+def get_value(config: Any, path: str) -> Any:
+    """Value of a dotted field path in a config dataclass."""
+    obj, name = _owner(config, path)
+    return getattr(obj, name)
+
+
+def set_value(config: Any, path: str, value: Any) -> None:
+    """Set a dotted field path in a (mutable) config dataclass in place."""
+    obj, name = _owner(config, path)
+    setattr(obj, name, value)
+
+
+def _tuple_item(tp: Any) -> Any | None:
+    if typing.get_origin(tp) is tuple:
+        args = typing.get_args(tp)
+        if len(args) == 2 and args[1] is Ellipsis:
+            return args[0]
+    return None
+
+
+def iter_numeric_fields(obj: Any, prefix: str = "") -> typing.Iterator[tuple[str, Any, dict]]:
+    """``(path, python type, metadata)`` of every int/float leaf of a config instance."""
+    hints = typing.get_type_hints(type(obj))
+    for f in dataclasses.fields(obj):
+        val = getattr(obj, f.name)
+        tp = hints[f.name]
+        path = prefix + f.name
+        if dataclasses.is_dataclass(val):
+            yield from iter_numeric_fields(val, path + ".")
+        elif isinstance(val, tuple) and _tuple_item(tp) is not None:
+            for i, item in enumerate(val):
+                if dataclasses.is_dataclass(item):
+                    yield from iter_numeric_fields(item, f"{path}[{i}].")
+        elif tp in (int, float):
+            yield path, tp, dict(f.metadata)
+
+
+@dataclass(frozen=True)
+class FieldSpec:
+    """One schema field as the panel shows it (display units: degrees for radians)."""
+
+    path: str
+    label: str
+    unit: str
+    """Display unit."""
+    doc: str
+    lo: float | None
+    hi: float | None
+    lo_incl: bool
+    hi_incl: bool
+    live: bool
+    integer: bool
+    scale: float
+    """display value = schema value * scale."""
+    slider_lo: float
+    slider_hi: float
+    log: bool
+    """Logarithmic slider (position 0 is ``slider_lo``, then log-spaced up to ``slider_hi``)."""
+    log_floor: float = 0.0
+    """Smallest positive value on a log slider."""
+
+    # ---------------------------------------------------------------- range
+    def allowed(self) -> str:
+        """What the schema allows, in schema units."""
+        return allowed_text({"min": self.lo, "max": self.hi, "min_inclusive": self.lo_incl,
+                             "max_inclusive": self.hi_incl, "unit": self.schema_unit})
+
+    @property
+    def schema_unit(self) -> str:
+        return "rad" if self.scale != 1.0 else self.unit
+
+    def clamp(self, value: Any) -> tuple[float, str | None]:
+        """Nearest allowed value (schema units) and a message when it differs from ``value``."""
+        try:
+            v = float(value)
+        except (TypeError, ValueError):
+            return self.default_like(), f"{self.label}: {value!r} is not a number"
+        if math.isnan(v):
+            return self.default_like(), f"{self.label}: not a number"
+        orig = v
+        if self.lo is not None and (v < self.lo or (v == self.lo and not self.lo_incl)):
+            v = self.lo if self.lo_incl else _above(self.lo)
+        if self.hi is not None and (v > self.hi or (v == self.hi and not self.hi_incl)):
+            v = self.hi if self.hi_incl else _below(self.hi)
+        if not math.isfinite(v):
+            v = self.default_like()
+        if self.integer:
+            v = float(round(v))
+            if self.lo is not None and v < self.lo:
+                v = float(math.ceil(self.lo))
+            if self.hi is not None and v > self.hi:
+                v = float(math.floor(self.hi))
+        if v != orig:
+            return v, (f"{self.label}: {self.fmt(orig * self.scale)} is outside the allowed "
+                       f"range, set to {self.fmt(v * self.scale)} {self.unit} "
+                       f"(allowed: {self.allowed()})")
+        return v, None
+
+    def default_like(self) -> float:
+        lo = self.lo if self.lo is not None else 0.0
+        return lo if self.lo_incl or self.lo is None else _above(lo)
+
+    # ---------------------------------------------------------------- display
+    def fmt(self, display_value: float) -> str:
+        """Compact text of a display value."""
+        if self.integer:
+            return str(int(round(display_value)))
+        if display_value == 0:
+            return "0"
+        return f"{display_value:.4g}"
+
+    def to_display(self, value: float) -> float:
+        return float(value) * self.scale
+
+    def from_display(self, display_value: float) -> float:
+        return float(display_value) / self.scale
+
+    def to_slider(self, value: float) -> int:
+        """Slider position of a schema value."""
+        d = self.to_display(value)
+        lo, hi = self.slider_lo, self.slider_hi
+        if self.log:
+            if d <= self.log_floor:
+                return 0
+            f = math.log(d / self.log_floor) / math.log(hi / self.log_floor)
+            return int(round(1 + f * (SLIDER_STEPS - 1)))
+        f = (d - lo) / (hi - lo) if hi > lo else 0.0
+        return int(round(min(max(f, 0.0), 1.0) * SLIDER_STEPS))
+
+    def from_slider(self, pos: float) -> float:
+        """Schema value at a slider position."""
+        pos = min(max(float(pos), 0.0), SLIDER_STEPS)
+        lo, hi = self.slider_lo, self.slider_hi
+        if self.log:
+            if pos < 0.5:
+                d = lo
+            else:
+                f = (pos - 1) / (SLIDER_STEPS - 1)
+                d = self.log_floor * (hi / self.log_floor) ** max(f, 0.0)
+        else:
+            d = lo + (hi - lo) * pos / SLIDER_STEPS
+        v, _ = self.clamp(self.from_display(d))
+        return v
+
+
+def _above(x: float) -> float:
+    return math.nextafter(x, math.inf) if x == 0 else x + 1e-9 * abs(x)
+
+
+def _below(x: float) -> float:
+    return math.nextafter(x, -math.inf) if x == 0 else x - 1e-9 * abs(x)
+
+
+def make_spec(path: str, tp: Any, meta: dict, current: float) -> FieldSpec:
+    """A :class:`FieldSpec` from a field's schema metadata and its current value."""
+    unit = meta.get("unit") or ""
+    scale = 1.0
+    if unit == "rad":
+        scale, unit = 180.0 / math.pi, "deg"
+    elif unit == "rad/s":
+        unit = "rad/s"
+    lo, hi = meta.get("min"), meta.get("max")
+    cur = abs(float(current))
+    if lo is not None and hi is not None:
+        s_lo, s_hi = lo * scale, hi * scale
+    elif lo is not None:
+        s_lo = lo * scale
+        s_hi = max(10.0 * cur, 1.0) * scale + s_lo
+    elif hi is not None:
+        s_hi = hi * scale
+        s_lo = s_hi - max(10.0 * cur, 1.0) * scale
+    else:
+        span = max(10.0 * cur, 50.0 if unit == "rad/s" else 1.0) * scale
+        s_lo, s_hi = -span, span
+    log = False
+    floor = 0.0
+    if tp is float and s_lo >= 0 and s_hi > 0:
+        # many decades from (about) zero, and the current value sits near the bottom:
+        # a logarithmic slider, position 0 being the lower limit itself
+        if s_lo == 0:
+            log = cur * scale < 0.01 * s_hi
+            floor = s_hi * 1e-5
+        else:
+            log = s_hi / s_lo >= 1e3
+            floor = s_lo
+    label = LABELS.get(path)
+    if label is None:
+        label = path.replace(".", " ").replace("_", " ")
+    return FieldSpec(
+        path=path, label=label, unit=unit, doc=meta.get("doc") or "",
+        lo=lo, hi=hi, lo_incl=bool(meta.get("min_inclusive", True)),
+        hi_incl=bool(meta.get("max_inclusive", True)), live=bool(meta.get("live")),
+        integer=tp is int, scale=scale, slider_lo=float(s_lo), slider_hi=float(s_hi),
+        log=log, log_floor=float(floor),
+    )
+
+
+def control_fields(config: Any, patterns: tuple[str, ...] = CONTROL_PATTERNS) -> list[FieldSpec]:
+    """Specs for every field of ``config`` matching ``patterns``, in pattern order."""
+    fields = list(iter_numeric_fields(config))
+    out: list[FieldSpec] = []
+    seen: set[str] = set()
+    for pat in patterns:
+        rx = re.compile(pat)
+        for path, tp, meta in fields:
+            if path in seen or not rx.fullmatch(path):
+                continue
+            seen.add(path)
+            out.append(make_spec(path, tp, meta, get_value(config, path)))
+    return out
+
+
+def spec_for(config: Any, path: str) -> FieldSpec:
+    """The spec of any numeric field path (even one not in :data:`CONTROL_PATTERNS`)."""
+    for p, tp, meta in iter_numeric_fields(config):
+        if p == path:
+            return make_spec(p, tp, meta, get_value(config, p))
+    raise KeyError(path)

@@ -1,0 +1,111 @@
+"""Opening the window, or running headless when there is no display."""
+
+from __future__ import annotations
+
+import os
+import sys
+from pathlib import Path
+
+from chainfountain.level.io import Level
+
+OFFSCREEN_DRIVERS = ("dummy", "offscreen")
+
+os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
+
+
+def display_available() -> tuple[bool, str]:
+    """Whether a window can be opened here, and why not.
+
+    ``SDL_VIDEODRIVER=dummy`` (or ``offscreen``) counts as no display. On
+    Linux and the BSDs a display needs ``DISPLAY`` or ``WAYLAND_DISPLAY``
+    unless ``SDL_VIDEODRIVER`` names another driver. Finally SDL must start.
+    """
+    drv = os.environ.get("SDL_VIDEODRIVER", "")
+    if drv in OFFSCREEN_DRIVERS:
+        return False, f"SDL_VIDEODRIVER={drv}"
+    if (sys.platform.startswith(("linux", "freebsd", "openbsd", "netbsd")) and not drv
+            and not os.environ.get("DISPLAY") and not os.environ.get("WAYLAND_DISPLAY")):
+        return False, "neither DISPLAY nor WAYLAND_DISPLAY is set"
+    try:
+        import pygame
+
+        pygame.display.init()
+        driver = pygame.display.get_driver()
+    except Exception as exc:  # noqa: BLE001 - any SDL failure means: no window
+        return False, f"SDL cannot start a display ({exc})"
+    if driver in OFFSCREEN_DRIVERS:
+        return False, f"SDL chose the {driver} driver"
+    return True, driver
+
+
+def _load_or_default(level: Level | None) -> Level:
+    if level is not None:
+        return level
+    from chainfountain.app.session import default_level
+
+    return default_level()
+
+
+def open_app(level: Level | None = None, source: Path | None = None, *,
+             frames: int | None = None, screenshot: Path | None = None,
+             size: tuple[int, int] | None = None, offscreen: bool = False,
+             paused: bool = False) -> int:
+    """Open the window on ``level`` (default level when ``None``).
+
+    With ``offscreen`` the SDL dummy driver is used and every frame advances
+    exactly 1/60 s of simulated time (``--frames``/``--screenshot`` runs).
+    """
+    if offscreen:
+        os.environ["SDL_VIDEODRIVER"] = "dummy"
+    from chainfountain.app.session import Session
+    from chainfountain.app.window import DEFAULT_SIZE, App
+
+    session = Session(_load_or_default(level), source)
+    if paused:
+        session.paused = True
+    app = App(session, size=size or DEFAULT_SIZE, offscreen=offscreen)
+    return app.run(frames=frames, screenshot=screenshot)
+
+
+def output_dir(level: Level) -> Path:
+    """Where a headless run of ``level`` writes: ``./runs/<name>`` (as ``chainfountain run``)."""
+    from chainfountain.app.paths import safe_name
+
+    return Path("runs") / safe_name(level.meta.name)
+
+
+def run_headless(level: Level, reason: str, out_dir: Path | None = None,
+                 duration: float | None = None) -> int:
+    """No display: say so and run ``level`` headless (outputs and a snapshot)."""
+    out = out_dir or output_dir(level)
+    print(f"chainfountain: no display ({reason}); running level {level.meta.name!r} "
+          f"headless, writing to {out}", file=sys.stderr)
+    try:
+        from chainfountain.headless import run_level  # type: ignore[import-not-found]
+    except ImportError:
+        return _snapshot_only(level, out, duration)
+    summary = run_level(level, out, duration=duration, progress=True)
+    print(f"chainfountain: wrote {summary}")
+    return 0
+
+
+def _snapshot_only(level: Level, out: Path, duration: float | None) -> int:
+    """Stand-in until ``chainfountain.headless`` exists: an off-screen snapshot only."""
+    print("chainfountain: the headless runner (chainfountain.headless) is not part of this "
+          "version; writing an off-screen snapshot only", file=sys.stderr)
+    out.mkdir(parents=True, exist_ok=True)
+    frames = int(round(60 * (duration if duration is not None else 3.0)))
+    shot = out / "snapshot.png"
+    code = open_app(level, frames=frames, screenshot=shot, offscreen=True)
+    print(f"chainfountain: wrote {shot}")
+    return code
+
+
+def run_default(level: Level | None = None, source: Path | None = None,
+                size: tuple[int, int] | None = None) -> int:
+    """Open the window on ``level``; without a display run it headless instead."""
+    ok, why = display_available()
+    lvl = _load_or_default(level)
+    if not ok:
+        return run_headless(lvl, why)
+    return open_app(lvl, source, size=size)

@@ -1,0 +1,386 @@
+"""Pixels: the camera (metres <-> pixels), the scene, the live plots, text panels.
+
+Everything here reads the model (a :class:`~chainfountain.sim.world.Simulation`
+and a :class:`~chainfountain.app.session.Readout`) and draws; nothing here
+changes the model.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+import pygame
+
+from chainfountain.app.session import Readout
+from chainfountain.sim.world import Simulation
+
+# colours (projector friendly: light lines on a dark blue-grey background)
+BG = (22, 27, 36)
+SCENE_BG = (16, 20, 28)
+GRID = (34, 41, 54)
+TEXT = (220, 226, 235)
+DIM = (140, 150, 165)
+CHAIN = (255, 170, 60)
+THEORY = (90, 210, 255)
+VERTEX = (255, 90, 200)
+FLOOR = (150, 160, 175)
+ABSORB = (70, 130, 90)
+GUIDE = (200, 200, 210)
+ROLLER = (180, 190, 255)
+CART = (120, 220, 160)
+TRACK = (110, 120, 135)
+T0_COL = (255, 120, 90)
+TE_COL = (120, 200, 255)
+SPEED_COL = (255, 210, 90)
+WARN = (255, 110, 90)
+OK = (120, 220, 140)
+
+
+def font(size: int) -> pygame.font.Font:
+    """pygame's bundled font at ``size`` px (cached)."""
+    key = int(size)
+    f = _FONTS.get(key)
+    if f is None:
+        f = pygame.font.Font(None, key)
+        _FONTS[key] = f
+    return f
+
+
+_FONTS: dict[int, pygame.font.Font] = {}
+
+
+def nice_step(span: float, target: int = 5) -> float:
+    """A 1-2-5 step that cuts ``span`` into about ``target`` parts."""
+    if not math.isfinite(span) or span <= 0:
+        return 1.0
+    raw = span / target
+    mag = 10 ** math.floor(math.log10(raw))
+    for m in (1, 2, 5, 10):
+        if m * mag >= raw:
+            return m * mag
+    return 10 * mag
+
+
+@dataclass
+class Camera:
+    """World (m, y up) to screen (px, y down) within a rectangle: ``scale`` px per metre."""
+
+    rect: pygame.Rect
+    scale: float = 200.0
+    cx: float = 0.0
+    cy: float = 0.0
+
+    def to_screen(self, pts: np.ndarray) -> np.ndarray:
+        """``(n, 2)`` world points to screen pixels (float)."""
+        p = np.asarray(pts, dtype=float).reshape(-1, 2)
+        out = np.empty_like(p)
+        out[:, 0] = self.rect.centerx + (p[:, 0] - self.cx) * self.scale
+        out[:, 1] = self.rect.centery - (p[:, 1] - self.cy) * self.scale
+        return out
+
+    def point(self, x: float, y: float) -> tuple[int, int]:
+        return (int(round(self.rect.centerx + (x - self.cx) * self.scale)),
+                int(round(self.rect.centery - (y - self.cy) * self.scale)))
+
+    def to_world(self, sx: float, sy: float) -> tuple[float, float]:
+        return (self.cx + (sx - self.rect.centerx) / self.scale,
+                self.cy - (sy - self.rect.centery) / self.scale)
+
+    def fit(self, x0: float, y0: float, x1: float, y1: float, margin: float = 0.08) -> None:
+        """Show the world box ``[x0, x1] x [y0, y1]`` with a margin."""
+        w = max(x1 - x0, 1e-3) * (1 + 2 * margin)
+        h = max(y1 - y0, 1e-3) * (1 + 2 * margin)
+        self.scale = max(1e-3, min(self.rect.w / w, self.rect.h / h))
+        self.cx, self.cy = 0.5 * (x0 + x1), 0.5 * (y0 + y1)
+
+    def zoom(self, factor: float, about: tuple[float, float]) -> None:
+        """Zoom by ``factor`` keeping the screen point ``about`` fixed."""
+        wx, wy = self.to_world(*about)
+        self.scale = min(max(self.scale * factor, 5.0), 50000.0)
+        self.cx = wx - (about[0] - self.rect.centerx) / self.scale
+        self.cy = wy + (about[1] - self.rect.centery) / self.scale
+
+    def pan(self, dx_px: float, dy_px: float) -> None:
+        self.cx -= dx_px / self.scale
+        self.cy += dy_px / self.scale
+
+
+def scene_bounds(sim: Simulation, readout: Readout | None) -> tuple[float, float, float, float]:
+    """World box that shows launch point, fountain, floor, rollers and carts."""
+    H = float(sim.config.feed.drop)
+    xs = [-0.25, 0.3]
+    ys = [-H - 0.05, 0.3]
+    ref = sim.reference
+    if ref is not None:
+        xs += [ref.landing_x + 0.2]
+        ys += [ref.h + 0.1]
+    if readout is not None and readout.curve is not None and len(readout.curve):
+        xs += [float(readout.curve[:, 0].max()) + 0.1]
+        ys += [float(readout.curve[:, 1].max()) + 0.1]
+    for x, y, r, _ in sim.roller_geometry():
+        xs += [x - r, x + r]
+        ys += [y - r, y + r]
+    for (a, b) in sim.track_geometry():
+        xs += [a[0], b[0]]
+        ys += [a[1], b[1]]
+    return min(xs), min(ys), max(xs), max(ys)
+
+
+def _dashed(surf: pygame.Surface, col, a, b, dash: float = 8.0, width: int = 1) -> None:
+    ax, ay = a
+    bx, by = b
+    length = math.hypot(bx - ax, by - ay)
+    if length < 1:
+        return
+    n = int(length // dash)
+    for i in range(0, n, 2):
+        f0, f1 = i * dash / length, min((i + 1) * dash / length, 1.0)
+        pygame.draw.line(surf, col, (ax + f0 * (bx - ax), ay + f0 * (by - ay)),
+                         (ax + f1 * (bx - ax), ay + f1 * (by - ay)), width)
+
+
+def draw_scene(surf: pygame.Surface, cam: Camera, sim: Simulation, readout: Readout | None,
+               show_theory: bool = True) -> None:
+    """The apparatus, the chain, the theory curve and the scale bar, clipped to the camera rect."""
+    rect = cam.rect
+    old_clip = surf.get_clip()
+    surf.set_clip(rect)
+    surf.fill(SCENE_BG, rect)
+    _grid(surf, cam)
+    # floor
+    fy, fx0, fx1, mode = sim.floor_geometry()
+    if mode == "solid":
+        a, b = cam.point(fx0, fy), cam.point(fx1, fy)
+        pygame.draw.line(surf, FLOOR, a, b, 3)
+        for x in range(a[0], b[0], 12):
+            pygame.draw.line(surf, FLOOR, (x, a[1] + 1), (x - 8, a[1] + 9), 1)
+    else:
+        y = cam.point(0, fy)[1]
+        band = pygame.Rect(rect.x, y, rect.w, max(4, rect.bottom - y))
+        if band.top < rect.bottom:
+            shade = pygame.Surface(band.size, pygame.SRCALPHA)
+            shade.fill((*ABSORB, 60))
+            surf.blit(shade, band.topleft)
+        pygame.draw.line(surf, ABSORB, (rect.x, y), (rect.right, y), 2)
+        label = font(16).render("absorbing floor", True, ABSORB)
+        surf.blit(label, (rect.x + 8, y + 4))
+    # cart tracks and carts
+    for a, b in sim.track_geometry():
+        pygame.draw.line(surf, TRACK, cam.point(*a), cam.point(*b), 2)
+    for verts in sim.cart_geometry():
+        pts = cam.to_screen(verts)
+        pygame.draw.polygon(surf, CART, pts.tolist(), 0)
+        pygame.draw.polygon(surf, (20, 60, 40), pts.tolist(), 1)
+    # rollers: a wheel with spokes that turn with the body
+    for x, y, r, ang in sim.roller_geometry():
+        c = cam.point(x, y)
+        rp = max(2, int(r * cam.scale))
+        pygame.draw.circle(surf, ROLLER, c, rp, 2)
+        for k in range(3):
+            a = ang + k * 2 * math.pi / 3
+            pygame.draw.line(surf, ROLLER, c, cam.point(x + r * math.cos(a), y + r * math.sin(a)),
+                             1)
+    _draw_guide(surf, cam, sim)
+    # the chain: one polyline
+    poly = sim.chain_polyline()
+    if len(poly) >= 2:
+        pts = cam.to_screen(poly)
+        width = max(1, min(6, int(round(2 * sim.config.chain.link_radius * cam.scale))))
+        pygame.draw.lines(surf, CHAIN, False, pts.tolist(), max(2, width))
+    # theory curve and vertex
+    if show_theory and readout is not None and readout.curve is not None:
+        pts = cam.to_screen(readout.curve)
+        if len(pts) >= 2:
+            pygame.draw.lines(surf, THEORY, False, pts.tolist(), 1)
+        if readout.vertex is not None:
+            vx, vy = cam.point(*readout.vertex)
+            pygame.draw.circle(surf, VERTEX, (vx, vy), 5, 1)
+            pygame.draw.line(surf, VERTEX, (vx - 9, vy), (vx + 9, vy), 1)
+            pygame.draw.line(surf, VERTEX, (vx, vy - 9), (vx, vy + 9), 1)
+            surf.blit(font(16).render("vertex (theory)", True, VERTEX), (vx + 10, vy - 18))
+    _scale_bar(surf, cam)
+    surf.set_clip(old_clip)
+
+
+def _grid(surf: pygame.Surface, cam: Camera) -> None:
+    rect = cam.rect
+    x0, y1 = cam.to_world(rect.left, rect.top)
+    x1, y0 = cam.to_world(rect.right, rect.bottom)
+    step = nice_step(max(x1 - x0, y1 - y0), 8)
+    if step * cam.scale < 12:
+        return
+    x = math.floor(x0 / step) * step
+    while x <= x1:
+        sx = cam.point(x, 0)[0]
+        pygame.draw.line(surf, GRID, (sx, rect.top), (sx, rect.bottom), 1)
+        x += step
+    y = math.floor(y0 / step) * step
+    while y <= y1:
+        sy = cam.point(0, y)[1]
+        pygame.draw.line(surf, GRID, (rect.left, sy), (rect.right, sy), 1)
+        y += step
+
+
+def _draw_guide(surf: pygame.Surface, cam: Camera, sim: Simulation) -> None:
+    (ox, oy), (ux, uy) = sim.guide_geometry()
+    length = max(0.15, sim.config.feed.guide_links * sim.chain.L * 1.5)
+    nx, ny = -uy, ux
+    half = max(3.0 / cam.scale, 2.5 * sim.config.chain.link_radius)
+    for s in (-1.0, 1.0):
+        a = cam.point(ox + s * half * nx, oy + s * half * ny)
+        b = cam.point(ox - length * ux + s * half * nx, oy - length * uy + s * half * ny)
+        pygame.draw.line(surf, GUIDE, a, b, 2)
+    # the motor box at the back of the guide
+    bx, by = ox - length * ux, oy - length * uy
+    c = cam.point(bx, by)
+    size = max(10, int(0.05 * cam.scale))
+    box = pygame.Rect(0, 0, size, size)
+    box.center = c
+    pygame.draw.rect(surf, (70, 75, 90), box, 0, 3)
+    pygame.draw.rect(surf, GUIDE, box, 1, 3)
+    lbl = font(16).render(f"feed {sim.feed.speed:.2f} m/s", True, GUIDE)
+    surf.blit(lbl, (box.left - lbl.get_width() - 4, box.top - 4))
+
+
+def _scale_bar(surf: pygame.Surface, cam: Camera) -> None:
+    rect = cam.rect
+    target = rect.w * 0.18 / cam.scale
+    length = nice_step(target * 2, 2)
+    while length * cam.scale > rect.w * 0.3:
+        length /= 2
+    px = int(length * cam.scale)
+    x0, y0 = rect.left + 16, rect.bottom - 18
+    pygame.draw.line(surf, TEXT, (x0, y0), (x0 + px, y0), 2)
+    for x in (x0, x0 + px):
+        pygame.draw.line(surf, TEXT, (x, y0 - 5), (x, y0 + 5), 2)
+    txt = f"{length:g} m" if length >= 0.01 else f"{length * 1000:g} mm"
+    lbl = font(18).render(txt, True, TEXT)
+    surf.blit(lbl, (x0 + px // 2 - lbl.get_width() // 2, y0 - 20))
+
+
+# ----------------------------------------------------------------------------- plots
+@dataclass
+class Series:
+    """One curve of a plot."""
+
+    x: np.ndarray
+    y: np.ndarray
+    colour: tuple[int, int, int]
+    label: str = ""
+    points: bool = False
+    width: int = 2
+    dashed: bool = False
+
+
+def _downsample(x: np.ndarray, y: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+    if len(x) <= n:
+        return x, y
+    idx = np.linspace(0, len(x) - 1, n).astype(int)
+    return x[idx], y[idx]
+
+
+def draw_plot(surf: pygame.Surface, rect: pygame.Rect, title: str, xlabel: str,
+              series: Sequence[Series], *, xlim: tuple[float, float] | None = None,
+              ylim: tuple[float, float] | None = None,
+              bands: Sequence[tuple[float, float, tuple[int, int, int]]] = ()) -> None:
+    """A small line/point plot with axes, ticks, optional shaded y-bands and a legend."""
+    pygame.draw.rect(surf, (28, 34, 45), rect, 0, 4)
+    f = font(16)
+    surf.blit(f.render(title, True, TEXT), (rect.x + 6, rect.y + 4))
+    inner = pygame.Rect(rect.x + 40, rect.y + 22, rect.w - 50, rect.h - 44)
+    if inner.w < 20 or inner.h < 20:
+        return
+    xs = [s.x[np.isfinite(s.x) & np.isfinite(s.y)] for s in series]
+    ys = [s.y[np.isfinite(s.x) & np.isfinite(s.y)] for s in series]
+    allx = np.concatenate(xs) if xs else np.zeros(0)
+    ally = np.concatenate(ys) if ys else np.zeros(0)
+    if xlim is None:
+        xlim = (float(allx.min()), float(allx.max())) if len(allx) else (0.0, 1.0)
+    if ylim is None:
+        ylim = (float(ally.min()), float(ally.max())) if len(ally) else (0.0, 1.0)
+    x0, x1 = xlim
+    y0, y1 = ylim
+    if not x1 > x0:
+        x0, x1 = x0 - 0.5, x0 + 0.5
+    if not y1 > y0:
+        y0, y1 = y0 - 0.5, y0 + 0.5
+
+    def sx(v):
+        return inner.x + (np.asarray(v) - x0) / (x1 - x0) * inner.w
+
+    def sy(v):
+        return inner.bottom - (np.asarray(v) - y0) / (y1 - y0) * inner.h
+
+    old = surf.get_clip()
+    for lo, hi, col in bands:
+        a, b = max(lo, y0), min(hi, y1)
+        if b > a:
+            band = pygame.Rect(inner.x, int(sy(b)), inner.w, max(1, int(sy(a) - sy(b))))
+            shade = pygame.Surface(band.size, pygame.SRCALPHA)
+            shade.fill((*col, 45))
+            surf.blit(shade, band.topleft)
+    # axes and ticks
+    small = font(14)
+    for val in _ticks(y0, y1, 4):
+        yy = int(sy(val))
+        pygame.draw.line(surf, GRID, (inner.x, yy), (inner.right, yy), 1)
+        lbl = small.render(f"{val:g}", True, DIM)
+        surf.blit(lbl, (inner.x - lbl.get_width() - 4, yy - 6))
+    for val in _ticks(x0, x1, 5):
+        xx = int(sx(val))
+        pygame.draw.line(surf, GRID, (xx, inner.y), (xx, inner.bottom), 1)
+        lbl = small.render(f"{val:g}", True, DIM)
+        surf.blit(lbl, (xx - lbl.get_width() // 2, inner.bottom + 3))
+    pygame.draw.rect(surf, DIM, inner, 1)
+    xl = small.render(xlabel, True, DIM)
+    surf.blit(xl, (inner.right - xl.get_width(), inner.bottom + 13))
+    surf.set_clip(inner)
+    for s in series:
+        ok = np.isfinite(s.x) & np.isfinite(s.y)
+        x, y = _downsample(s.x[ok], s.y[ok], max(2, inner.w))
+        if len(x) == 0:
+            continue
+        pts = np.column_stack((sx(x), sy(y)))
+        if s.points:
+            for px, py in pts[:: max(1, len(pts) // 120)]:
+                surf.fill(s.colour, (int(px) - 1, int(py) - 1, 3, 3))
+        elif len(pts) >= 2:
+            if s.dashed:
+                for a, b in zip(pts[:-1:2], pts[1::2], strict=False):
+                    pygame.draw.line(surf, s.colour, a, b, s.width)
+            else:
+                pygame.draw.lines(surf, s.colour, False, pts.tolist(), s.width)
+    surf.set_clip(old)
+    # legend
+    lx = rect.right - 8
+    for s in reversed([s for s in series if s.label]):
+        lbl = small.render(s.label, True, s.colour)
+        lx -= lbl.get_width()
+        surf.blit(lbl, (lx, rect.y + 6))
+        lx -= 12
+
+
+def _ticks(lo: float, hi: float, n: int) -> list[float]:
+    step = nice_step(hi - lo, n)
+    start = math.ceil(lo / step) * step
+    out = []
+    v = start
+    while v <= hi + 1e-9 * step and len(out) < 20:
+        out.append(round(v / step) * step + 0.0)
+        v += step
+    return out
+
+
+def text_block(surf: pygame.Surface, pos: tuple[int, int], lines: Sequence[tuple[str, tuple]],
+               size: int = 18, line_h: int | None = None) -> int:
+    """Draw lines of text; returns the y below the last line."""
+    f = font(size)
+    x, y = pos
+    lh = line_h or int(size * 0.95)
+    for txt, col in lines:
+        surf.blit(f.render(txt, True, col), (x, y))
+        y += lh
+    return y

@@ -1,0 +1,521 @@
+"""The app's model side: one running level and the commands the window sends it.
+
+No pygame here. :class:`Session` owns the :class:`~chainfountain.level.io.Level`
+being shown, the :class:`~chainfountain.sim.world.Simulation` built from it and
+a :class:`~chainfountain.sim.recorder.Recorder`. The view calls :meth:`Session.tick`
+once per frame with the wall time that passed and a time budget; the session
+steps the physics at its fixed ``dt`` (an accumulator), never spends more than
+the budget, and reports the real-time factor it achieved. Setting a field
+(:meth:`Session.set_field`) clamps to the schema limits, applies live changes
+through the simulation's commands and rebuilds for the rest.
+"""
+
+from __future__ import annotations
+
+import copy
+import dataclasses
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from chainfountain.app import paths
+from chainfountain.app.controls import FieldSpec, get_value, set_value, spec_for
+from chainfountain.level import io
+from chainfountain.level.io import Level, LevelError
+from chainfountain.sim.measure import steady_time
+from chainfountain.sim.recorder import Recorder
+from chainfountain.sim.world import Simulation
+
+SLOW_FACTORS: tuple[float, ...] = (1.0, 0.5, 0.25)
+"""Slow-motion cycle of the ``S`` key."""
+
+HISTORY_SECONDS = 120.0
+"""How much measured history the plots keep (older samples are dropped)."""
+
+
+def default_level() -> Level:
+    """The built-in default level (``chainfountain.level.library`` when present)."""
+    try:
+        from chainfountain.level import library  # type: ignore[attr-defined]
+
+        return library.default_level()
+    except (ImportError, AttributeError):
+        from chainfountain.sim.config import SimConfig
+
+        return io.make_level("default", "A chain fed at 5 m/s, 75 degrees, falling 1 m "
+                             "onto an absorbing floor", SimConfig())
+
+
+@dataclass
+class Applied:
+    """Result of :meth:`Session.set_field`."""
+
+    path: str
+    value: float
+    """The value now in the level (schema units)."""
+    ok: bool
+    """False when the change was refused (the old value stays)."""
+    live: bool
+    """True when applied to the running simulation without a rebuild."""
+    message: str
+
+
+@dataclass
+class Readout:
+    """What the readout panel and the overlays show (all floats, launch frame, SI)."""
+
+    t: float = 0.0
+    v: float = math.nan
+    k: float = math.nan
+    q: float = math.nan
+    h: float = math.nan
+    l: float = math.nan  # noqa: E741 - the paper's symbol
+    H: float = math.nan
+    T0_bar: float = math.nan
+    TE_bar: float = math.nan
+    T0_theory: float = math.nan
+    TE_theory: float = math.nan
+    steady: bool = False
+    measured: bool = False
+    """True once the values come from the running chain (else from the feed settings)."""
+    note: str = ""
+    curve: np.ndarray | None = None
+    """Theory curve, launch frame, ``(n, 2)``."""
+    vertex: tuple[float, float] | None = None
+    """Theory vertex, launch frame."""
+    measured_vertex: tuple[float, float] | None = None
+    tension_y: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    tension_bar: np.ndarray = field(default_factory=lambda: np.zeros(0))
+
+
+class History:
+    """Time series for the live plots (appended per recorder sample, trimmed to a span)."""
+
+    def __init__(self, span: float = HISTORY_SECONDS) -> None:
+        self.span = span
+        self.t: list[float] = []
+        self.speed: list[float] = []
+        self.T0: list[float] = []
+        self.TE: list[float] = []
+        self.vertex_y: list[float] = []
+        self.landing_x: list[float] = []
+
+    def clear(self) -> None:
+        for lst in (self.t, self.speed, self.T0, self.TE, self.vertex_y, self.landing_x):
+            lst.clear()
+
+    def append(self, t: float, speed: float, T0: float, TE: float, vy: float, lx: float) -> None:
+        self.t.append(t)
+        self.speed.append(speed)
+        self.T0.append(T0)
+        self.TE.append(TE)
+        self.vertex_y.append(vy)
+        self.landing_x.append(lx)
+        if len(self.t) > 64 and self.t[-1] - self.t[0] > 1.1 * self.span:
+            cut = int(np.searchsorted(np.asarray(self.t), self.t[-1] - self.span))
+            for lst in (self.t, self.speed, self.T0, self.TE, self.vertex_y, self.landing_x):
+                del lst[:cut]
+
+    def arrays(self) -> dict[str, np.ndarray]:
+        return {
+            "t": np.asarray(self.t), "speed": np.asarray(self.speed),
+            "T0": np.asarray(self.T0), "TE": np.asarray(self.TE),
+            "vertex_y": np.asarray(self.vertex_y), "landing_x": np.asarray(self.landing_x),
+        }
+
+
+class Session:
+    """A level running in the app; all commands of the window go through here."""
+
+    def __init__(self, level: Level, source: Path | None = None,
+                 clock: Callable[[], float] = time.perf_counter) -> None:
+        self.clock = clock
+        self.paused = False
+        self.slow_index = 0
+        self.rtf = 1.0
+        """Smoothed real-time factor achieved (simulated seconds per wall second)."""
+        self.behind = False
+        """True when the last frames could not keep up with the requested speed."""
+        self.messages: list[tuple[float, str]] = []
+        self.dirty = False
+        """The setup differs from the last loaded or saved file."""
+        self.history = History()
+        self._readout = Readout()
+        self._readout_key: tuple = ()
+        self._acc = 0.0
+        self._drag_target: tuple[float, float] | None = None
+        self._drag_prev: tuple[float, float] | None = None
+        self._consumed = 0
+        self.level = copy.deepcopy(level)
+        self.source = source
+        self._build()
+
+    # ------------------------------------------------------------------ building
+    def _build(self) -> None:
+        self.sim = Simulation(self.level.sim)
+        self.recorder = Recorder(self.sim)
+        self.history.clear()
+        self._consumed = 0
+        self._acc = 0.0
+        self._drag_target = self._drag_prev = None
+        self._readout_key = ()
+
+    @property
+    def name(self) -> str:
+        return self.level.meta.name
+
+    def say(self, text: str) -> str:
+        """Queue a status message (the window shows the newest ones for a few seconds)."""
+        self.messages.append((self.clock(), text))
+        del self.messages[:-20]
+        return text
+
+    def reset(self) -> None:
+        """Rebuild the scene from the current setup (time back to 0)."""
+        self._build()
+        self.say("reset: t = 0")
+
+    def load_level(self, level: Level, source: Path | None = None) -> bool:
+        """Replace the running level; on failure keep the old one and say why."""
+        old = (self.level, self.source)
+        self.level = copy.deepcopy(level)
+        self.source = source
+        try:
+            self._build()
+        except (ValueError, LevelError) as exc:
+            self.level, self.source = old
+            self._build()
+            self.say(f"cannot open {level.meta.name!r}: {exc}")
+            return False
+        self.dirty = False
+        self.say(f"opened level {level.meta.name!r}" + (f" ({source})" if source else ""))
+        return True
+
+    def load_path(self, path: Path) -> bool:
+        """Load a level file (errors are reported, never raised)."""
+        try:
+            level = io.load(path)
+        except LevelError as exc:
+            self.say(str(exc))
+            return False
+        return self.load_level(level, Path(path))
+
+    def save(self, name: str, folder: Path | None = None) -> Path | None:
+        """Save the current setup as ``<folder>/<name>.toml`` (default: the user's folder)."""
+        name = name.strip()
+        if not name:
+            self.say("save: give a name")
+            return None
+        folder = folder if folder is not None else paths.user_levels_dir(create=True)
+        folder.mkdir(parents=True, exist_ok=True)
+        path = folder / f"{paths.safe_name(name)}.toml"
+        level = io.make_level(name, self.level.meta.description, copy.deepcopy(self.level.sim))
+        try:
+            io.save(level, path)
+        except (LevelError, OSError) as exc:
+            self.say(f"save failed: {exc}")
+            return None
+        self.level = level
+        self.source = path
+        self.dirty = False
+        self.say(f"saved {path}")
+        return path
+
+    # ------------------------------------------------------------------ fields
+    def spec(self, path: str) -> FieldSpec:
+        return spec_for(self.level.sim, path)
+
+    def value(self, path: str) -> float:
+        return float(get_value(self.level.sim, path))
+
+    def set_field(self, path: str, value: float) -> Applied:
+        """Set a schema field: clamp to its limits, then apply live or rebuild.
+
+        A change that the level's cross-field checks reject (e.g. a feed too
+        slow to reach the floor) is refused and the old value stays.
+        """
+        try:
+            spec = self.spec(path)
+        except KeyError:
+            return Applied(path, math.nan, False, False, self.say(f"no such field {path}"))
+        old = self.value(path)
+        v, clamp_msg = spec.clamp(value)
+        if spec.integer:
+            v = int(v)
+        cand = copy.deepcopy(self.level.sim)
+        set_value(cand, path, v)
+        try:
+            io.check_consistency(Level(meta=self.level.meta, sim=cand), "setting")
+        except LevelError as exc:
+            msg = str(exc).removeprefix("setting: ")
+            return Applied(path, old, False, False, self.say(f"refused: {msg}"))
+        if v == old:
+            return Applied(path, old, True, True, self.say(clamp_msg) if clamp_msg else "")
+        self.level.sim = cand
+        self.dirty = True
+        shown = f"{spec.label} = {spec.fmt(spec.to_display(v))} {spec.unit}".rstrip()
+        if spec.live and self._apply_live(path, v):
+            msg = f"{shown} (live)"
+            live = True
+        else:
+            was_paused = self.paused
+            self._build()
+            self.paused = was_paused
+            msg = f"{shown}: scene rebuilt (t = 0)"
+            live = False
+        if clamp_msg:
+            msg = f"{clamp_msg}; {msg}"
+        return Applied(path, float(v), True, live, self.say(msg))
+
+    def _apply_live(self, path: str, v: float) -> bool:
+        sim = self.sim
+        setter = getattr(sim, "set_param", None)  # a generic live setter, when the sim has one
+        if callable(setter):
+            try:
+                setter(path, v)
+                return True
+            except (KeyError, ValueError, AttributeError):
+                pass
+        if path == "feed.speed":
+            sim.set_feed_speed(v)
+        elif path == "chain.bending_stiffness":
+            sim.set_bending(stiffness=v)
+        elif path == "chain.bending_damping":
+            sim.set_bending(damping=v)
+        elif path == "solver.iterations":
+            sim.set_iterations(int(v))
+        elif path.startswith("rollers[") and path.endswith("].angular_speed"):
+            sim.set_roller_speed(int(path[len("rollers["):path.index("]")]), v)
+        else:
+            return False
+        set_value(sim.config, path, v)
+        return True
+
+    # ------------------------------------------------------------------ time
+    @property
+    def speed_factor(self) -> float:
+        """Requested speed relative to real time (1, 1/2 or 1/4)."""
+        return SLOW_FACTORS[self.slow_index]
+
+    def cycle_slow(self) -> float:
+        """Next slow-motion factor (1 -> 1/2 -> 1/4 -> 1)."""
+        self.slow_index = (self.slow_index + 1) % len(SLOW_FACTORS)
+        f = self.speed_factor
+        self.say("speed: real time" if f == 1 else f"slow motion: 1/{round(1 / f)}")
+        return f
+
+    def toggle_pause(self) -> bool:
+        self.paused = not self.paused
+        self._acc = 0.0
+        self.say("paused" if self.paused else "running")
+        return self.paused
+
+    def _step(self, n: int) -> None:
+        sim = self.sim
+        tgt, prev = self._drag_target, self._drag_prev
+        if tgt is not None and sim.dragging:
+            p0 = prev if prev is not None else tgt
+            for i in range(n):
+                f = (i + 1) / n
+                sim.drag_to((p0[0] + f * (tgt[0] - p0[0]), p0[1] + f * (tgt[1] - p0[1])))
+                sim.step()
+            self._drag_prev = tgt
+            return
+        step = sim.step
+        for _ in range(n):
+            step()
+
+    def step_frame(self, frame_time: float = 1.0 / 60.0) -> int:
+        """Single step: advance by one frame of simulated time (whole physics steps)."""
+        n = max(1, int(round(frame_time / self.sim.dt)))
+        self._step(n)
+        self._consume()
+        return n
+
+    def step_physics(self) -> None:
+        """Advance by exactly one physics step ``dt``."""
+        self._step(1)
+        self._consume()
+
+    def advance(self, seconds: float) -> int:
+        """Advance by ``seconds`` of simulated time regardless of wall time (off-screen runs)."""
+        n = int(round(seconds / self.sim.dt))
+        if n > 0:
+            self._step(n)
+            self._consume()
+        return n
+
+    def tick(self, wall_dt: float, budget: float) -> int:
+        """Run the physics for one frame: ``wall_dt`` s of wall time passed, spend <= ``budget``.
+
+        Returns the number of physics steps taken. When the budget runs out
+        the backlog is dropped (the fountain slows down instead of stalling)
+        and :attr:`rtf` falls below the requested factor.
+        """
+        if self.paused:
+            self.rtf = 0.0
+            self.behind = False
+            return 0
+        wall_dt = min(max(wall_dt, 0.0), 0.1)
+        dt = self.sim.dt
+        self._acc += wall_dt * self.speed_factor
+        want = int(self._acc / dt)
+        t0 = self.clock()
+        done = 0
+        chunk = max(1, min(want, 8))
+        while done < want:
+            n = min(chunk, want - done)
+            self._step(n)
+            done += n
+            if self.clock() - t0 > budget:
+                break
+        self._acc -= done * dt
+        self.behind = done < want
+        if self.behind:
+            self._acc = 0.0
+        if wall_dt > 0:
+            inst = done * dt / wall_dt
+            self.rtf += 0.1 * (inst - self.rtf)
+        self._consume()
+        return done
+
+    # ------------------------------------------------------------------ dragging
+    def grab(self, point: tuple[float, float], max_dist: float) -> bool:
+        """Grab the free link nearest to ``point`` when it is within ``max_dist`` (m)."""
+        sim = self.sim
+        n = sim.n_free
+        if n == 0:
+            return False
+        pos = sim.state().position[:n]
+        d = np.hypot(pos[:, 0] - point[0], pos[:, 1] - point[1])
+        if float(d.min()) > max_dist:
+            return False
+        sim.grab(point)
+        self._drag_target = self._drag_prev = point
+        return sim.dragging
+
+    def drag_to(self, point: tuple[float, float]) -> None:
+        self._drag_target = point
+
+    def release(self) -> None:
+        self.sim.release()
+        self._drag_target = self._drag_prev = None
+
+    @property
+    def dragging(self) -> bool:
+        return self.sim.dragging
+
+    # ------------------------------------------------------------------ measurements
+    def _consume(self) -> None:
+        """Move new recorder samples into the plot history and trim the recorder."""
+        rec = self.recorder
+        samples, profiles = rec.samples, rec.profiles
+        for i in range(self._consumed, len(samples)):
+            s = samples[i]
+            te = math.nan
+            if i < len(profiles) and len(profiles[i].tension_bar):
+                te = float(profiles[i].tension_bar[-1])
+            self.history.append(s.t, s.speed_mean, s.T0_bar, te, s.vertex_y, s.landing_x)
+        self._consumed = len(samples)
+        keep = max(64, int(2.0 * rec.cfg.window / rec.cfg.sample_interval))
+        if len(samples) > 2 * keep:
+            cut = len(samples) - keep
+            del samples[:cut]
+            if len(profiles) >= cut:
+                del profiles[:cut]
+            self._consumed -= cut
+
+    def readout(self) -> Readout:
+        """Current numbers and theory overlay (recomputed when a new sample arrived)."""
+        key = (id(self.sim), len(self.history.t), self.history.t[-1] if self.history.t else -1,
+               self.sim.dragging)
+        if key == self._readout_key:
+            self._readout.t = self.sim.time
+            return self._readout
+        self._readout_key = key
+        self._readout = self._compute_readout()
+        return self._readout
+
+    def _compute_readout(self) -> Readout:
+        from chainfountain.theory import Fountain
+
+        sim = self.sim
+        cfg = sim.config
+        H = float(cfg.feed.drop)
+        g = float(cfg.gravity)
+        r = Readout(t=sim.time, H=H)
+        hist = self.history.arrays()
+        t = hist["t"]
+        avg_span = 0.25
+        if len(t) >= 3 and sim.n_free >= 8:
+            sel = t >= t[-1] - avg_span
+            v = float(np.nanmean(hist["speed"][sel]))
+            h = float(np.nanmean(hist["vertex_y"][sel]))
+            lx = float(np.nanmean(hist["landing_x"][sel]))
+            r.T0_bar = float(np.nanmean(hist["T0"][sel]))
+            r.TE_bar = float(np.nanmean(hist["TE"][sel]))
+            r.measured = True
+            r.measured_vertex = (float(self.recorder.samples[-1].vertex_x)
+                                 if self.recorder.samples else math.nan, h)
+            try:
+                f = Fountain.from_geometry(l=lx, h=max(h, 0.0), H=H, v=v, g=g)
+            except (ValueError, ArithmeticError, RuntimeError) as exc:
+                f = None
+                r.note = f"no inverted catenary fits ({exc})"
+        else:
+            f = None
+            ref = sim.reference
+            if ref is not None:
+                try:
+                    f = Fountain.from_launch(v=ref.v, alpha0=ref.alpha0, H=H, TE_bar=0.0, g=g)
+                    r.note = "prediction from the feed settings (no measurement yet)"
+                except (ValueError, ArithmeticError):
+                    f = None
+            if f is None:
+                r.note = "no fountain predicted for this feed"
+        if f is not None:
+            sx, sy = f.start
+            r.v, r.k, r.q, r.h, r.l = f.v, f.k, f.q, f.h, f.l
+            r.T0_theory, r.TE_theory = f.T0_bar, f.TE_bar
+            xs, ys = f.curve(160)
+            r.curve = np.column_stack((np.asarray(xs) - sx, np.asarray(ys) - sy))
+            r.vertex = (-sx, -sy)
+        elif r.measured:
+            r.v = float(np.nanmean(hist["speed"][t >= t[-1] - avg_span]))
+            r.k = g / r.v**2 if r.v > 0 else math.nan
+        # tension profile: average of the last few samples, launch end first
+        profs = self.recorder.profiles[-8:]
+        if profs and not sim.dragging:
+            n = min(len(p.tension_bar) for p in profs)
+            if n >= 2:
+                r.tension_bar = np.mean([p.tension_bar[:n] for p in profs], axis=0)
+                r.tension_y = np.mean([p.y[:n] for p in profs], axis=0)
+        if sim.dragging:
+            r.note = "a link is held: tension readings paused"
+        r.steady = self.is_steady()
+        return r
+
+    def is_steady(self) -> bool:
+        """Vertex height and mean speed stayed within the level's tolerance for a window."""
+        rc = self.sim.config.recording
+        hist = self.history.arrays()
+        t = hist["t"]
+        if len(t) < 10 or t[-1] - t[0] < rc.window or self.sim.dragging:
+            return False
+        sel = t >= t[-1] - 2.0 * rc.window
+        for name in ("vertex_y", "speed"):
+            s = hist[name][sel]
+            if not np.all(np.isfinite(s)):
+                return False
+            ts = steady_time(t[sel], s, rc.steady_tolerance, rc.smoothing, rc.window)
+            if ts is None or ts > t[-1] - rc.window + 1e-9:
+                return False
+        return True
+
+    def setup_copy(self) -> Level:
+        """A copy of the current setup as a level (what Ctrl+S writes)."""
+        return dataclasses.replace(self.level, sim=copy.deepcopy(self.level.sim))

@@ -1,0 +1,77 @@
+"""``chainfountain play [LEVEL]``: the interactive window (headless without a display)."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from chainfountain.commands.args import integer
+from chainfountain.errors import UserError
+
+
+def _size(text: str) -> tuple[int, int]:
+    try:
+        w, h = (int(p) for p in text.lower().split("x"))
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"{text!r} is not a window size; allowed: WIDTHxHEIGHT, e.g. 1280x760") from None
+    if not (640 <= w <= 8000 and 400 <= h <= 8000):
+        raise argparse.ArgumentTypeError(
+            f"{text} is out of range; allowed: width 640-8000, height 400-8000 pixels")
+    return w, h
+
+
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "play",
+        help="open the interactive window on a level (default: the built-in level)",
+        description=(
+            "Open the chain fountain window on LEVEL (a .toml file, or the name of a level "
+            "in levels/ or in the user folder). Without a display it runs the level headless. "
+            "--frames N renders N frames off-screen (SDL dummy driver, 1/60 s of simulated "
+            "time each) and exits; --screenshot FILE saves the last one as PNG."
+        ),
+        allow_abbrev=False,
+    )
+    p.add_argument("level", nargs="?", metavar="LEVEL", help="level file or name")
+    p.add_argument("--frames", type=integer("a number of frames", min=1), metavar="N",
+                   help="render N frames off-screen and exit")
+    p.add_argument("--screenshot", type=Path, metavar="FILE.png",
+                   help="with --frames: save the last frame as PNG (default 120 frames)")
+    p.add_argument("--size", type=_size, metavar="WxH", help="window size (default 1280x760)")
+    p.add_argument("--paused", action="store_true", help="start paused")
+    p.add_argument("--out", type=Path, metavar="DIR",
+                   help="output folder of a headless run (no display); "
+                   "default runs/<level name>")
+    p.set_defaults(func=run)
+
+
+def resolve_level(text: str) -> Path:
+    """A level file path from a path or a level name (``levels/`` or the user folder)."""
+    from chainfountain.level import library
+
+    return library.resolve(text)
+
+
+def run(args: argparse.Namespace) -> int:
+    from chainfountain.level import io
+
+    level = None
+    source = None
+    if args.level is not None:
+        source = resolve_level(args.level)
+        level = io.load(source)  # LevelError: one line, exit 2
+    if args.screenshot is not None and args.screenshot.suffix.lower() != ".png":
+        raise UserError(f"argument --screenshot: {str(args.screenshot)!r} must end in .png")
+    from chainfountain.app import launch
+
+    if args.frames is not None or args.screenshot is not None:
+        frames = args.frames if args.frames is not None else 120
+        return launch.open_app(level, source, frames=frames, screenshot=args.screenshot,
+                               size=args.size, offscreen=True, paused=args.paused)
+    ok, why = launch.display_available()
+    if not ok:
+        from chainfountain.app.session import default_level
+
+        return launch.run_headless(level or default_level(), why, out_dir=args.out)
+    return launch.open_app(level, source, size=args.size, paused=args.paused)

@@ -1,0 +1,148 @@
+"""The app's model side (no window): schema-driven controls, clamping, live changes, save/load."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from chainfountain.app import controls
+from chainfountain.app.session import Session
+from chainfountain.level import io
+from chainfountain.sim.config import CartConfig, SimConfig
+
+
+@pytest.fixture(autouse=True)
+def _home(tmp_path, monkeypatch):
+    monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
+
+
+def small_level(**feed) -> io.Level:
+    cfg = SimConfig()
+    cfg.feed.drop = 0.5
+    cfg.feed.speed = 4.0
+    cfg.chain.link_length = 0.03
+    for k, v in feed.items():
+        setattr(cfg.feed, k, v)
+    return io.make_level("small", "test level", cfg)
+
+
+def test_controls_come_from_the_schema():
+    specs = {s.path: s for s in controls.control_fields(SimConfig())}
+    assert list(specs)[:3] == ["feed.speed", "feed.launch_angle", "feed.drop"]
+    speed = specs["feed.speed"]
+    meta = io.field_meta("feed.speed")
+    assert (speed.lo, speed.hi, speed.live, speed.unit) == (meta["min"], meta["max"], True, "m/s")
+    assert specs["chain.link_length"].live is False
+    assert specs["feed.launch_angle"].unit == "deg"  # radians shown in degrees
+    assert "carts[0].mass" not in specs
+
+
+def test_apparatus_fields_appear_when_the_level_has_them():
+    cfg = SimConfig(carts=(CartConfig(), CartConfig(mass=0.3)))
+    paths = [s.path for s in controls.control_fields(cfg)]
+    for p in ("carts[0].mass", "carts[1].mass", "carts[0].incline", "carts[1].incline"):
+        assert p in paths
+    assert controls.get_value(cfg, "carts[1].mass") == 0.3
+
+
+@pytest.mark.parametrize("bad", [-5.0, 1e9, math.inf, -math.inf, math.nan, "abc", None])
+def test_clamp_never_raises_and_stays_in_range(bad):
+    for spec in controls.control_fields(SimConfig(carts=(CartConfig(),))):
+        v, msg = spec.clamp(bad)
+        assert math.isfinite(v)
+        if spec.lo is not None:
+            assert v > spec.lo or (v == spec.lo and spec.lo_incl)
+        if spec.hi is not None:
+            assert v < spec.hi or (v == spec.hi and spec.hi_incl)
+        assert msg is None or spec.label in msg
+
+
+def test_slider_round_trip():
+    for spec in controls.control_fields(SimConfig()):
+        for pos in (0, 1, 250, 500, 999, 1000):
+            v = spec.from_slider(pos)
+            assert abs(spec.to_slider(v) - pos) <= 1, (spec.path, pos)
+
+
+def test_live_change_rebuild_and_refusal():
+    s = Session(small_level())
+    s.advance(0.1)
+    t = s.sim.time
+    sim = s.sim
+    r = s.set_field("feed.speed", 4.5)
+    assert r.ok and r.live and s.sim is sim and s.sim.time == t
+    assert s.sim.feed.speed == 4.5 and s.level.sim.feed.speed == 4.5
+    r = s.set_field("chain.bending_damping", 1e-4)
+    assert r.ok and r.live
+    r = s.set_field("chain.link_length", 0.025)
+    assert r.ok and not r.live and s.sim is not sim and s.sim.time == 0
+    assert "rebuilt" in r.message
+    # a schema limit: clamped, and said so
+    r = s.set_field("feed.speed", 99.0)
+    assert r.ok and s.value("feed.speed") == 30.0 and "outside the allowed range" in r.message
+    # a cross-field limit (too slow to reach the floor): refused, old value kept
+    r = s.set_field("feed.speed", 1.0)
+    assert not r.ok and s.value("feed.speed") == 30.0 and "refused" in r.message
+
+
+def test_pause_step_reset_slow():
+    s = Session(small_level())
+    s.toggle_pause()
+    assert s.tick(0.05, 1.0) == 0 and s.sim.time == 0
+    n = s.step_frame(1 / 60)
+    assert s.sim.steps == n and s.sim.time == pytest.approx(n * s.sim.dt)
+    s.step_physics()
+    assert s.sim.steps == n + 1
+    s.reset()
+    assert s.sim.time == 0
+    assert [s.cycle_slow() for _ in range(3)] == [0.5, 0.25, 1.0]
+
+
+def test_tick_keeps_to_its_budget():
+    s = Session(small_level())
+    done = s.tick(0.1, budget=1e-9)  # no time at all: one chunk, then it gives up
+    assert 0 < done < round(0.1 / s.sim.dt)
+    assert s.behind
+    done = s.tick(1 / 60, budget=10.0)
+    assert done == pytest.approx((1 / 60) / s.sim.dt, abs=1)
+
+
+def test_readout_and_history():
+    s = Session(small_level())
+    r0 = s.readout()
+    assert not r0.measured and r0.curve is not None  # prediction from the feed settings
+    s.advance(0.3)
+    r = s.readout()
+    assert r.measured and len(s.history.t) > 10
+    assert r.v == pytest.approx(4.0, rel=0.05)
+    assert 0 <= r.T0_theory < 1 and r.curve is not None and r.vertex is not None
+    assert len(r.tension_bar) == len(r.tension_y) > 5
+
+
+def test_save_and_load_round_trip(tmp_path):
+    s = Session(small_level())
+    s.set_field("feed.speed", 4.25)
+    path = s.save("My level!")
+    assert path is not None and path.parent == tmp_path / "home" / "levels"
+    assert not s.dirty
+    lvl = io.load(path)
+    assert lvl.meta.name == "My level!" and lvl.sim.feed.speed == 4.25
+    s2 = Session(small_level())
+    assert s2.load_path(path) and s2.value("feed.speed") == 4.25
+    assert not s2.load_path(tmp_path / "missing.toml")
+    assert "no such file" in s2.messages[-1][1]
+    assert s2.value("feed.speed") == 4.25  # the old level stays
+
+
+def test_drag_a_link():
+    s = Session(small_level())
+    s.advance(0.05)
+    p = s.sim.state().position[s.sim.n_free // 2]
+    assert s.grab((float(p[0]), float(p[1])), max_dist=0.05)
+    s.drag_to((float(p[0]) + 0.1, float(p[1]) - 0.1))
+    s.step_frame(0.05)
+    assert s.dragging
+    s.release()
+    assert not s.dragging
+    assert not s.grab((50.0, 50.0), max_dist=0.05)
