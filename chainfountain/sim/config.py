@@ -108,7 +108,7 @@ class SolverConfig:
         2.5e-4, unit="s", doc="Fixed physics time step", min=1e-6, max=0.02, min_inclusive=False
     )
     iterations: int = param(
-        10, unit="1", doc="Constraint solver iterations per step", min=1, max=1000, live=True
+        25, unit="1", doc="Constraint solver iterations per step", min=1, max=1000, live=True
     )
     joint_error_bias: float = param(
         1e-10, unit="1", doc="Fraction of pivot-joint error left uncorrected after 1 s "
