@@ -291,8 +291,10 @@ class App:
         r = pygame.Rect(0, 0, 420, 150)
         r.center = self.scene_rect.center
         win = UIWindow(r, self.ui, window_display_title="Save level as", always_on_top=True)
-        UILabel(pygame.Rect(8, 6, 390, 22), f"Name (saved in {paths.user_levels_dir()})",
-                self.ui, container=win)
+        folder = str(paths.user_levels_dir())
+        if len(folder) > 40:
+            folder = "..." + folder[-37:]
+        UILabel(pygame.Rect(8, 6, 390, 22), f"Name (into {folder})", self.ui, container=win)
         entry = UITextEntryLine(pygame.Rect(8, 32, 390, 30), self.ui, container=win)
         entry.set_text(self.session.name)
         entry.focus()

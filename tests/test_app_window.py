@@ -1,0 +1,200 @@
+"""The window under the SDL dummy driver: scripted events change the model as asked."""
+
+from __future__ import annotations
+
+import os
+
+os.environ["SDL_VIDEODRIVER"] = "dummy"
+os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
+
+import pygame  # noqa: E402
+import pygame_gui  # noqa: E402
+import pytest  # noqa: E402
+
+from chainfountain.app import render  # noqa: E402
+from chainfountain.app.session import Session  # noqa: E402
+from chainfountain.app.window import App  # noqa: E402
+from chainfountain.level import io  # noqa: E402
+from chainfountain.sim.config import SimConfig  # noqa: E402
+
+
+def small_level() -> io.Level:
+    cfg = SimConfig()
+    cfg.feed.drop = 0.5
+    cfg.feed.speed = 4.0
+    cfg.chain.link_length = 0.03
+    return io.make_level("small", "test level", cfg)
+
+
+@pytest.fixture
+def app(tmp_path, monkeypatch):
+    monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
+    monkeypatch.setenv("SDL_VIDEODRIVER", "dummy")
+    a = App(Session(small_level()), size=(1280, 760), offscreen=True)
+    yield a
+    a.finish()
+
+
+def key(app: App, k: int, mod: int = 0, unicode: str = "") -> None:
+    pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=k, mod=mod, unicode=unicode,
+                                         scancode=0))
+    pygame.event.post(pygame.event.Event(pygame.KEYUP, key=k, mod=mod, unicode=unicode,
+                                         scancode=0))
+    app.run_frame()
+
+
+def click(app: App, pos: tuple[int, int], button: int = 1) -> None:
+    pygame.event.post(pygame.event.Event(pygame.MOUSEMOTION, pos=pos, rel=(0, 0), buttons=(0,
+                                         0, 0)))
+    app.run_frame()
+    pygame.event.post(pygame.event.Event(pygame.MOUSEBUTTONDOWN, pos=pos, button=button))
+    app.run_frame()
+    pygame.event.post(pygame.event.Event(pygame.MOUSEBUTTONUP, pos=pos, button=button))
+    app.run_frame()
+    app.run_frame()  # the GUI's own events (button pressed) arrive one frame later
+
+
+def test_pause_step_reset_keys(app):
+    app.run_frame()
+    assert app.session.sim.time > 0
+    key(app, pygame.K_SPACE)
+    assert app.session.paused
+    t = app.session.sim.time
+    app.run_frame()
+    assert app.session.sim.time == t
+    key(app, pygame.K_RIGHT)
+    assert app.session.sim.time == pytest.approx(t + 1 / 60, abs=app.session.sim.dt)
+    key(app, pygame.K_PERIOD)
+    assert app.session.sim.time == pytest.approx(t + 2 / 60, abs=2 * app.session.sim.dt)
+    steps = app.session.sim.steps
+    key(app, pygame.K_RIGHT, mod=pygame.KMOD_SHIFT)
+    assert app.session.sim.steps == steps + 1
+    key(app, pygame.K_r)
+    assert app.session.sim.time == 0
+    key(app, pygame.K_s)
+    assert app.session.speed_factor == 0.5
+    key(app, pygame.K_h)
+    assert app.show_help
+    key(app, pygame.K_ESCAPE)  # closes the help first
+    assert not app.show_help and app.running
+    key(app, pygame.K_ESCAPE)
+    assert not app.running
+
+
+def test_slider_arrow_moves_the_live_value(app):
+    row = app._row("feed.speed")
+    before = app.session.sim.feed.speed
+    right = row.slider.right_button
+    for _ in range(3):
+        click(app, right.rect.center)
+    after = app.session.sim.feed.speed
+    assert after > before
+    assert app.session.value("feed.speed") == after
+    assert float(row.entry.get_text()) == pytest.approx(after, rel=1e-3)
+
+
+def test_entry_clamps_and_rebuilds(app):
+    row = app._row("chain.link_length")
+    sim = app.session.sim
+    pygame.event.post(pygame.event.Event(pygame_gui.UI_TEXT_ENTRY_FINISHED,
+                                         ui_element=row.entry, text="0.025"))
+    app.run_frame()
+    assert app.session.sim is not sim and app.session.value("chain.link_length") == 0.025
+    # outside the schema: clamped to the limit and said so
+    row = app._row("feed.speed")
+    pygame.event.post(pygame.event.Event(pygame_gui.UI_TEXT_ENTRY_FINISHED,
+                                         ui_element=row.entry, text="1e6"))
+    app.run_frame()
+    assert app.session.value("feed.speed") == 30.0
+    assert row.entry.get_text() == "30"
+    assert any("outside the allowed range" in m for _, m in app.session.messages)
+
+
+def test_save_and_load_through_the_dialogs(app, tmp_path):
+    app.session.set_field("feed.speed", 4.4)
+    key(app, pygame.K_s, mod=pygame.KMOD_CTRL)
+    assert app.save_window is not None
+    app.save_entry.set_text("classroom demo")
+    ok = [b for b in app.save_window.get_container().elements
+          if "#save_ok" in getattr(b, "object_ids", [])][0]
+    click(app, ok.rect.center)
+    path = tmp_path / "home" / "levels" / "classroom_demo.toml"
+    assert path.exists() and app.save_window is None
+    assert io.load(path).sim.feed.speed == 4.4
+    # change the setup, then load the saved level back through the picker
+    app.session.set_field("feed.speed", 5.0)
+    key(app, pygame.K_l)
+    assert app.load_window is not None
+    label = "saved/classroom_demo.toml"
+    assert label in app._load_items
+    app.do_load(label)
+    assert app.session.value("feed.speed") == 4.4 and app.load_window is None
+    assert app.session.name == "classroom demo"
+
+
+def test_screenshot_clip_zoom_pan_drag(app, tmp_path):
+    for _ in range(10):
+        app.run_frame()
+    key(app, pygame.K_F12)
+    app.saver.wait()
+    shots = list((tmp_path / "home" / "captures").glob("*.png"))
+    assert len(shots) == 1 and shots[0].stat().st_size > 10_000
+    key(app, pygame.K_g)
+    assert app.clip is not None
+    for _ in range(5):
+        app.run_frame()
+    key(app, pygame.K_g)
+    assert app.clip is None and app.finishing_clips
+    app.finishing_clips[0].wait()
+    clips = list((tmp_path / "home" / "captures").glob("*.gif"))
+    assert len(clips) == 1 and clips[0].stat().st_size > 1000
+    # zoom and pan
+    cam = app.camera
+    scale = cam.scale
+    pos = app.scene_rect.center
+    pygame.mouse.set_pos(pos)
+    pygame.event.post(pygame.event.Event(pygame.MOUSEWHEEL, x=0, y=2, flipped=False))
+    app.run_frame()
+    assert cam.scale > scale or pygame.mouse.get_pos() != pos  # dummy driver may ignore set_pos
+    empty = (app.scene_rect.right - 20, 120)
+    cx = cam.cx
+    pygame.event.post(pygame.event.Event(pygame.MOUSEBUTTONDOWN, pos=empty, button=3))
+    pygame.event.post(pygame.event.Event(pygame.MOUSEMOTION, pos=(empty[0] - 50, 120),
+                                         rel=(-50, 0), buttons=(0, 0, 1)))
+    pygame.event.post(pygame.event.Event(pygame.MOUSEBUTTONUP, pos=(empty[0] - 50, 120),
+                                         button=3))
+    app.run_frame()
+    assert cam.cx > cx
+    # drag a link of the chain
+    s = app.session
+    p = s.sim.state().position[s.sim.n_free // 2]
+    sp = tuple(int(v) for v in cam.to_screen(p)[0])
+    pygame.event.post(pygame.event.Event(pygame.MOUSEBUTTONDOWN, pos=sp, button=1))
+    app.run_frame()
+    assert s.dragging
+    pygame.event.post(pygame.event.Event(pygame.MOUSEMOTION, pos=(sp[0] + 40, sp[1] + 40),
+                                         rel=(40, 40), buttons=(1, 0, 0)))
+    app.run_frame()
+    pygame.event.post(pygame.event.Event(pygame.MOUSEBUTTONUP, pos=(sp[0] + 40, sp[1] + 40),
+                                         button=1))
+    app.run_frame()
+    assert not s.dragging
+
+
+def test_offscreen_screenshot_shows_the_chain(tmp_path, monkeypatch):
+    from chainfountain import cli
+
+    monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
+    lvl = tmp_path / "small.toml"
+    io.save(small_level(), lvl)
+    shot = tmp_path / "shot.png"
+    assert cli.main(["play", str(lvl), "--frames", "20", "--screenshot", str(shot)]) == 0
+    img = pygame.image.load(str(shot))
+    assert img.get_size() == (1280, 760)
+    arr = pygame.surfarray.array3d(img)
+    assert arr.std() > 10  # not blank
+    # chain-coloured pixels inside the scene
+    x0 = 300
+    scene = arr[x0:x0 + 590, :, :].astype(int)
+    near = (abs(scene - render.CHAIN).sum(axis=2) < 60).sum()
+    assert near > 150
