@@ -67,6 +67,8 @@ class Chain:
         self.mass = float(chain.linear_density) * self.L
         self.moment = self.mass * self.L**2 / 12.0
         self.links: list[Link] = []
+        self.ids: list[int] = []
+        """Body ids in chain order (kept in step with ``links`` for fast batch lookup)."""
         self.version = 0
         """Incremented whenever links are added, removed or change type (cache key)."""
         if chain.self_collision:
@@ -130,12 +132,14 @@ class Chain:
             self._connect(last, link)
         else:
             self.links.append(link)
+        self.ids.append(link.id)
         self.version += 1
 
     def append_unjoined(self, link: Link) -> None:
         """Add ``link`` at the upstream end without a joint (for kinematic guide links)."""
         self._add_link_objects(link)
         self.links.append(link)
+        self.ids.append(link.id)
         self.version += 1
 
     def join(self, i: int) -> None:
@@ -148,6 +152,7 @@ class Chain:
     def pop_front(self) -> Link:
         """Remove the downstream end link (with its constraints) from the space."""
         link = self.links.pop(0)
+        self.ids.pop(0)
         self._remove_objects(link)
         self.version += 1
         return link

@@ -68,8 +68,7 @@ class ChainReader:
 
     def _chain_ids(self) -> NDArray[np.uintp]:
         if self._version != self.chain.version:
-            self._ids = np.fromiter((lk.id for lk in self.chain.links), dtype=np.uintp,
-                                    count=len(self.chain.links))
+            self._ids = np.array(self.chain.ids, dtype=np.uintp)
             self._version = self.chain.version
             self._perm = None
         return self._ids
@@ -173,21 +172,26 @@ def signed_tension(forces: Array, state: ChainState, n_dyn: int) -> tuple[Array,
     return tension, shear
 
 
-def vertex_of(points: Array, half_width: int = 4) -> tuple[float, float]:
-    """Highest point of a polyline, refined by a quadratic fit through its neighbours."""
-    i = int(np.argmax(points[:, 1]))
-    lo, hi = max(0, i - half_width), min(len(points), i + half_width + 1)
-    if hi - lo < 3:
-        return float(points[i, 0]), float(points[i, 1])
-    x, y = points[lo:hi, 0], points[lo:hi, 1]
-    x0 = points[i, 0]
-    a, b, c = np.polyfit(x - x0, y, 2)
+def vertex_of(points: Array) -> tuple[float, float]:
+    """Highest point of a polyline, refined by the parabola through it and its two neighbours."""
+    y = points[:, 1]
+    i = int(np.argmax(y))
+    if i == 0 or i == len(points) - 1:
+        return float(points[i, 0]), float(y[i])
+    (x0, y0), (x1, y1), (x2, y2) = points[i - 1], points[i], points[i + 1]
+    # parabola y = a*(x - x1)^2 + b*(x - x1) + y1 through the three points
+    d0, d2 = x0 - x1, x2 - x1
+    den = d0 * d2 * (d0 - d2)
+    if den == 0.0:
+        return float(x1), float(y1)
+    a = ((y0 - y1) * d2 - (y2 - y1) * d0) / den
+    b = ((y2 - y1) * d0 * d0 - (y0 - y1) * d2 * d2) / den
     if a >= 0.0:
-        return float(points[i, 0]), float(points[i, 1])
+        return float(x1), float(y1)
     xv = -b / (2.0 * a)
-    if not (x.min() - x0 <= xv <= x.max() - x0):
-        return float(points[i, 0]), float(points[i, 1])
-    return float(x0 + xv), float(c - b * b / (4.0 * a))
+    if not (min(d0, d2) <= xv <= max(d0, d2)):
+        return float(x1), float(y1)
+    return float(x1 + xv), float(y1 - b * b / (4.0 * a))
 
 
 def fit_catenary(points: Array, x_v: float, y_v: float, q0: float,

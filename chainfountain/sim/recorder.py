@@ -2,7 +2,7 @@
 
 A :class:`Recorder` attached to a simulation samples every ``sample_interval``
 seconds: it reads all link velocities just before the sampled step and the full
-state right after it (two batch calls), then derives the signed joint tension
+state right after it (two batch calls) and, when read, derives the signed joint tension
 (momentum balance, see :mod:`chainfountain.sim.measure`), chain speed, stretch
 and geometry. :meth:`Recorder.summary` time-averages over a window and
 compares with the paper's prediction.
@@ -24,7 +24,6 @@ from chainfountain.sim.measure import (
     joint_forces,
     landing_x,
     link_ends,
-    polyline,
     signed_tension,
     steady_time,
     vertex_of,
@@ -55,8 +54,9 @@ class Recorder:
         self.cfg = cfg if cfg is not None else sim.config.recording
         self.every = max(1, int(round(self.cfg.sample_interval / sim.dt)))
         self.keep_profiles = profiles
-        self.samples: list[Sample] = []
-        self.profiles: list[Profiles] = []
+        self._samples: list[Sample] = []
+        self._profiles: list[Profiles] = []
+        self._raw: list[tuple] = []
         sim.recorder = self
 
     def wants(self, step_index: int) -> bool:
@@ -65,40 +65,74 @@ class Recorder:
 
     def clear(self) -> None:
         """Forget all samples."""
-        self.samples.clear()
-        self.profiles.clear()
+        self._samples.clear()
+        self._profiles.clear()
+        self._raw.clear()
 
     # ------------------------------------------------------------------ sampling
     def take(self, pre: ChainState, post: ChainState) -> None:
-        """Record one sample from the states before and after the last step."""
+        """Record the states before and after the last step (analysed lazily).
+
+        Only the raw arrays are stored here (the batch reads are fresh copies),
+        so recording costs little more than the two batch reads; the derived
+        quantities are computed when :attr:`samples` or :meth:`summary` is read.
+        """
         sim = self.sim
-        chain = sim.chain
-        L = chain.L
         n = sim.n_free
         if n < 2:
             return
-        contacts = sim.reader.contact_impulses() if chain.shapes else None
+        contacts = sim.reader.contact_impulses() if sim.chain.shapes else None
+        self._raw.append((sim.time, n, sim.feed.speed, sim.feed.floor_y, pre.velocity, post,
+                          contacts))
+
+    @property
+    def samples(self) -> list[Sample]:
+        """All recorded samples (derived on first access)."""
+        self._process()
+        return self._samples
+
+    @property
+    def profiles(self) -> list[Profiles]:
+        """Per-link profiles of all samples (when ``profiles=True``)."""
+        self._process()
+        return self._profiles
+
+    def _process(self) -> None:
+        raw, self._raw = self._raw, []
+        for rec in raw:
+            self._analyse(*rec)
+
+    def _analyse(self, t: float, n: int, v_feed: float, floor_y: float, pre_vel: np.ndarray,
+                 post: ChainState, contacts: np.ndarray | None) -> None:
+        sim = self.sim
+        chain = sim.chain
+        L = chain.L
+        pre = ChainState(position=post.position, angle=post.angle, velocity=pre_vel,
+                         angular_velocity=post.angular_velocity)
         forces = joint_forces(pre, post, chain.mass, sim.dt, sim.g, n, contacts)
         tension, _ = signed_tension(forces, post, n)
-        v = sim.feed.speed if sim.feed.speed > 0 else 1.0
+        v = v_feed if v_feed > 0 else 1.0
         tbar = tension / (chain.cfg.linear_density * v * v)
-        pts = polyline(post, L)
-        free = pts[: n + 1]
         front, back = link_ends(post, L)
+        free = np.empty((n + 1, 2))
+        free[0] = front[0]
         m = min(n, len(front) - 1)
+        free[1 : m + 1] = 0.5 * (back[:m] + front[1 : m + 1])
+        if m < n:  # no upstream neighbour: the last free link's back end
+            free[n] = back[n - 1]
         gaps = np.linalg.norm(back[:m] - front[1 : m + 1], axis=1)
         stretch = float(gaps.sum() / (n * L))
         speed = np.hypot(post.velocity[:n, 0], post.velocity[:n, 1])
         xv, yv = vertex_of(free)
         sm = float(speed.mean())
-        self.samples.append(Sample(
-            t=sim.time, vertex_x=xv, vertex_y=yv,
-            landing_x=landing_x(post, L, sim.feed.floor_y),
+        self._samples.append(Sample(
+            t=t, vertex_x=xv, vertex_y=yv,
+            landing_x=landing_x(post, L, floor_y),
             speed_mean=sm, speed_min=float(speed.min()), speed_max=float(speed.max()),
             stretch=stretch, n_free=n, T0_bar=float(tbar[n - 1]),
         ))
         if self.keep_profiles:
-            self.profiles.append(Profiles(
+            self._profiles.append(Profiles(
                 tension_bar=tbar[::-1].copy(), x=free[1:, 0][::-1].copy(),
                 y=free[1:, 1][::-1].copy(), speed=speed[::-1].copy(),
             ))

@@ -59,6 +59,7 @@ class Simulation:
         space.collision_slop = cfg.solver.collision_slop
         space.damping = 1.0
         self.space = space
+        self._dt = float(cfg.solver.dt)
         needs_shapes = (cfg.feed.floor == "solid" or bool(cfg.rollers) or bool(cfg.carts)
                         or cfg.chain.self_collision)
         self.chain = Chain(space, cfg.chain, cfg.solver, shapes=needs_shapes)
@@ -102,15 +103,16 @@ class Simulation:
     def step(self) -> None:
         """Advance by one fixed physics step ``dt``."""
         rec = self.recorder
+        dt = self._dt
         pre: ChainState | None = None
         if rec is not None and rec.wants(self.steps + 1):
             pre = self.reader.read()
-        self.space.step(self.dt)
+        self.space.step(dt)
         self.steps += 1
-        self.time = self.steps * self.dt
+        self.time = self.steps * dt
         if pre is not None and rec is not None:
             rec.take(pre, self.reader.read())
-        self.feed.after_step(self.dt)
+        self.feed.after_step(dt)
 
     def advance(self, seconds: float) -> int:
         """Step for ``seconds`` of simulated time (rounded to whole steps); returns steps taken."""
