@@ -129,6 +129,22 @@ def scene_bounds(sim: Simulation, readout: Readout | None) -> tuple[float, float
     return min(xs), min(ys), max(xs), max(ys)
 
 
+_SHADES: dict[tuple, pygame.Surface] = {}
+
+
+def _shade(size: tuple[int, int], colour: tuple[int, int, int], alpha: int) -> pygame.Surface:
+    """A translucent rectangle (cached by size and colour)."""
+    key = (size, colour, alpha)
+    surf = _SHADES.get(key)
+    if surf is None:
+        if len(_SHADES) > 64:
+            _SHADES.clear()
+        surf = pygame.Surface(size, pygame.SRCALPHA)
+        surf.fill((*colour, alpha))
+        _SHADES[key] = surf
+    return surf
+
+
 def _dashed(surf: pygame.Surface, col, a, b, dash: float = 8.0, width: int = 1) -> None:
     ax, ay = a
     bx, by = b
@@ -161,9 +177,7 @@ def draw_scene(surf: pygame.Surface, cam: Camera, sim: Simulation, readout: Read
         y = cam.point(0, fy)[1]
         band = pygame.Rect(rect.x, y, rect.w, max(4, rect.bottom - y))
         if band.top < rect.bottom:
-            shade = pygame.Surface(band.size, pygame.SRCALPHA)
-            shade.fill((*ABSORB, 60))
-            surf.blit(shade, band.topleft)
+            surf.blit(_shade(band.size, ABSORB, 60), band.topleft)
         pygame.draw.line(surf, ABSORB, (rect.x, y), (rect.right, y), 2)
         label = font(16).render("absorbing floor", True, ABSORB)
         surf.blit(label, (rect.x + 8, y + 4))
@@ -319,9 +333,7 @@ def draw_plot(surf: pygame.Surface, rect: pygame.Rect, title: str, xlabel: str,
         a, b = max(lo, y0), min(hi, y1)
         if b > a:
             band = pygame.Rect(inner.x, int(sy(b)), inner.w, max(1, int(sy(a) - sy(b))))
-            shade = pygame.Surface(band.size, pygame.SRCALPHA)
-            shade.fill((*col, 45))
-            surf.blit(shade, band.topleft)
+            surf.blit(_shade(band.size, col, 45), band.topleft)
     # axes and ticks
     small = font(14)
     for val in _ticks(y0, y1, 4):

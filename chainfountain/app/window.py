@@ -39,6 +39,10 @@ from chainfountain.app.session import Session
 LEFT_W = 300
 RIGHT_W = 390
 DEFAULT_SIZE = (1280, 760)
+MIN_FPS = 30
+"""The frame rate may drop to this before the simulation runs slower than requested."""
+PLOT_EVERY = 4
+"""Redraw the live plots every this many frames (15 Hz at 60 frames/s)."""
 REBUILD_DELAY = 0.35
 """Seconds a rebuild-only slider must rest before the scene is rebuilt."""
 
@@ -124,6 +128,9 @@ class App:
         self.show_theory = True
         self.frame = 0
         self.draw_time = 0.004
+        self.overhead = 0.006
+        """Smoothed wall time of a frame without the physics (events, GUI, drawing, flip)."""
+        self.physics_time = 0.0
         self.fps_measured = float(fps)
         self.clip: ClipRecorder | None = None
         self.finishing_clips: list[ClipRecorder] = []
@@ -134,7 +141,10 @@ class App:
         self._last_mouse = (0, 0)
         self._plot_cache: pygame.Surface | None = None
         self._plot_key: tuple = ()
-        self._plot_time = -1.0
+        self._plot_frame = -1
+        self._ro = None
+        self._ro_frame = -1
+        self._ro_sim = None
         self.save_window: UIWindow | None = None
         self.save_entry: UITextEntryLine | None = None
         self.load_window: UIWindow | None = None
@@ -553,12 +563,15 @@ class App:
         s = self.session
         if self.offscreen:
             if not s.paused:
+                t0 = time.perf_counter()
                 s.advance(s.speed_factor / self.fps)
+                self.physics_time = time.perf_counter() - t0
                 s.rtf = s.speed_factor
         else:
-            frame = 1.0 / self.fps
-            budget = max(0.002, 0.85 * frame - self.draw_time - 0.001)
+            budget = self.physics_budget()
+            t0 = time.perf_counter()
             s.tick(wall_dt, budget)
+            self.physics_time = time.perf_counter() - t0
         self.ui.update(wall_dt)
         for err in self.saver.errors:
             s.say(err)
@@ -572,13 +585,28 @@ class App:
             s.say(f"clip full, writing {self.clip.path} ...")
             self.clip = None
 
+    def physics_budget(self) -> float:
+        """Wall seconds the physics may use this frame.
+
+        First what is left of a frame at the target rate; when that is not
+        enough for real time, the frame rate may sink towards :data:`MIN_FPS`
+        before the simulation itself slows down (then the real-time factor
+        shown drops below the requested speed).
+        """
+        # Session.tick only takes the steps real time asks for, so when they fit in
+        # a 1/fps frame the frame rate stays; only the cap is at MIN_FPS.
+        return max(0.002, 1.0 / MIN_FPS - self.overhead - 0.001)
+
     def draw(self) -> None:
         """Draw the whole window into ``self.screen``."""
         t0 = time.perf_counter()
         scr = self.screen
-        scr.fill(render.BG)
+        scr.fill(render.BG, pygame.Rect(0, 0, self.scene_rect.x, self.size[1]))
         s = self.session
-        ro = s.readout()
+        if (self._ro is None or self.frame - self._ro_frame >= PLOT_EVERY
+                or self._ro_sim is not s.sim or s.paused):
+            self._ro, self._ro_frame, self._ro_sim = s.readout(), self.frame, s.sim
+        ro = self._ro
         render.draw_scene(scr, self.camera, s.sim, ro, self.show_theory)
         self._draw_overlay(ro)
         self._draw_right(ro)
@@ -656,13 +684,12 @@ class App:
             lines.append((ro.note[:60], render.DIM))
         y = render.text_block(scr, (rect.x + 8, 8), lines, size=18, line_h=19)
         top = y + 6
-        now = time.perf_counter()
         key = (top, rect.size, id(s.sim))
         if (self._plot_cache is None or key != self._plot_key
-                or now - self._plot_time > (0.0 if self.offscreen else 1 / 15)):
+                or self.frame - self._plot_frame >= PLOT_EVERY):
             self._plot_cache = self._render_plots(ro, pygame.Rect(0, 0, rect.w, rect.h - top))
             self._plot_key = key
-            self._plot_time = now
+            self._plot_frame = self.frame
         scr.blit(self._plot_cache, (rect.x, top))
 
     def _render_plots(self, ro, area: pygame.Rect) -> pygame.Surface:
@@ -737,6 +764,8 @@ class App:
     # ------------------------------------------------------------------ main loop
     def run_frame(self, wall_dt: float = 1.0 / 60.0) -> None:
         """One frame: queued events, physics, drawing, clip capture, flip."""
+        t0 = time.perf_counter()
+        self.physics_time = 0.0
         for ev in pygame.event.get():
             self.handle(ev)
         self.update(wall_dt)
@@ -746,6 +775,8 @@ class App:
         if not self.offscreen:
             pygame.display.flip()
         self.frame += 1
+        work = time.perf_counter() - t0 - self.physics_time
+        self.overhead += 0.1 * (work - self.overhead)
 
     def run(self, frames: int | None = None, screenshot: Path | None = None) -> int:
         """Run until quit (or for ``frames`` frames); save ``screenshot`` of the last frame."""
@@ -761,6 +792,7 @@ class App:
                     self.fps_measured += 0.05 * (1.0 / max(wall_dt, 1e-3) - self.fps_measured)
                 self.run_frame(wall_dt)
             if screenshot is not None:
+                self._plot_cache = self._ro = None  # fresh plots in the saved frame
                 self.draw()
                 from chainfountain.app.capture import save_png
 
