@@ -202,8 +202,8 @@ def draw_scene(surf: pygame.Surface, cam: Camera, sim: Simulation, readout: Read
     poly = sim.chain_polyline()
     if len(poly) >= 2:
         pts = cam.to_screen(poly)
-        width = max(1, min(6, int(round(2 * sim.config.chain.link_radius * cam.scale))))
-        pygame.draw.lines(surf, CHAIN, False, pts.tolist(), max(2, width))
+        width = max(3, min(8, int(round(2 * sim.config.chain.link_radius * cam.scale))))
+        pygame.draw.lines(surf, CHAIN, False, pts.tolist(), width)
     # theory curve and vertex
     if show_theory and readout is not None and readout.curve is not None:
         pts = cam.to_screen(readout.curve)
@@ -299,8 +299,11 @@ def _downsample(x: np.ndarray, y: np.ndarray, n: int) -> tuple[np.ndarray, np.nd
 def draw_plot(surf: pygame.Surface, rect: pygame.Rect, title: str, xlabel: str,
               series: Sequence[Series], *, xlim: tuple[float, float] | None = None,
               ylim: tuple[float, float] | None = None,
-              bands: Sequence[tuple[float, float, tuple[int, int, int]]] = ()) -> None:
-    """A small line/point plot with axes, ticks, optional shaded y-bands and a legend."""
+              bands: Sequence[tuple] = ()) -> None:
+    """A small line/point plot with axes, ticks, a legend and shaded y-bands.
+
+    ``bands`` are ``(lo, hi, colour)`` or ``(lo, hi, colour, label)``.
+    """
     pygame.draw.rect(surf, (28, 34, 45), rect, 0, 4)
     f = font(16)
     surf.blit(f.render(title, True, TEXT), (rect.x + 6, rect.y + 4))
@@ -329,11 +332,14 @@ def draw_plot(surf: pygame.Surface, rect: pygame.Rect, title: str, xlabel: str,
         return inner.bottom - (np.asarray(v) - y0) / (y1 - y0) * inner.h
 
     old = surf.get_clip()
-    for lo, hi, col in bands:
+    for lo, hi, col, *label in bands:
         a, b = max(lo, y0), min(hi, y1)
         if b > a:
             band = pygame.Rect(inner.x, int(sy(b)), inner.w, max(1, int(sy(a) - sy(b))))
             surf.blit(_shade(band.size, col, 45), band.topleft)
+            if label:
+                img = font(14).render(label[0], True, col)
+                surf.blit(img, (band.right - img.get_width() - 4, band.y + 3))
     # axes and ticks
     small = font(14)
     for val in _ticks(y0, y1, 4):

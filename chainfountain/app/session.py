@@ -451,7 +451,8 @@ class Session:
         hist = self.history.arrays()
         t = hist["t"]
         avg_span = 0.25
-        if len(t) >= 3 and sim.n_free >= 8:
+        landed = sim.feed.absorbed > 0 or cfg.feed.floor != "absorbing"
+        if len(t) >= 3 and sim.n_free >= 8 and landed:
             sel = t >= t[-1] - avg_span
             v = float(np.nanmean(hist["speed"][sel]))
             h = float(np.nanmean(hist["vertex_y"][sel]))
@@ -472,7 +473,9 @@ class Session:
             if ref is not None:
                 try:
                     f = Fountain.from_launch(v=ref.v, alpha0=ref.alpha0, H=H, TE_bar=0.0, g=g)
-                    r.note = "prediction from the feed settings (no measurement yet)"
+                    r.note = ("prediction from the feed settings (the chain has not "
+                              "reached the floor yet)" if len(t) else
+                              "prediction from the feed settings (no measurement yet)")
                 except (ValueError, ArithmeticError):
                     f = None
             if f is None:
@@ -487,6 +490,11 @@ class Session:
         elif r.measured:
             r.v = float(np.nanmean(hist["speed"][t >= t[-1] - avg_span]))
             r.k = g / r.v**2 if r.v > 0 else math.nan
+        if not r.measured and len(t):
+            # measured tensions and speed exist before the chain lands; show them
+            sel = t >= t[-1] - avg_span
+            r.T0_bar = float(np.nanmean(hist["T0"][sel]))
+            r.TE_bar = float(np.nanmean(hist["TE"][sel]))
         # tension profile: average of the last few samples, launch end first
         profs = self.recorder.profiles[-8:]
         if profs and not sim.dragging:

@@ -13,6 +13,7 @@ from __future__ import annotations
 import html
 import math
 import os
+import textwrap
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -62,6 +63,7 @@ KEYS: tuple[tuple[str, str], ...] = (
     ("F12", "screenshot (PNG)"),
     ("G", "start / stop recording a clip (GIF, or MP4 with imageio-ffmpeg)"),
     ("H  or  F1", "this help"),
+    ("Enter (in a field)", "apply the typed value (clamped to the level schema)"),
     ("Esc", "close a dialog; else quit (clips and changes are kept)"),
 )
 
@@ -681,7 +683,7 @@ class App:
              render.OK if ro.steady else render.WARN),
         ]
         if ro.note:
-            lines.append((ro.note[:60], render.DIM))
+            lines += [(part, render.DIM) for part in textwrap.wrap(ro.note, 56)[:2]]
         y = render.text_block(scr, (rect.x + 8, 8), lines, size=18, line_h=19)
         top = y + 6
         key = (top, rect.size, id(s.sim))
@@ -735,15 +737,15 @@ class App:
         # 3. end tensions against time with the paper's ranges
         ts = [render.Series(t[sel], _smooth(hist["T0"][sel], 10), render.T0_COL, "Tbar_0"),
               render.Series(t[sel], _smooth(hist["TE"][sel], 10), render.TE_COL, "Tbar_E")]
-        render.draw_plot(surf, r3, "end tensions, 0.1 s mean (shaded: paper's ranges)",
-                         "time (s)", ts,
+        render.draw_plot(surf, r3, "end tensions (0.1 s mean)", "time (s)", ts,
                          xlim=(t0, max(t1, t0 + 1)), ylim=(-0.1, 1.05),
-                         bands=((0.5, 1.0, render.T0_COL), (0.0, 0.5, render.TE_COL)))
+                         bands=((0.5, 1.0, render.T0_COL, "paper: Tbar_0 in (1/2, 1)"),
+                                (0.0, 0.5, render.TE_COL, "paper: Tbar_E in [0, 1/2)")))
         return surf
 
     def _draw_help(self) -> None:
         scr = self.screen
-        w = 560
+        w = 700
         h = 60 + 22 * len(KEYS)
         box = pygame.Rect(0, 0, w, h)
         box.center = (self.size[0] // 2, self.size[1] // 2)
@@ -758,7 +760,7 @@ class App:
         y = box.y + 46
         for key, what in KEYS:
             scr.blit(small.render(key, True, render.SPEED_COL), (box.x + 20, y))
-            scr.blit(small.render(what, True, render.TEXT), (box.x + 200, y))
+            scr.blit(small.render(what, True, render.TEXT), (box.x + 210, y))
             y += 22
 
     # ------------------------------------------------------------------ main loop
