@@ -198,3 +198,34 @@ def test_offscreen_screenshot_shows_the_chain(tmp_path, monkeypatch):
     scene = arr[x0:x0 + 590, :, :].astype(int)
     near = (abs(scene - render.CHAIN).sum(axis=2) < 60).sum()
     assert near > 150
+
+
+def test_rollers_carts_and_their_controls(tmp_path, monkeypatch):
+    """Apparatus building blocks are drawn and get controls generated from the schema."""
+    import math
+
+    from chainfountain.sim.config import CartConfig, RollerConfig
+
+    monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
+    lvl = small_level()
+    lvl.sim.feed.floor = "solid"
+    lvl.sim.rollers = (RollerConfig(x=0.8, y=-0.3, radius=0.05, angular_speed=3.0),)
+    lvl.sim.carts = (CartConfig(x=0.4, y=-0.4, incline=math.radians(20), track_length=0.4),)
+    app = App(Session(lvl), offscreen=True)
+    try:
+        paths = [r.spec.path for r in app.rows]
+        assert {"carts[0].mass", "carts[0].incline", "rollers[0].angular_speed"} <= set(paths)
+        for _ in range(5):
+            app.run_frame()
+        row = app._row("rollers[0].angular_speed")
+        pygame.event.post(pygame.event.Event(pygame_gui.UI_TEXT_ENTRY_FINISHED,
+                                             ui_element=row.entry, text="-2"))
+        app.run_frame()
+        assert app.session.value("rollers[0].angular_speed") == -2.0
+        row = app._row("carts[0].mass")
+        pygame.event.post(pygame.event.Event(pygame_gui.UI_TEXT_ENTRY_FINISHED,
+                                             ui_element=row.entry, text="0.3"))
+        app.run_frame()
+        assert app.session.sim.config.carts[0].mass == 0.3
+    finally:
+        app.finish()

@@ -504,6 +504,7 @@ class Session:
                 r.tension_y = np.mean([p.y[:n] for p in profs], axis=0)
         if sim.dragging:
             r.note = "a link is held: tension readings paused"
+            r.T0_bar = r.TE_bar = math.nan
         r.steady = self.is_steady()
         return r
 
