@@ -1,11 +1,12 @@
-"""Benchmark of the physics core: speed of each preset, cost of recording.
+"""Benchmark of the physics core: speed of each shipped feed level, cost of recording.
 
-Usage: ``.venv/bin/python benchmarks/bench_sim.py [--seconds 4] [preset ...]``
+Usage: ``.venv/bin/python benchmarks/bench_sim.py [--seconds 6] [level ...]``
 
-For each preset prints: links in flight, simulated seconds, wall seconds,
-real-time factor (simulated / wall), time per physics step, and the recording
-overhead (``Simulation.step`` with a :class:`Recorder` attached against bare
-``space.step`` plus feed bookkeeping). Single process, one core.
+For each level (default: every ``levels/*.toml`` of kind "feed") prints: links
+in flight, simulated seconds, wall seconds, real-time factor (simulated / wall),
+time per physics step, and the recording overhead (``Simulation.step`` with a
+:class:`Recorder` attached against bare ``space.step`` plus feed bookkeeping).
+Single process, one core.
 """
 
 from __future__ import annotations
@@ -15,7 +16,8 @@ import time
 
 import numpy as np
 
-from chainfountain.sim import Recorder, Simulation, presets
+from chainfountain.level import io, library
+from chainfountain.sim import Recorder, Simulation
 
 
 def _time_steps(sim: Simulation, seconds: float, *, bare: bool) -> float:
@@ -42,7 +44,7 @@ def bench(name: str, seconds: float, chunk: float = 0.25,
     and with a :class:`Recorder`. Overheads are medians of per-round ratios, so
     load changes between rounds cancel.
     """
-    cfg = presets.get(name)
+    cfg = io.load(library.resolve(name)).sim
     if iterations is not None:
         cfg.solver.iterations = iterations
     sim = Simulation(cfg)
@@ -72,16 +74,17 @@ def bench(name: str, seconds: float, chunk: float = 0.25,
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("presets", nargs="*", default=sorted(presets.PRESETS))
+    feed = [p.stem for p in library.available() if io.load(p).sim.kind == "feed"]
+    ap.add_argument("levels", nargs="*", default=feed)
     ap.add_argument("--seconds", type=float, default=6.0, help="simulated seconds per preset")
     ap.add_argument("--iterations", type=int, default=None,
                     help="override the solver iterations (default: the preset's)")
     args = ap.parse_args()
-    print(f"{'preset':<12} {'links':>5} {'sim s':>6} {'wall s':>7} {'RTF':>5} {'RTF bare':>8} "
+    print(f"{'level':<16} {'links':>5} {'sim s':>6} {'wall s':>7} {'RTF':>5} {'RTF bare':>8} "
           f"{'us/step':>8} {'step ovh':>8} {'rec ovh':>8}")
-    for name in args.presets:
+    for name in args.levels:
         r = bench(name, args.seconds, iterations=args.iterations)
-        print(f"{name:<12} {r['links']:>5d} {r['sim_s']:>6.1f} {r['wall_s']:>7.2f} "
+        print(f"{name:<16} {r['links']:>5d} {r['sim_s']:>6.1f} {r['wall_s']:>7.2f} "
               f"{r['rtf']:>5.2f} {r['rtf_bare']:>8.2f} {r['us_per_step']:>8.1f} "
               f"{100 * r['overhead_step']:>7.1f}% {100 * r['overhead_rec']:>7.1f}%")
 

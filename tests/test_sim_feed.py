@@ -1,4 +1,4 @@
-"""Fed fountains (shipped presets) against the paper's inverted catenary.
+"""Fed fountains (every shipped ``kind = "feed"`` level) against the paper's inverted catenary.
 
 Each preset starts on the predicted curve, settles for ``SETTLE`` s and is then
 time-averaged over ``WINDOW`` s. Tolerances are the project's acceptance
@@ -9,16 +9,20 @@ from __future__ import annotations
 
 import pytest
 
-from chainfountain.sim import Recorder, Simulation, presets
+from chainfountain.level import io, library
+from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.measure import Summary
+
+FEED_LEVELS = [p for p in sorted(library.shipped_dir().glob("*.toml"))
+               if io.load(p).sim.kind == "feed"]
 
 SETTLE = 1.5
 WINDOW = 2.0
 
 
-@pytest.fixture(scope="module", params=sorted(presets.PRESETS))
+@pytest.fixture(scope="module", params=FEED_LEVELS, ids=[p.stem for p in FEED_LEVELS])
 def run(request) -> tuple[Simulation, Summary]:
-    sim = Simulation(presets.get(request.param))
+    sim = Simulation(io.load(request.param).sim)
     sim.advance(SETTLE)
     rec = Recorder(sim)
     sim.advance(WINDOW)
