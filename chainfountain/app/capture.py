@@ -116,9 +116,10 @@ class ClipRecorder:
             return True
         self._last = now
         src = surface.subsurface(self.crop) if self.crop is not None else surface
-        if self.scale != 1.0:
-            w = max(2, int(src.get_width() * self.scale) // 2 * 2)
-            h = max(2, int(src.get_height() * self.scale) // 2 * 2)
+        block = 16 if self._mp4 else 2  # H.264 wants sizes divisible by 16
+        w = max(block, int(src.get_width() * self.scale) // block * block)
+        h = max(block, int(src.get_height() * self.scale) // block * block)
+        if (w, h) != src.get_size():
             src = pygame.transform.smoothscale(src, (w, h))
         data = pygame.image.tobytes(src, "RGB")
         try:
