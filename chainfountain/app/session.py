@@ -33,6 +33,10 @@ from chainfountain.sim.world import Simulation
 SLOW_FACTORS: tuple[float, ...] = (1.0, 0.5, 0.25)
 """Slow-motion cycle of the ``S`` key."""
 
+APP_SAMPLE_INTERVAL = 0.02
+"""The app samples measurements at most this often (s): enough for the plots, and
+each sample costs two batch reads and a catenary fit."""
+
 HISTORY_SECONDS = 120.0
 """How much measured history the plots keep (older samples are dropped)."""
 
@@ -157,7 +161,9 @@ class Session:
     # ------------------------------------------------------------------ building
     def _build(self) -> None:
         self.sim = Simulation(self.level.sim)
-        self.recorder = Recorder(self.sim)
+        rc = self.level.sim.recording
+        interval = max(rc.sample_interval, APP_SAMPLE_INTERVAL)
+        self.recorder = Recorder(self.sim, dataclasses.replace(rc, sample_interval=interval))
         self.history.clear()
         self._consumed = 0
         self._acc = 0.0

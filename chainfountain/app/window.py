@@ -635,9 +635,10 @@ class App:
         scr = self.screen
         scr.blit(f.render(head, True, render.TEXT), (x, 8))
         rtf_col = render.WARN if s.behind else render.DIM
-        scr.blit(render.font(18).render(
-            f"real-time factor {s.rtf:4.2f}  ({self.fps_measured:4.1f} fps)", True, rtf_col),
-            (x, 28))
+        speed = (f"off-screen: {s.speed_factor / self.fps * 1e3:.1f} ms simulated per frame"
+                 if self.offscreen else
+                 f"real-time factor {s.rtf:4.2f}  ({self.fps_measured:4.1f} fps)")
+        scr.blit(render.font(18).render(speed, True, rtf_col), (x, 28))
         xx = x
         for txt, col in state:
             surf = f.render(txt, True, col)
@@ -678,7 +679,8 @@ class App:
             (f"l  {num(ro.l, '.3f')} m     H  {num(ro.H, '.3f')} m", render.TEXT),
             (f"Tbar_0  {num(ro.T0_bar, f3)}  (theory {num(ro.T0_theory, f3)})", render.T0_COL),
             (f"Tbar_E  {num(ro.TE_bar, f3)}  (theory {num(ro.TE_theory, f3)})", render.TE_COL),
-            (f"real-time factor {s.rtf:.2f}    t = {s.sim.time:.2f} s", render.TEXT),
+            (("off-screen render" if self.offscreen else f"real-time factor {s.rtf:.2f}")
+             + f"    t = {s.sim.time:.2f} s", render.TEXT),
             ("steady" if ro.steady else "not steady (yet)",
              render.OK if ro.steady else render.WARN),
         ]
@@ -735,8 +737,9 @@ class App:
         render.draw_plot(surf, r2, "speed (m/s)", "time (s)", sp, xlim=(t0, max(t1, t0 + 1)),
                          ylim=(lo, hi))
         # 3. end tensions against time with the paper's ranges
-        ts = [render.Series(t[sel], _smooth(hist["T0"][sel], 10), render.T0_COL, "Tbar_0"),
-              render.Series(t[sel], _smooth(hist["TE"][sel], 10), render.TE_COL, "Tbar_E")]
+        n = max(1, round(0.1 / s.recorder.cfg.sample_interval))
+        ts = [render.Series(t[sel], _smooth(hist["T0"][sel], n), render.T0_COL, "Tbar_0"),
+              render.Series(t[sel], _smooth(hist["TE"][sel], n), render.TE_COL, "Tbar_E")]
         render.draw_plot(surf, r3, "end tensions (0.1 s mean)", "time (s)", ts,
                          xlim=(t0, max(t1, t0 + 1)), ylim=(-0.1, 1.05),
                          bands=((0.5, 1.0, render.T0_COL, "paper: Tbar_0 in (1/2, 1)"),
