@@ -230,3 +230,20 @@ def test_rollers_carts_and_their_controls(tmp_path, monkeypatch):
         assert app.session.sim.config.carts[0].mass == 0.3
     finally:
         app.finish()
+
+
+def test_quit_keeps_the_clip_and_the_changed_setup(tmp_path, monkeypatch):
+    """Esc while recording with unsaved changes: the clip is finished, the setup kept."""
+    monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
+    app = App(Session(small_level()), offscreen=True)
+    app.offscreen = False  # behave like a window on quit (autosave) ...
+    app.session.set_field("feed.speed", 4.3)
+    key(app, pygame.K_g)
+    for _ in range(3):
+        app.run_frame()
+    key(app, pygame.K_ESCAPE)
+    assert not app.running
+    notes = app.finish()
+    assert any(n.startswith("clip saved") for n in notes), notes
+    saved = tmp_path / "home" / "levels" / "autosave.toml"
+    assert saved.exists() and io.load(saved).sim.feed.speed == 4.3

@@ -60,7 +60,13 @@ def open_app(level: Level | None = None, source: Path | None = None, *,
     from chainfountain.app.session import Session
     from chainfountain.app.window import DEFAULT_SIZE, App
 
-    session = Session(_load_or_default(level), source)
+    lvl = _load_or_default(level)
+    try:
+        session = Session(lvl, source)
+    except ValueError as exc:  # e.g. a level kind this simulator cannot build yet
+        from chainfountain.errors import UserError
+
+        raise UserError(f"cannot open level {lvl.meta.name!r}: {exc}") from None
     if paused:
         session.paused = True
     app = App(session, size=size or DEFAULT_SIZE, offscreen=offscreen)
