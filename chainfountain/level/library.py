@@ -7,7 +7,7 @@ from pathlib import Path
 
 from chainfountain.level import io
 
-DEFAULT_LEVEL_NAME = "paper_tall_fine"
+DEFAULT_LEVEL_NAME = "classroom"
 """Stem of the level ``chainfountain`` opens with no arguments."""
 
 
@@ -50,7 +50,7 @@ def resolve(name_or_path: str | os.PathLike[str]) -> Path:
 
 
 def default_level() -> io.Level:
-    """The built-in default level (``levels/paper_tall_fine.toml``; the code defaults if absent)."""
+    """The built-in default level (``levels/classroom.toml``; the code defaults if absent)."""
     path = shipped_dir() / f"{DEFAULT_LEVEL_NAME}.toml"
     if path.exists():
         return io.load(path)
