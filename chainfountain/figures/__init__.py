@@ -3,7 +3,8 @@
 ``main(out_dir)`` writes every registered figure as ``<name>.png``, ``<name>.svg``
 and the caption ``<name>.txt``, each atomically. The simulator-backed figures
 ("apparatus", "sim_vs_theory") are plotting hooks in :mod:`chainfountain.figures.hooks`
-that take plain arrays; they are not part of ``main`` until wired to the simulator.
+that take plain arrays; "sim_vs_theory" is registered through
+:mod:`chainfountain.figures.simulated`, which runs a shipped feed level.
 """
 
 from __future__ import annotations
@@ -22,6 +23,7 @@ from chainfountain.figures.paper import (
     fig_schematic_chain_fountain,
     fig_sol,
 )
+from chainfountain.figures.simulated import fig_sim_vs_theory_run
 
 __all__ = [
     "FIGURES",
@@ -38,6 +40,7 @@ FIGURES: dict[str, Callable[[], tuple[Figure, str]]] = {
     "sol": fig_sol,
     "force_ranges": fig_force_ranges,
     "schematic_chain_fountain": fig_schematic_chain_fountain,
+    "sim_vs_theory": fig_sim_vs_theory_run,
 }
 
 
