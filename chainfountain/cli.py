@@ -6,11 +6,11 @@ import sys
 from collections.abc import Sequence
 
 from chainfountain import __version__
-from chainfountain.commands import figures, levels, play, run, theory
+from chainfountain.commands import design, figures, levels, play, run, theory
 from chainfountain.commands.args import OneLineParser
 from chainfountain.errors import UserError
 
-_COMMANDS = [play, theory, levels, run, figures]
+_COMMANDS = [play, theory, design, levels, run, figures]
 
 
 def build_parser() -> OneLineParser:

@@ -62,3 +62,18 @@ def test_cart_mass_from_force():
     d = design(PAPER, lam=0.05, xi2=0.2, slope=math.radians(30))
     force = d.settings.T_uc * 0.05 * PAPER.v**2
     assert d.m_uc == pytest.approx(force / (9.81 * 0.5))
+
+
+def test_design_cli(capsys):
+    import json
+
+    from chainfountain.cli import main
+
+    assert main(["design", "--l", "0.33", "--h", "0.28", "--H", "2", "--k", "0.377",
+                 "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["xi2"] == 0.5 and out["xi3"] == 0.5
+    assert out["T0_bar"] == pytest.approx(0.8774, abs=1e-4)
+    assert main(["design", "--l", "0.33", "--h", "0.28", "--H", "2", "--k", "0.5"]) == 2
+    err = capsys.readouterr().err
+    assert "v(k_max)" in err and "nearest admissible" in err and err.count("\n") == 1

@@ -1,0 +1,109 @@
+"""``chainfountain design``: the paper's two-step procedure, from a target fountain to a machine."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+
+from chainfountain.commands.args import number
+from chainfountain.errors import UserError
+from chainfountain.theory import G0, Fountain
+from chainfountain.theory.design import Design, DesignError, design
+
+LENGTH = "a length in m"
+
+
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "design",
+        help="design an apparatus (offsets, carts) that generates a target fountain",
+        description=(
+            "Step 1: the free fountain for span --l, overshoot --h, drop --H at speed --v "
+            "(or --k). Step 2: offsets xi2, xi3 and cart masses so that the paper's pulley "
+            "apparatus supplies its end tensions."
+        ),
+        allow_abbrev=False,
+    )
+    p.add_argument("--l", type=number(LENGTH, min=0, min_inclusive=False), required=True,
+                   metavar="L", help="horizontal distance start to end (m)")
+    p.add_argument("--h", type=number(LENGTH, min=0), required=True, metavar="OVERSHOOT",
+                   help="height of the vertex above the start (m)")
+    p.add_argument("--H", type=number(LENGTH, min=0, min_inclusive=False), required=True,
+                   metavar="DROP", help="drop from the start to the end (m)")
+    speed = p.add_mutually_exclusive_group(required=True)
+    speed.add_argument("--k", type=number("k = g/v^2 in 1/m", min=0, min_inclusive=False))
+    speed.add_argument("--v", type=number("a speed in m/s", min=0, min_inclusive=False))
+    p.add_argument("--xi2", type=number("an offset (fraction of H)", min=0), default=None,
+                   help="beaker offset below the fountain start, as a fraction of H")
+    p.add_argument("--xi3", type=number("an offset (fraction of H)", min=0), default=None,
+                   help="bottom offset above the fountain end, as a fraction of H")
+    p.add_argument("--lambda", dest="lam", metavar="KG_PER_M", default=0.05,
+                   type=number("a linear density in kg/m", min=0, min_inclusive=False),
+                   help="linear density of the chain (default 0.05 kg/m)")
+    p.add_argument("--slope", type=number("a track angle in degrees", min=0, max=90,
+                                          min_inclusive=False), default=30.0,
+                   help="cart track angle in degrees (default 30)")
+    p.add_argument("--g", type=number("gravity in m/s^2", min=0, min_inclusive=False),
+                   default=G0)
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(func=run)
+
+
+def design_dict(d: Design) -> dict:
+    f, s = d.fountain, d.settings
+    return {
+        "fountain": f.to_dict(),
+        "choice": d.label,
+        "xi2": s.xi2,
+        "xi3": s.xi3,
+        "beaker_drop_m": d.beaker_drop,
+        "bottom_rise_m": d.bottom_rise,
+        "T_uc_bar": s.T_uc,
+        "T_lc_bar": s.T_lc,
+        "T0_bar": s.T0_bar,
+        "TE_bar": s.TE_bar,
+        "lambda": d.lam,
+        "slope_deg": math.degrees(d.slope_uc),
+        "cart_gain": d.cart_gain,
+        "m_uc_kg": d.m_uc,
+        "m_lc_kg": d.m_lc,
+        "launch_speed": f.v,
+        "launch_angle_deg": math.degrees(f.alpha0),
+        "alternatives": [
+            {"label": lab, "xi2": a.xi2, "xi3": a.xi3, "T_uc_bar": a.T_uc, "T_lc_bar": a.T_lc}
+            for lab, a in d.alternatives
+        ],
+    }
+
+
+def run(args: argparse.Namespace) -> int:
+    try:
+        base = Fountain(l=args.l, h=args.h, H=args.H, k=1.0, g=args.g)
+        f = base.with_k(args.k if args.k is not None else args.g / args.v**2)
+        d = design(f, args.lam, xi2=args.xi2, xi3=args.xi3, slope=math.radians(args.slope))
+    except DesignError as exc:
+        raise UserError(str(exc)) from None
+    except ValueError as exc:
+        raise UserError(str(exc)) from None
+    out = design_dict(d)
+    if args.json:
+        print(json.dumps(out, indent=2))
+        return 0
+    s = d.settings
+    print(f"Step 1, the free fountain: l = {f.l:g} m, h = {f.h:g} m, H = {f.H:g} m, "
+          f"v = {f.v:.4g} m/s (k = {f.k:.4g} 1/m)")
+    print(f"  q*H = {f.qH:.4g}, launch angle {math.degrees(f.alpha0):.4g} deg, "
+          f"Tbar_0 = {f.T0_bar:.4f}, Tbar_E = {f.TE_bar:.4f}")
+    print(f"Step 2, the apparatus ({d.label}):")
+    print(f"  beaker  xi2 = {s.xi2:.4f}  ({d.beaker_drop:.4g} m below the fountain start)")
+    print(f"  bottom  xi3 = {s.xi3:.4f}  ({d.bottom_rise:.4g} m above the fountain end)")
+    print(f"  upper cart Tbar_uc = {s.T_uc:.4f} -> {d.m_uc:.4g} kg on a {args.slope:g} deg track")
+    print(f"  lower cart Tbar_lc = {s.T_lc:.4f} -> {d.m_lc:.4g} kg on a {args.slope:g} deg track")
+    print(f"  supplies Tbar_0 = 1/2 + Tbar_uc + xi2*k*H = {s.T0_bar:.4f}, "
+          f"Tbar_E = 1/2 + Tbar_lc - xi3*k*H = {s.TE_bar:.4f}")
+    print("Alternatives:")
+    for lab, a in d.alternatives:
+        print(f"  {lab}: xi2 = {a.xi2:.4f}, xi3 = {a.xi3:.4f}, "
+              f"Tbar_uc = {a.T_uc:.4f}, Tbar_lc = {a.T_lc:.4f}")
+    return 0
