@@ -1,0 +1,107 @@
+"""Pick-up and put-down forces of a roller rolling on a resting chain, against the paper.
+
+Runs :class:`chainfountain.sim.pickup.RollerRig` (paper section "Pick-Up and
+Pull-Down Forces") at alpha = 0, 45, 90 deg, with and without a cart force,
+prints a Markdown table and writes ``docs/img/pickup.png``::
+
+    .venv/bin/python benchmarks/pickup_study.py            # ~1 min
+    .venv/bin/python benchmarks/pickup_study.py --no-figure
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from chainfountain.sim.config import ChainConfig
+from chainfountain.sim.pickup import RigConfig, RigResult, lossless_bar, run_rig
+
+LAM, V = 0.05, 5.0
+
+
+def one(mode: str, alpha_deg: float, f_bar: float = 0.0, L: float = 0.01) -> RigResult:
+    ch = ChainConfig(link_length=L, linear_density=LAM, friction=1.0, link_radius=0.002)
+    cfg = RigConfig(mode=mode, angle=math.radians(alpha_deg), speed=V,
+                    cart_force=f_bar * LAM * V * V, chain=ch)
+    return run_rig(cfg, duration=0.6, settle=0.25)
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--no-figure", action="store_true")
+    ap.add_argument("--out", default="docs/img/pickup.png")
+    args = ap.parse_args(argv)
+    t0 = time.perf_counter()
+    rows = []
+    print("| mode | alpha deg | cart F/(lambda v^2) | L mm | v_R/v | paper v_R/v | "
+          "F/(lambda v^2) | paper | lossless |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    runs = [("pickup", a, 0.0, 0.01) for a in (0, 45, 90)]
+    runs += [("pickup", a, 0.0, 0.005) for a in (0, 90)]
+    runs += [("pickup", 0, f, 0.01) for f in (0.2, 0.5)]
+    runs += [("putdown", a, f, 0.01) for a in (0, 45, 90) for f in (0.1, 0.3, 0.5)]
+    for mode, a, f, L in runs:
+        r = one(mode, a, f, L)
+        ca = math.cos(math.radians(a))
+        paper = 1.0 / (1.0 + ca) if mode == "pickup" else 0.5
+        rows.append((mode, a, f, L, r.roller_ratio, r.force_bar, paper))
+        print(f"| {mode} | {a} | {f:.1f} | {L * 1e3:.0f} | {r.roller_ratio:.3f} | "
+              f"{1 / (1 + ca):.3f} | {r.force_bar:.3f} | {paper:.3f} | "
+              f"{lossless_bar(mode, math.radians(a), f):.3f} |")
+        sys.stdout.flush()
+    print(f"\nwall {time.perf_counter() - t0:.0f} s")
+    if args.no_figure:
+        return 0
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axs = plt.subplots(1, 2, figsize=(9, 3.6), dpi=90)
+    al = np.linspace(0, 90, 50)
+    ax = axs[0]
+    ax.plot(al, 1 / (1 + np.cos(np.radians(al))), "--", color="#d62728",
+            label="paper: 1/(1+cos alpha)")
+    ax.plot(al, [lossless_bar("pickup", math.radians(x), 0.0) for x in al], ":", color="k",
+            label="energy balance, no loss")
+    for mode, a, f, L, _, fb, _ in rows:
+        if mode == "pickup" and f == 0.0:
+            ax.plot(a, fb, "o" if L == 0.01 else "s", mfc="none" if L < 0.01 else None,
+                    color="#1f77b4", label=f"sim, L = {L * 1e3:.0f} mm")
+    h, lab = ax.get_legend_handles_labels()
+    keep = dict(zip(lab, h, strict=True))
+    ax.legend(keep.values(), keep.keys(), fontsize=7)
+    ax.set_xlabel("alpha (deg)")
+    ax.set_ylabel("F / (lambda v^2)")
+    ax.set_title("pick-up, no cart", fontsize=9)
+    ax.grid(alpha=0.3)
+    ax = axs[1]
+    fs = np.linspace(0, 0.5, 10)
+    ax.plot(fs, 0.5 + fs, "--", color="#d62728", label="paper: 1/2 + F_c (put-down)")
+    for mode, marker, col in (("pickup", "o", "#1f77b4"), ("putdown", "^", "#2ca02c")):
+        for a in (0, 45, 90):
+            pts = [(f, fb) for m, aa, f, L, _, fb, _ in rows if m == mode and aa == a
+                   and L == 0.01 and (mode == "putdown" or a == 0)]
+            if pts:
+                x, y = np.array(pts).T
+                ax.plot(x, y, marker + "-", color=col, alpha=0.4 + a / 180,
+                        label=f"sim {mode} {a} deg")
+    ax.set_xlabel("cart force F_c / (lambda v^2)")
+    ax.set_ylabel("strand tension / (lambda v^2)")
+    ax.set_title("with a cart force on the roller", fontsize=9)
+    ax.legend(fontsize=7)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    Path(args.out).parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(args.out)
+    print(f"wrote {args.out}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,77 @@
+"""Pick-up and put-down by a roller rolling on a resting chain (paper section
+"Pick-Up and Pull-Down Forces"), measured with :mod:`chainfountain.sim.pickup`.
+
+What is asserted is the measured law (see ``docs/apparatus.md``), not a fit:
+
+- roller speed ``v_R = v/(1 + cos(alpha))`` (paper) within 3 %;
+- pick-up force: equals the paper's ``lambda*v^2/(1 + cos(alpha))`` only at
+  alpha = 90 deg (within 10 %); at 0 and 45 deg it is close to the loss-free
+  energy balance (:func:`lossless_bar`, about half the paper's value) and far
+  below the paper. The remaining excess at 0 deg (about +10 % with 1 cm links
+  on a 3 cm roller) shrinks with the link length;
+- a cart force ``F_c`` on the roller raises the strand tension by ``F_c``
+  (slope 1 within 10 %), as the paper assumes, not by the power-balance
+  ``F_c*v_R/v``;
+- put-down needs a forward push; extrapolated to zero push it gives about a
+  quarter of ``lambda*v^2``, not the paper's half.
+"""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from chainfountain.sim.pickup import RigConfig, RigResult, lossless_bar, run_rig
+
+LAM, V = 0.05, 5.0
+_cache: dict[tuple, RigResult] = {}
+
+
+def rig(mode: str, alpha_deg: float, f_bar: float = 0.0) -> RigResult:
+    key = (mode, alpha_deg, f_bar)
+    if key not in _cache:
+        cfg = RigConfig(mode=mode, angle=math.radians(alpha_deg), speed=V,
+                        cart_force=f_bar * LAM * V * V)
+        _cache[key] = run_rig(cfg, duration=0.6, settle=0.25)
+    return _cache[key]
+
+
+@pytest.mark.parametrize("alpha", [0.0, 45.0, 90.0])
+def test_pickup_roller_speed_is_paper_kinematics(alpha: float) -> None:
+    r = rig("pickup", alpha)
+    # at 90 deg (quarter wrap, roller as fast as the chain) the strand leans back by
+    # about 4 deg and reads 2 % fast along the nominal direction
+    assert r.speed == pytest.approx(V, rel=0.03)
+    assert r.roller_ratio == pytest.approx(1.0 / (1.0 + math.cos(math.radians(alpha))), rel=0.03)
+    assert math.degrees(abs(float(r.alpha.mean()) - math.radians(alpha))) < 5.0
+
+
+def test_pickup_force_at_90_deg_matches_paper() -> None:
+    r = rig("pickup", 90.0)
+    assert r.force_bar == pytest.approx(r.paper_bar, rel=0.10)
+
+
+@pytest.mark.parametrize("alpha,tol", [(0.0, 0.15), (45.0, 0.10)])
+def test_pickup_force_below_paper_near_energy_balance(alpha: float, tol: float) -> None:
+    r = rig("pickup", alpha)
+    a = math.radians(alpha)
+    assert r.force_bar < 0.7 * r.paper_bar  # the paper's law is off by far more than 10 %
+    assert r.force_bar == pytest.approx(lossless_bar("pickup", a), rel=tol)
+
+
+def test_cart_force_adds_fully_to_the_tension() -> None:
+    base, pulled = rig("pickup", 0.0), rig("pickup", 0.0, 0.5)
+    slope = (pulled.force_bar - base.force_bar) / 0.5
+    assert slope == pytest.approx(1.0, rel=0.10)
+    assert pulled.roller_ratio == pytest.approx(0.5, rel=0.03)
+
+
+def test_putdown_needs_push_and_gives_about_a_quarter() -> None:
+    lo, hi = rig("putdown", 0.0, 0.1), rig("putdown", 0.0, 0.5)
+    for r in (lo, hi):
+        assert r.roller_ratio == pytest.approx(0.5, rel=0.03)
+    slope = (hi.force_bar - lo.force_bar) / 0.4
+    intercept = lo.force_bar - 0.1 * slope
+    assert 0.1 < intercept < 0.4  # paper: 0.5; loss-free energy balance: 0.25
+    assert 0.7 < slope < 1.3
