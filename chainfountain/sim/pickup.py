@@ -278,6 +278,10 @@ class RollerRig:
                 # replace it by a kinematic link on the port line (pymunk cannot turn a
                 # jointed body kinematic), re-joined to its dynamic neighbour
                 i_c = n - self.n_port - 1
+                if i_c < 2:
+                    raise RuntimeError(
+                        f"t = {self.time:.3f} s: the resting chain is used up; make "
+                        f"rest_length longer than v_R*duration ({self.vR_pred:.3g} m/s)")
                 prev = links[i_c - 1]
                 objs = [cand.body] + [c for c in (cand.shape, cand.up_joint, cand.up_spring,
                                                   prev.up_joint, prev.up_spring) if c is not None]
