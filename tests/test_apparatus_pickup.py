@@ -75,3 +75,12 @@ def test_putdown_needs_push_and_gives_about_a_quarter() -> None:
     intercept = lo.force_bar - 0.1 * slope
     assert 0.1 < intercept < 0.4  # paper: 0.5; loss-free energy balance: 0.25
     assert 0.7 < slope < 1.3
+
+
+def test_rig_refuses_to_run_out_of_chain() -> None:
+    from chainfountain.sim.pickup import RollerRig
+
+    rig = RollerRig(RigConfig(rest_length=0.2))
+    with pytest.raises(RuntimeError, match="resting chain is used up"):
+        for _ in range(4000):
+            rig.step()
