@@ -233,3 +233,29 @@ def run_level(level: Level, out_dir: Path, duration: float | None = None, *,
     path = out_dir / "summary.json"
     atomic.write_text(path, json.dumps(summary, indent=2) + "\n")
     return path
+
+
+def describe_outputs(summary_path: Path) -> str:
+    """A few lines for the terminal: what was written and how the run compares with theory."""
+    summary_path = Path(summary_path)
+    out = summary_path.parent
+    s = json.loads(summary_path.read_text())
+    th = s.get("theory") or {}
+    err = th.get("rel_error", {})
+
+    def pct(x: float | None) -> str:
+        return "n/a" if x is None else f"{100 * x:+.2f} %"
+
+    steady = (f"steady since {s['steady_since_s']:.2f} s" if s["steady"]
+              else "never steady (compare with care)")
+    lines = [
+        f"wrote {out}/summary.json, tensions.csv, speed.csv, snapshot.png",
+        f"  {s['links']} links, {s['steps']} steps, real-time factor "
+        f"{s['realtime_factor']:.2f}, {steady}",
+    ]
+    if th:
+        lines.append(
+            f"  vertex height {s['h']:.4f} m (theory {th['h']:.4f}, {pct(err.get('h'))}), "
+            f"landing {s['l']:.4f} m (theory {th['l']:.4f}, {pct(err.get('l'))}), "
+            f"speed {s['speed_mean']:.4f} m/s")
+    return "\n".join(lines)

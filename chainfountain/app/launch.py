@@ -86,25 +86,11 @@ def run_headless(level: Level, reason: str, out_dir: Path | None = None,
     out = out_dir or output_dir(level)
     print(f"chainfountain: no display ({reason}); running level {level.meta.name!r} "
           f"headless, writing to {out}", file=sys.stderr)
-    try:
-        from chainfountain.headless import run_level  # type: ignore[import-not-found]
-    except ImportError:
-        return _snapshot_only(level, out, duration)
+    from chainfountain.headless import describe_outputs, run_level
+
     summary = run_level(level, out, duration=duration, progress=True)
-    print(f"chainfountain: wrote {summary}")
+    print(describe_outputs(summary))
     return 0
-
-
-def _snapshot_only(level: Level, out: Path, duration: float | None) -> int:
-    """Stand-in until ``chainfountain.headless`` exists: an off-screen snapshot only."""
-    print("chainfountain: the headless runner (chainfountain.headless) is not part of this "
-          "version; writing an off-screen snapshot only", file=sys.stderr)
-    out.mkdir(parents=True, exist_ok=True)
-    frames = int(round(60 * (duration if duration is not None else 3.0)))
-    shot = out / "snapshot.png"
-    code = open_app(level, frames=frames, screenshot=shot, offscreen=True)
-    print(f"chainfountain: wrote {shot}")
-    return code
 
 
 def run_default(level: Level | None = None, source: Path | None = None,

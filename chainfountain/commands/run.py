@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from pathlib import Path
 
@@ -33,7 +32,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from chainfountain.headless import run_level
+    from chainfountain.headless import describe_outputs, run_level
     from chainfountain.level import io, library
 
     level = io.load(library.resolve(args.level))
@@ -41,19 +40,5 @@ def run(args: argparse.Namespace) -> int:
     print(f"running {level.meta.name} headless for {args.duration or 8:g} simulated s ...",
           file=sys.stderr)
     path = run_level(level, out, args.duration, seed=args.seed, progress=not args.quiet)
-    s = json.loads(path.read_text())
-    th = s.get("theory") or {}
-    err = th.get("rel_error", {})
-
-    def pct(x):
-        return "n/a" if x is None else f"{100 * x:+.2f} %"
-
-    print(f"wrote {out}/summary.json, tensions.csv, speed.csv, snapshot.png")
-    print(f"  {s['links']} links, {s['steps']} steps, real-time factor "
-          f"{s['realtime_factor']:.2f}, steady since "
-          + (f"{s['steady_since_s']:.2f} s" if s["steady"] else "never (compare with care)"))
-    if th:
-        print(f"  vertex height {s['h']:.4f} m (theory {th['h']:.4f}, {pct(err.get('h'))}), "
-              f"landing {s['l']:.4f} m (theory {th['l']:.4f}, {pct(err.get('l'))}), "
-              f"speed {s['speed_mean']:.4f} m/s")
+    print(describe_outputs(path))
     return 0
