@@ -145,6 +145,41 @@ class Simulation:
         """Spin roller ``index`` at ``angular_speed`` (rad/s) live."""
         self.rollers[index].set_angular_speed(angular_speed)
 
+    def set_param(self, path: str, value: float) -> None:
+        """Apply a change of the level field ``path`` (e.g. ``"chain.friction"``) live.
+
+        Only fields declared ``live`` in :mod:`chainfountain.sim.config` can be
+        changed this way; the value is written back into :attr:`config`.
+        Raises ``KeyError`` for a field that needs a rebuild (call
+        :meth:`reset` after changing :attr:`config` instead).
+        """
+        v = float(value)
+        if path == "feed.speed":
+            self.set_feed_speed(v)
+            self.config.feed.speed = v
+        elif path == "chain.bending_stiffness":
+            self.set_bending(stiffness=v)
+        elif path == "chain.bending_damping":
+            self.set_bending(damping=v)
+        elif path == "chain.friction":
+            self.chain.set_friction(v)
+            self.config.chain.friction = v
+        elif path == "solver.iterations":
+            self.set_iterations(int(v))
+        elif path == "solver.joint_error_bias":
+            self.chain.set_error_bias(v)
+            self.config.solver.joint_error_bias = v
+        elif path == "solver.collision_slop":
+            self.space.collision_slop = v
+            self.config.solver.collision_slop = v
+        elif path.startswith("rollers[") and path.endswith("].angular_speed"):
+            i = int(path[len("rollers["):path.index("]")])
+            self.set_roller_speed(i, v)
+            self.config.rollers[i].angular_speed = v
+        else:
+            raise KeyError(f"{path} cannot be changed while running; change the config and "
+                           "reset()")
+
     def nearest_link(self, point: tuple[float, float]) -> int:
         """Index (chain order) of the link whose centre is nearest to ``point``."""
         st = self.reader.read()
