@@ -256,7 +256,11 @@ def _draw_guide(surf: pygame.Surface, cam: Camera, sim: Simulation) -> None:
     pygame.draw.rect(surf, (70, 75, 90), box, 0, 3)
     pygame.draw.rect(surf, GUIDE, box, 1, 3)
     lbl = font(16).render(f"feed {sim.feed.speed:.2f} m/s", True, GUIDE)
-    surf.blit(lbl, (box.left - lbl.get_width() - 4, box.top - 4))
+    x = box.left - lbl.get_width() - 4
+    if x < cam.rect.left + 2:  # no room on the left: put it below the motor box
+        surf.blit(lbl, (box.left, box.bottom + 2))
+    else:
+        surf.blit(lbl, (x, box.top - 4))
 
 
 def _scale_bar(surf: pygame.Surface, cam: Camera) -> None:
