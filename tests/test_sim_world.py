@@ -159,6 +159,6 @@ def test_steady_time_and_fits() -> None:
 
 def test_unsupported_kind() -> None:
     cfg = SimConfig()
-    cfg.kind = "apparatus"
-    with pytest.raises(ValueError, match="apparatus"):
+    cfg.kind = "beaker"
+    with pytest.raises(ValueError, match="beaker"):
         Simulation(cfg)

@@ -5,10 +5,15 @@ Every numeric field is declared with :func:`chainfountain.level.fields.param`
 can read, validate and document them. The classes are plain nested dataclasses
 of numbers, strings, bools and tuples; :class:`SimConfig` is the top level.
 
-Only ``kind = "feed"`` (a motor-driven beaker feeding the chain at a set speed
-and launch angle, with an absorbing or solid floor ``H`` below the launch point)
-is simulated today. ``rollers`` and ``carts`` are the building blocks of the
-later ``"apparatus"`` kind; they can already be added to a feed level.
+Two kinds are simulated: ``kind = "feed"`` (a motor-driven beaker feeding the
+chain at a set speed and launch angle, with an absorbing or solid floor ``H``
+below the launch point) and ``kind = "apparatus"`` (the paper's pulley
+apparatus, section "Generating Steady-State Chain Fountains": a roller unfolds
+the resting chain, a guide channel lifts it ``xi2*H`` to the fountain start, it
+flies, and either lands on a floor or is caught by an end channel and folded
+back to rest by a second roller; see :class:`ApparatusConfig`). ``rollers`` are
+kinematic building blocks of feed levels; ``carts`` are free carts on a feed
+level and the roller carts of an apparatus level.
 
 The defaults come from the convergence study in ``docs/convergence.md``.
 """
@@ -20,8 +25,8 @@ from dataclasses import dataclass, field
 
 from chainfountain.level.fields import param
 
-KINDS: tuple[str, ...] = ("feed",)
-"""Level kinds the simulator can build (``"apparatus"`` follows in a later issue)."""
+KINDS: tuple[str, ...] = ("feed", "apparatus")
+"""Level kinds the simulator can build."""
 
 
 @dataclass
@@ -182,9 +187,95 @@ class CartConfig:
         min=-math.pi / 2, max=math.pi / 2,
     )
     track_length: float = param(2.0, unit="m", doc="Track length, centred on the start", min=0.01)
-    mass: float = param(0.1, unit="kg", doc="Cart mass", min=1e-6, min_inclusive=False)
+    mass: float = param(0.1, unit="kg", doc="Cart mass", min=1e-6, min_inclusive=False,
+                        live=True)
     width: float = param(0.05, unit="m", doc="Cart box width", min=1e-3)
     height: float = param(0.02, unit="m", doc="Cart box height", min=1e-3)
+
+
+@dataclass
+class ApparatusConfig:
+    """The paper's pulley apparatus (section "Generating Steady-State Chain Fountains").
+
+    Frame as for the feed: the fountain start (exit of the upper guide channel)
+    is the origin, ``y`` up, the fountain flies in ``+x``; its end is ``drop``
+    (the paper's ``H``) below the start. Upstream: the chain rests on a rough
+    upper table; a roller (alpha = 0: the chain wraps around its back and
+    leaves on top, along the roller's motion) rolls on it and unfolds it, the
+    chain slides over a frictionless plate to a frictionless two-sided guide
+    channel that lifts it ``xi2*H`` to the start at ``launch_angle``.
+    Downstream, by ``variant``:
+
+    - ``"floor"`` (idealized beaker, real floor): the chain lands on a solid
+      floor at the fountain end height; its speed selects itself;
+    - ``"fold"`` (full arrangement): an end channel catches the chain at the
+      fountain end, turns it and lifts it ``xi3*H`` onto a plate; a second
+      roller folds it back to rest on a lower table;
+    - ``"open"`` (non-stationary): the end channel turns the chain horizontal
+      and it slides away on a frictionless plate (more and more chain moves).
+
+    Carts: ``carts[0]`` pulls the upper roller back against its motion,
+    ``carts[1]`` (fold only) pushes the lower roller forward, each with the
+    force ``mass*g*sin(incline)`` of a cart on an inclined track tied to the
+    roller's carriage by an ideal rope (its mass is added to the carriage).
+    Their ``x``, ``y`` and ``track_length`` only place the drawing.
+    """
+
+    variant: str = param(
+        "floor", unit="", doc="'floor': real floor at the fountain end; 'fold': end channel and "
+        "folding roller; 'open': end channel, chain slides away (non-stationary)",
+        choices=("floor", "fold", "open"),
+    )
+    drop: float = param(
+        0.5, unit="m", doc="Height H of the fountain start above the fountain end", min=0.05,
+        max=20.0, min_inclusive=False,
+    )
+    launch_angle: float = param(
+        math.radians(60.0), unit="rad", doc="Launch angle alpha0 of the upper channel exit",
+        min=math.radians(5.0), max=math.radians(85.0),
+    )
+    speed: float = param(
+        3.0, unit="m/s", doc="Launch speed v0: the chain starts moving along its path at v0",
+        min=0.1, max=30.0,
+    )
+    end_tension: float = param(
+        0.0, unit="1", doc="Scaled end tension Tbar_E used to lay out the initial fountain and "
+        "aim the end channel", min=0.0, max=0.99,
+    )
+    xi2: float = param(
+        0.5, unit="1", doc="Upper table ('beaker') xi2*H below the fountain start", min=0.0,
+        max=5.0,
+    )
+    xi3: float = param(
+        0.5, unit="1", doc="Lower table ('bottom') xi3*H above the fountain end (fold)", min=0.0,
+        max=5.0,
+    )
+    duration: float = param(
+        6.0, unit="s", doc="Run time the tables and plates are sized for (rollers move at "
+        "about v0/2)", min=0.1, max=600.0,
+    )
+    roller_radius: float = param(0.03, unit="m", doc="Radius r of both rollers", min=0.005,
+                                 max=0.5)
+    roller_mass: float = param(0.02, unit="kg", doc="Mass of each roller", min=1e-4, max=10.0)
+    carriage_mass: float = param(
+        0.02, unit="kg", doc="Mass of each roller carriage (cart mass is added)", min=1e-4,
+        max=10.0,
+    )
+    table_friction: float = param(
+        5.0, unit="1", doc="Friction of the tables (rough, so the resting chain stays put)",
+        min=0.0, max=20.0,
+    )
+    channel_radius: float = param(
+        0.15, unit="m", doc="Bend radius of the guide channels (reduced if the rise is short)",
+        min=0.02, max=5.0,
+    )
+    floor_width: float = param(4.0, unit="m", doc="Length of the floor ('floor' variant)",
+                               min=0.1, max=100.0)
+    rest_links: int = param(
+        20, unit="1", doc="Resting links kept in the solver ahead of the pick-up roller and "
+        "behind the folding roller / on the floor (older ones leave the solver)", min=5,
+        max=10000,
+    )
 
 
 @dataclass
@@ -196,6 +287,7 @@ class SimConfig:
     gravity: float = param(9.81, unit="m/s^2", doc="Gravitational acceleration g", min=0.0)
     chain: ChainConfig = field(default_factory=ChainConfig)
     feed: FeedConfig = field(default_factory=FeedConfig)
+    apparatus: ApparatusConfig = field(default_factory=ApparatusConfig)
     solver: SolverConfig = field(default_factory=SolverConfig)
     initial: InitialConfig = field(default_factory=InitialConfig)
     recording: RecordingConfig = field(default_factory=RecordingConfig)

@@ -57,6 +57,7 @@ class Recorder:
         self._samples: list[Sample] = []
         self._profiles: list[Profiles] = []
         self._raw: list[tuple] = []
+        self._ap_samples: list = []
         sim.recorder = self
 
     def wants(self, step_index: int) -> bool:
@@ -68,6 +69,7 @@ class Recorder:
         self._samples.clear()
         self._profiles.clear()
         self._raw.clear()
+        self._ap_samples.clear()
 
     # ------------------------------------------------------------------ sampling
     def take(self, pre: ChainState, post: ChainState) -> None:
@@ -82,6 +84,13 @@ class Recorder:
         if n < 2:
             return
         contacts = sim.reader.contact_impulses() if sim.chain.shapes else None
+        app = getattr(sim, "apparatus", None)
+        if app is not None:
+            lo = app.lower
+            roller = (app.upper.x, app.upper.speed, lo.x if lo else float("nan"),
+                      lo.speed if lo else float("nan"))
+            self._raw.append(("apparatus", sim.time, pre.velocity, post, contacts, roller))
+            return
         self._raw.append((sim.time, n, sim.feed.speed, sim.feed.floor_y, pre.velocity, post,
                           contacts))
 
@@ -100,7 +109,34 @@ class Recorder:
     def _process(self) -> None:
         raw, self._raw = self._raw, []
         for rec in raw:
-            self._analyse(*rec)
+            if rec[0] == "apparatus":
+                self._analyse_apparatus(*rec[1:])
+            else:
+                self._analyse(*rec)
+
+    @property
+    def apparatus_samples(self) -> list:
+        """Per-sample apparatus measurements
+        (:class:`chainfountain.sim.apparatus.ApparatusSample`; apparatus levels only)."""
+        self._process()
+        return self._ap_samples
+
+    def _analyse_apparatus(self, t: float, pre_vel: np.ndarray, post: ChainState,
+                           contacts: np.ndarray, roller: tuple) -> None:
+        from chainfountain.sim.apparatus import analyse
+
+        sim = self.sim
+        s, prof = analyse(sim.apparatus, t, pre_vel, post, contacts, sim.dt,
+                          sim.chain.cfg.linear_density, roller)
+        self._ap_samples.append(s)
+        sp = prof["speed"]
+        self._samples.append(Sample(
+            t=t, vertex_x=s.vertex_x, vertex_y=s.vertex_y, landing_x=s.end_x,
+            speed_mean=s.v, speed_min=float(np.min(sp)), speed_max=float(np.max(sp)),
+            stretch=s.stretch, n_free=s.n_flight, T0_bar=s.T0_bar))
+        if self.keep_profiles:
+            self._profiles.append(Profiles(tension_bar=prof["tension_bar"], x=prof["x"],
+                                           y=prof["y"], speed=sp))
 
     def _analyse(self, t: float, n: int, v_feed: float, floor_y: float, pre_vel: np.ndarray,
                  post: ChainState, contacts: np.ndarray | None) -> None:

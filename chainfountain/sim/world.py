@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import pymunk
 
+from chainfountain.sim.apparatus import Apparatus
 from chainfountain.sim.bodies import Cart, Floor, Roller
 from chainfountain.sim.chain import Chain
 from chainfountain.sim.config import SimConfig
@@ -44,8 +45,9 @@ class Simulation:
     """
 
     def __init__(self, config: SimConfig) -> None:
-        if config.kind != "feed":
-            raise ValueError(f"unsupported level kind {config.kind!r} (supported: 'feed')")
+        if config.kind not in ("feed", "apparatus"):
+            raise ValueError(f"unsupported level kind {config.kind!r} "
+                             "(supported: 'feed', 'apparatus')")
         self.config = copy.deepcopy(config)
         self.recorder: Recorder | None = None
         self._build()
@@ -60,6 +62,10 @@ class Simulation:
         space.damping = 1.0
         self.space = space
         self._dt = float(cfg.solver.dt)
+        self.apparatus: Apparatus | None = None
+        if cfg.kind == "apparatus":
+            self._build_apparatus()
+            return
         needs_shapes = (cfg.feed.floor == "solid" or bool(cfg.rollers) or bool(cfg.carts)
                         or cfg.chain.self_collision)
         self.chain = Chain(space, cfg.chain, cfg.solver, shapes=needs_shapes)
@@ -87,6 +93,31 @@ class Simulation:
         if self.recorder is not None:
             self.recorder.clear()
 
+    def _build_apparatus(self) -> None:
+        """``kind = "apparatus"``: the paper's pulley apparatus
+        (:mod:`chainfountain.sim.apparatus`).
+
+        ``self.feed`` is the :class:`Apparatus` too (it offers the feed's interface:
+        ``speed``, ``n_free``, ``floor_y``, ``absorbed``); ``reference`` is ``None``
+        (the apparatus chooses its speed; see ``apparatus.fountain`` for the layout)."""
+        cfg = self.config
+        space = self.space
+        self.chain = Chain(space, cfg.chain, cfg.solver, shapes=True)
+        self.apparatus = Apparatus(space, self.chain, cfg)
+        self.feed = self.apparatus  # type: ignore[assignment]
+        self.floor = None
+        self.rollers = []
+        self.carts = []
+        self.reference = None
+        self.reader = ChainReader(space, self.chain)
+        self.time = 0.0
+        self.steps = 0
+        self._mouse_body = None
+        self._mouse_joint = None
+        self._grabbed = None
+        if self.recorder is not None:
+            self.recorder.clear()
+
     def reset(self) -> None:
         """Rebuild from the current configuration (time back to 0, recorder cleared)."""
         self._build()
@@ -107,6 +138,8 @@ class Simulation:
         pre: ChainState | None = None
         if rec is not None and rec.wants(self.steps + 1):
             pre = self.reader.read()
+        if self.apparatus is not None:
+            self.apparatus.before_step()
         self.space.step(dt)
         self.steps += 1
         self.time = self.steps * dt

@@ -1,0 +1,759 @@
+"""The paper's pulley apparatus (section "Generating Steady-State Chain Fountains").
+
+Built by :class:`~chainfountain.sim.world.Simulation` for ``kind = "apparatus"``
+(:class:`~chainfountain.sim.config.ApparatusConfig`). Frame: the fountain start
+(exit of the upper guide channel) is the origin, ``y`` up, the chain flies in
+``+x``; the fountain end is ``H`` below the start.
+
+Path of the chain, upstream to downstream (chain order is the reverse: index 0
+is the downstream end, as for the feed):
+
+1. **Upper table** (rough, friction ``table_friction``), the chain resting on
+   it in ``-x`` direction toward the pick-up roller. Only ``rest_links`` links
+   ahead of the roller are in the solver; further links are added at rest at the
+   upstream end as the roller approaches (they carry no force: the tension of
+   the unfolding goes into the table through friction right at the roller).
+2. **Pick-up roller** (alpha = 0, as ``docs/apparatus.md`` recommends): a
+   dynamic disc resting on the chain under its weight, on a carriage that
+   slides on a horizontal groove (vertical play through a slot). The chain
+   comes off the table at the bottom contact, wraps around the back of the
+   roller and leaves on top in ``+x``, the roller following at ``v/2``
+   (paper: ``v_R = v/(1 + cos alpha)``). The upper cart is the rope-tied
+   weight of :mod:`chainfountain.sim.pickup`: a constant force
+   ``m*g*sin(beta)`` on the carriage against its motion, the cart mass added to
+   the carriage (an ideal rope over an ideal pulley to a cart on an incline).
+3. **Upper plate**: a frictionless static segment at the roller-top height
+   carrying the strand from the roller to the channel (without it the strand,
+   at ``T < lambda*v**2``, would sag onto the resting chain). Its roller end
+   follows the roller every step.
+4. **Upper channel**: frictionless two-sided guide (static segment walls with
+   a small clearance), horizontal, then a bend of radius ``channel_radius`` up
+   to ``alpha0`` and straight to the start: rise ``xi2*H`` from the roller top.
+5. **Fountain**: free flight.
+6. By variant: ``floor``: a solid floor at the end height (the chain centre
+   line lying on it is at ``-H``), the chain piles and the oldest lying links
+   leave the solver; ``fold``: an end channel whose mouth sits on the predicted
+   fountain end, aligned with the landing tangent, turns the chain and lifts it
+   ``xi3*H`` onto the lower plate; the folding roller (mirror image of the
+   pick-up: moving in ``+x`` at ``v/2``, the chain wraps around its front) lays
+   it onto the lower table, pushed forward by the lower cart; ``open``: the end
+   channel turns the chain horizontal and it slides away on a long
+   frictionless plate.
+
+Heights: ``y_up = -xi2*H`` (chain centre line on top of the upper roller),
+``y_lo = -H + xi3*H`` (same for the lower roller): the paper's "beaker" and
+"bottom". Link radius ``rho``, roller radius ``r``: the table top lies
+``3*rho + 2*r`` below the roller-top centre line.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import pymunk
+
+from chainfountain.sim.bodies import SCENERY_CATEGORY
+from chainfountain.sim.chain import CHAIN_CATEGORY, Chain, Link
+from chainfountain.sim.config import CartConfig, SimConfig
+
+PICKUP_BAR = 0.27
+"""Measured pick-up force at alpha = 0 over ``lambda*v**2`` (``docs/apparatus.md``;
+paper: 1/2, loss-free energy balance 1/4)."""
+PUTDOWN_BAR = 0.24
+"""Measured put-down force at alpha = 0 over ``lambda*v**2`` with a forward push
+(``docs/apparatus.md``; paper: 1/2)."""
+
+_WALL_R = 0.002
+"""Radius of channel wall segments (m)."""
+_CLEAR = 0.0008
+"""Clearance between a link capsule and each channel wall (m)."""
+_ONLY_CHAIN = pymunk.ShapeFilter(categories=SCENERY_CATEGORY, mask=CHAIN_CATEGORY)
+
+
+# ----------------------------------------------------------------------------- geometry
+def _bend(x: float, y: float, phi0: float, phi1: float, R: float,
+          step: float) -> tuple[np.ndarray, float, float]:
+    """Centre-line points of a circular bend from heading ``phi0`` to ``phi1`` (rad)
+    starting at ``(x, y)``; counter-clockwise when ``phi1 > phi0``. Returns points
+    (without the start) and the end point."""
+    s = 1.0 if phi1 > phi0 else -1.0
+    # centre to the left (CCW) or right (CW) of the heading
+    cx, cy = x - s * R * math.sin(phi0), y + s * R * math.cos(phi0)
+    n = max(2, int(math.ceil(abs(phi1 - phi0) * R / step)))
+    ph = phi0 + (phi1 - phi0) * np.arange(1, n + 1) / n
+    px = cx + s * R * np.sin(ph)
+    py = cy - s * R * np.cos(ph)
+    return np.column_stack((px, py)), float(px[-1]), float(py[-1])
+
+
+def _line(x: float, y: float, phi: float, length: float,
+          step: float) -> tuple[np.ndarray, float, float]:
+    n = max(1, int(math.ceil(length / step)))
+    d = length * np.arange(1, n + 1) / n
+    px, py = x + d * math.cos(phi), y + d * math.sin(phi)
+    return np.column_stack((px, py)), float(px[-1]), float(py[-1])
+
+
+@dataclass
+class Channel:
+    """Centre line of a guide channel (polyline, chain direction) and its walls."""
+
+    points: np.ndarray
+    shapes: list = field(default_factory=list)
+
+    def walls(self, offset: float) -> tuple[np.ndarray, np.ndarray]:
+        """Left and right wall polylines at ``offset`` from the centre line."""
+        p = self.points
+        t = np.gradient(p, axis=0)
+        t /= np.linalg.norm(t, axis=1)[:, None]
+        nrm = np.column_stack((-t[:, 1], t[:, 0]))
+        return p + offset * nrm, p - offset * nrm
+
+
+def upper_channel(H: float, xi2: float, alpha0: float, R: float, lead: float,
+                  step: float) -> tuple[np.ndarray, float]:
+    """Centre line from the plate end to the start (0, 0): horizontal lead, bend up to
+    ``alpha0``, straight. Returns the points and the bend radius actually used."""
+    rise = xi2 * H
+    R = min(R, rise / (1.0 - math.cos(alpha0))) if rise > 0 else 0.0
+    S = (rise - R * (1.0 - math.cos(alpha0))) / math.sin(alpha0)
+    run = R * math.sin(alpha0) + S * math.cos(alpha0)
+    x0 = -run - lead
+    pts = [np.array([[x0, -rise]])]
+    p, x, y = _line(x0, -rise, 0.0, lead, step)
+    pts.append(p)
+    if R > 0:
+        p, x, y = _bend(x, y, 0.0, alpha0, R, step)
+        pts.append(p)
+    if S > 1e-9:
+        p, x, y = _line(x, y, alpha0, S, step)
+        pts.append(p)
+    out = np.vstack(pts)
+    out[-1] = (0.0, 0.0)
+    return out, R
+
+
+def end_channel(xE: float, yE: float, alphaE: float, rise: float, R: float, lead: float,
+                step: float, *, up: float = math.radians(60.0),
+                mouth: float = 0.06) -> tuple[np.ndarray, int]:
+    """Centre line from a mouth on the landing tangent through the fountain end
+    ``(xE, yE)`` (heading ``-alphaE``), bending up and lifting the chain by ``rise``
+    to a horizontal exit. Returns the points and the index of the fountain end."""
+    phi = -alphaE
+    x0, y0 = xE - mouth * math.cos(phi), yE - mouth * math.sin(phi)
+    pts = [np.array([[x0, y0]])]
+    p, x, y = _line(x0, y0, phi, mouth, step)
+    pts.append(p)
+    i_end = sum(len(a) for a in pts) - 1
+    if rise <= 1e-9:
+        p, x, y = _bend(x, y, phi, 0.0, R, step)
+        pts.append(p)
+    else:
+        # rise of bend(phi -> up) + straight + bend(up -> 0) = rise (solve for R, straight)
+        drop = R * (math.cos(phi) - math.cos(up))  # the first bend's y change (negative)
+        gain = R * (1.0 - math.cos(up))
+        S = (rise - (-drop) - gain) / math.sin(up)
+        while S < 0 and R > 0.02:
+            R *= 0.8
+            S = (rise + R * (math.cos(phi) - math.cos(up)) - R * (1 - math.cos(up))) / \
+                math.sin(up)
+        if S < 0:
+            raise ValueError(f"end channel cannot rise only {rise:.3g} m")
+        p, x, y = _bend(x, y, phi, up, R, step)
+        pts.append(p)
+        if S > 1e-9:
+            p, x, y = _line(x, y, up, S, step)
+            pts.append(p)
+        p, x, y = _bend(x, y, up, 0.0, R, step)
+        pts.append(p)
+    p, x, y = _line(x, y, 0.0, lead, step)
+    pts.append(p)
+    return np.vstack(pts), i_end
+
+
+def _resample(path: np.ndarray, L: float) -> tuple[np.ndarray, np.ndarray]:
+    """Points at arc-length spacing ``L`` along a polyline and their arc lengths."""
+    seg = np.linalg.norm(np.diff(path, axis=0), axis=1)
+    keep = np.concatenate([[True], seg > 1e-12])
+    path = path[keep]
+    seg = np.linalg.norm(np.diff(path, axis=0), axis=1)
+    s = np.concatenate([[0.0], np.cumsum(seg)])
+    n = int(s[-1] // L)
+    q = np.arange(n + 1) * L
+    return np.column_stack((np.interp(q, s, path[:, 0]), np.interp(q, s, path[:, 1]))), q
+
+
+# ----------------------------------------------------------------------------- bodies
+@dataclass(eq=False)
+class RollerUnit:
+    """A roller on a carriage (horizontal groove, vertical slot) pushed by a cart force."""
+
+    roller: pymunk.Body
+    carriage: pymunk.Body
+    shape: pymunk.Circle
+    direction: float
+    """Force direction on the carriage: -1 holds back (pick-up), +1 pushes (fold)."""
+    cart: CartConfig | None
+    g: float
+    yc: float
+    """Height of the roller centre at rest on the chain (m)."""
+
+    @property
+    def force(self) -> float:
+        """Cart force ``m*g*sin(beta)`` (N), >= 0 along :attr:`direction`."""
+        c = self.cart
+        return 0.0 if c is None else c.mass * self.g * math.sin(c.incline)
+
+    def set_cart_mass(self, m: float, base: float) -> None:
+        """Change the cart mass live (the carriage carries it)."""
+        if self.cart is not None:
+            self.cart.mass = float(m)
+        self.carriage.mass = base + (0.0 if self.cart is None else self.cart.mass)
+
+    @property
+    def x(self) -> float:
+        return float(self.roller.position.x)
+
+    @property
+    def speed(self) -> float:
+        return float(self.carriage.velocity.x)
+
+
+def _add_roller(space: pymunk.Space, x: float, y_table: float, rho: float, r: float,
+                m_roller: float, m_carriage: float, cart: CartConfig | None, direction: float,
+                g: float, error_bias: float, vx: float, omega: float) -> RollerUnit:
+    yc = y_table + 2.0 * rho + r
+    m_c = m_carriage + (cart.mass if cart is not None else 0.0)
+    carriage = pymunk.Body(m_c, float("inf"))
+    carriage.position = (x, yc)
+    groove = pymunk.GrooveJoint(space.static_body, carriage, (x - 1e3, yc), (x + 1e3, yc),
+                                (0.0, 0.0))
+    roller = pymunk.Body(m_roller, 0.5 * m_roller * r * r)
+    roller.position = (x, yc)
+    slot = pymunk.GrooveJoint(carriage, roller, (0.0, -0.5 * r), (0.0, 0.5 * r), (0.0, 0.0))
+    for j in (groove, slot):
+        j.error_bias = error_bias
+    circ = pymunk.Circle(roller, r)
+    circ.friction = 1.0
+    circ.filter = pymunk.ShapeFilter(categories=SCENERY_CATEGORY)
+    carriage.velocity = (vx, 0.0)
+    roller.velocity = (vx, 0.0)
+    roller.angular_velocity = omega
+    space.add(carriage, groove, roller, slot, circ)
+    return RollerUnit(roller=roller, carriage=carriage, shape=circ, direction=direction,
+                      cart=cart, g=g, yc=yc)
+
+
+def _static_polyline(space: pymunk.Space, pts: np.ndarray, radius: float,
+                     friction: float = 0.0) -> list[pymunk.Segment]:
+    out = []
+    b = space.static_body
+    for i in range(len(pts) - 1):
+        s = pymunk.Segment(b, tuple(pts[i]), tuple(pts[i + 1]), radius)
+        s.friction = friction
+        s.filter = _ONLY_CHAIN
+        out.append(s)
+    for i, s in enumerate(out):
+        prev = pts[i - 1] if i > 0 else pts[i]
+        nxt = pts[i + 2] if i + 2 < len(pts) else pts[i + 1]
+        s.set_neighbors(tuple(prev), tuple(nxt))
+    space.add(*out)
+    return out
+
+
+# ----------------------------------------------------------------------------- apparatus
+class Apparatus:
+    """Builds the apparatus into a space and keeps its bookkeeping (duck-types the
+    :class:`~chainfountain.sim.feed.Feed` interface the simulation uses).
+
+    Attributes give the geometry for views and measurements: ``upper``/``lower``
+    (:class:`RollerUnit`), ``y_up``/``y_lo`` (roller-top centre lines), ``end``
+    (fountain end point), ``launch_u`` (unit launch direction), ``walls``
+    (static segments), ``fountain`` (the predicted fountain used for the layout).
+    """
+
+    def __init__(self, space: pymunk.Space, chain: Chain, cfg: SimConfig) -> None:
+        from chainfountain.theory import Fountain
+
+        self.space = space
+        self.chain = chain
+        self.sim_cfg = cfg
+        a = self.cfg = cfg.apparatus
+        self.g = float(cfg.gravity)
+        L = chain.L
+        self.L = L
+        rho = self.rho = float(cfg.chain.link_radius)
+        r = self.r = float(a.roller_radius)
+        H = self.H = float(a.drop)
+        v0 = float(a.speed)
+        self.alpha0 = float(a.launch_angle)
+        self.launch_u = (math.cos(self.alpha0), math.sin(self.alpha0))
+        self.variant = a.variant
+        step = 0.5 * L
+        eb = cfg.solver.joint_error_bias
+        carts = list(cfg.carts)
+        self.absorbed = 0
+        self.added = 0
+        # predicted fountain (layout, aiming the end channel)
+        self.fountain = Fountain.from_launch(v=v0, alpha0=self.alpha0, H=H,
+                                             TE_bar=float(a.end_tension), g=self.g)
+        f = self.fountain
+        x_rise = math.acosh(1.0 + f.q * f.h) / f.q
+        self.vertex_pred = (x_rise, f.h)
+        self.end = (x_rise + math.acosh(1.0 + f.q * (f.h + H)) / f.q, -H)
+        # ---- upper part
+        self.y_up = -a.xi2 * H
+        y_tab = self.y_up - 3.0 * rho - 2.0 * r
+        self.y_table_up = y_tab
+        ch_pts, self.R_up = upper_channel(H, a.xi2, self.alpha0, a.channel_radius, 0.1, step)
+        self.x_plate_up_end = float(ch_pts[0, 0])
+        travel = 0.5 * v0 * a.duration + 0.15
+        x_R = self.x_plate_up_end - travel
+        vR = 0.5 * v0
+        R = r + rho
+        self.upper = _add_roller(space, x_R, y_tab, rho, r, a.roller_mass, a.carriage_mass,
+                                 carts[0] if carts else None, -1.0, self.g, eb, vR, -vR / R)
+        self.table_up = pymunk.Segment(space.static_body, (x_R - 1.0, y_tab - 0.01),
+                                       (self.x_plate_up_end, y_tab - 0.01), 0.01)
+        self.table_up.friction = a.table_friction
+        self.table_up.filter = pymunk.ShapeFilter(categories=SCENERY_CATEGORY)
+        space.add(self.table_up)
+        self.plate_up = pymunk.Segment(space.static_body, (x_R + 0.5 * L, self.y_up - rho - 0.002),
+                                       (self.x_plate_up_end, self.y_up - rho - 0.002), 0.002)
+        self.plate_up.friction = 0.0
+        self.plate_up.filter = _ONLY_CHAIN
+        space.add(self.plate_up)
+        self.walls: list[pymunk.Segment] = []
+        off = rho + _CLEAR + _WALL_R
+        ch = Channel(ch_pts)
+        for w in ch.walls(off):
+            self.walls += _static_polyline(space, w, _WALL_R)
+        self.channel_up = ch_pts
+        # ---- path (upstream -> downstream) with per-point speed tags
+        yc = self.upper.yc
+        n_rest = cfg.apparatus.rest_links
+        rest_end = x_R + n_rest * L
+        parts: list[np.ndarray] = [np.array([[rest_end, y_tab + rho], [x_R, y_tab + rho]])]
+        th = np.linspace(1.5 * math.pi, 0.5 * math.pi, 60)[1:]
+        parts.append(np.column_stack((x_R + R * np.cos(th), yc + R * np.sin(th))))
+        parts.append(np.array([[self.x_plate_up_end, self.y_up]]))
+        parts.append(ch_pts[1:])
+        s_wrap0 = n_rest * L
+        s_wrap1 = s_wrap0 + math.pi * R
+        # fountain
+        ex, ey = self.end
+        xs = np.linspace(0.0, ex, 400)[1:]
+        parts.append(np.column_stack((xs, f.h + f.y_of_x(xs - x_rise))))
+        self.floor: pymunk.Segment | None = None
+        self.lower: RollerUnit | None = None
+        self.plate_lo: pymunk.Segment | None = None
+        self.channel_lo: np.ndarray | None = None
+        self.lo_tail: list[tuple[float, float]] = []
+        alphaE = math.atan(math.sinh(f.q * (ex - x_rise)))
+        self.alphaE = alphaE
+        s_lo_wrap = math.inf
+        if self.variant == "floor":
+            w = a.floor_width
+            self.floor = pymunk.Segment(space.static_body, (ex - 0.3 * w, -H - rho - 0.005),
+                                        (ex + 0.7 * w, -H - rho - 0.005), 0.005)
+            self.floor.friction = cfg.chain.friction
+            self.floor.filter = pymunk.ShapeFilter(categories=SCENERY_CATEGORY)
+            space.add(self.floor)
+        else:
+            rise = a.xi3 * H if self.variant == "fold" else 0.0
+            lead = 0.1
+            cp, self.i_end = end_channel(ex, -H, alphaE, rise, a.channel_radius, lead, step)
+            self.channel_lo = cp
+            for wl in Channel(cp).walls(off):
+                self.walls += _static_polyline(space, wl, _WALL_R)
+            self.y_lo = float(cp[-1, 1])
+            xl = float(cp[-1, 0])
+            self.x_plate_lo_start = xl
+            parts.append(cp[self.i_end + 1:])
+            if self.variant == "open":
+                far = xl + v0 * a.duration * 1.5 + 1.0
+                self.plate_lo = pymunk.Segment(space.static_body, (xl, self.y_lo - rho - 0.002),
+                                               (far, self.y_lo - rho - 0.002), 0.002)
+                self.plate_lo.friction = 0.0
+                self.plate_lo.filter = _ONLY_CHAIN
+                space.add(self.plate_lo)
+                parts.append(np.array([[xl + 0.2, self.y_lo]]))
+            else:
+                x_lo = xl + 0.15
+                ylt = self.y_lo - 3.0 * rho - 2.0 * r
+                self.y_table_lo = ylt
+                self.lower = _add_roller(space, x_lo, ylt, rho, r, a.roller_mass,
+                                         a.carriage_mass, carts[1] if len(carts) > 1 else None,
+                                         1.0, self.g, eb, vR, -vR / R)
+                self.table_lo = pymunk.Segment(
+                    space.static_body, (xl - 0.5, ylt - 0.01),
+                    (x_lo + travel + 1.0, ylt - 0.01), 0.01)
+                self.table_lo.friction = a.table_friction
+                self.table_lo.filter = pymunk.ShapeFilter(categories=SCENERY_CATEGORY)
+                space.add(self.table_lo)
+                self.plate_lo = pymunk.Segment(
+                    space.static_body, (xl, self.y_lo - rho - 0.002),
+                    (x_lo - 0.5 * L, self.y_lo - rho - 0.002), 0.002)
+                self.plate_lo.friction = 0.0
+                self.plate_lo.filter = _ONLY_CHAIN
+                space.add(self.plate_lo)
+                ycl = self.lower.yc
+                parts.append(np.array([[x_lo, self.y_lo]]))
+                th = np.linspace(0.5 * math.pi, -0.5 * math.pi, 60)[1:]
+                parts.append(np.column_stack((x_lo + R * np.cos(th), ycl + R * np.sin(th))))
+                parts.append(np.array([[x_lo - 0.3, ylt + rho]]))
+        path = np.vstack(parts)
+        seg = np.linalg.norm(np.diff(path, axis=0), axis=1)
+        s_all = np.concatenate([[0.0], np.cumsum(seg)])
+        if self.lower is not None:
+            # arc length where the lower wrap starts: the point (x_lo, y_lo)
+            idx = int(np.flatnonzero(np.isclose(path[:, 0], self.lower.x)
+                                     & np.isclose(path[:, 1], self.y_lo))[0])
+            s_lo_wrap = float(s_all[idx])
+        pts, s = _resample(path, L)
+        self._lay(pts, s, s_wrap0, s_wrap1, s_lo_wrap, v0, vR, R)
+        self._sync_plates()
+
+    # ------------------------------------------------------------------ layout
+    def _lay(self, pts: np.ndarray, s: np.ndarray, s_w0: float, s_w1: float, s_lw: float,
+             v0: float, vR: float, R: float) -> None:
+        """Create the links along the resampled path (``pts[i]`` to ``pts[i+1]``)."""
+        up, lo = self.upper, self.lower
+        om = -vR / R
+        links: list[Link] = []
+        for i in range(len(pts) - 1):
+            (x0, y0), (x1, y1) = pts[i], pts[i + 1]
+            cx, cy = 0.5 * (x0 + x1), 0.5 * (y0 + y1)
+            ang = math.atan2(y1 - y0, x1 - x0)  # local +x points downstream
+            mid = s[i] + 0.5 * self.L
+            if mid < s_w0:
+                vel, w = (0.0, 0.0), 0.0
+            elif mid < s_w1:
+                c = up.roller.position
+                vel, w = (vR - om * (cy - c.y), om * (cx - c.x)), om
+            elif lo is not None and mid >= s_lw + math.pi * R:
+                vel, w = (0.0, 0.0), 0.0
+            elif lo is not None and mid >= s_lw:
+                c = lo.roller.position
+                vel, w = (vR - om * (cy - c.y), om * (cx - c.x)), om
+            else:
+                vel, w = (v0 * math.cos(ang), v0 * math.sin(ang)), 0.0
+            links.append(self.chain.make_body((cx, cy), ang, velocity=vel, angular_velocity=w))
+        for link in reversed(links):  # chain order: downstream end first
+            self.chain.append(link)
+        self.added = len(links)
+
+    # ------------------------------------------------------------------ feed interface
+    @property
+    def n_free(self) -> int:
+        return len(self.chain.links)
+
+    @property
+    def n_guide(self) -> int:
+        return 0
+
+    @property
+    def u(self) -> tuple[float, float]:
+        return self.launch_u
+
+    @property
+    def floor_y(self) -> float:
+        return -self.H
+
+    @property
+    def speed(self) -> float:
+        """Chain speed: twice the pick-up roller speed (paper: ``v_R = v/2`` at alpha = 0)."""
+        return 2.0 * abs(self.upper.speed)
+
+    def set_speed(self, v: float) -> None:
+        raise KeyError("the apparatus has no feed speed: its speed follows from the carts")
+
+    # ------------------------------------------------------------------ stepping
+    def before_step(self) -> None:
+        """Apply the cart forces (constant, along the track, on the carriage)."""
+        for unit in (self.upper, self.lower):
+            if unit is not None and unit.force:
+                unit.carriage.apply_force_at_local_point((unit.direction * unit.force, 0.0))
+
+    def after_step(self, dt: float) -> None:
+        """Move the plate ends with the rollers; add resting links ahead of the pick-up
+        roller; take resting links out of the solver behind the folding roller / on
+        the floor."""
+        self._sync_plates()
+        chain = self.chain
+        links = chain.links
+        L, n_keep = self.L, self.cfg.rest_links
+        x_R = self.upper.x
+        if x_R > self.x_plate_up_end - 0.05:
+            raise RuntimeError(
+                "the pick-up roller has reached the channel: the upper table is used up "
+                f"(raise apparatus.duration, now {self.cfg.duration:g} s)")
+        last = links[-1].body
+        while last.position.x < x_R + n_keep * L:
+            c = last.position
+            new = chain.make_body((c.x + L, self.y_table_up + self.rho), math.pi)
+            chain.append(new)
+            self.added += 1
+            last = new.body
+        # downstream end: drop links that lie at rest
+        if self.variant == "floor":
+            y_rest = -self.H + 0.02
+            while len(links) > n_keep + 10 and links[0].body.position.y < y_rest and \
+                    links[n_keep].body.position.y < y_rest:
+                chain.pop_front()
+                self.absorbed += 1
+        elif self.lower is not None:
+            x_lim = self.lower.x - 2.0 * self.r - n_keep * L
+            y_rest = self.y_table_lo + 2.0 * self.rho
+            while len(links) > n_keep + 10 and links[0].body.position.x < x_lim and \
+                    links[0].body.position.y < y_rest:
+                b = links[0].body.position
+                self.lo_tail.append((float(b.x), float(b.y)))
+                chain.pop_front()
+                self.absorbed += 1
+
+    def _sync_plates(self) -> None:
+        L, rho = self.L, self.rho
+        a, b = self.plate_up.a, self.plate_up.b
+        x = self.upper.x + 0.5 * L
+        if abs(a.x - x) > 1e-4:
+            self.plate_up.unsafe_set_endpoints((x, a.y), b)
+            self.space.reindex_shape(self.plate_up)
+        if self.lower is not None and self.plate_lo is not None:
+            a, b = self.plate_lo.a, self.plate_lo.b
+            x = self.lower.x - 0.5 * L
+            if abs(b.x - x) > 1e-4:
+                self.plate_lo.unsafe_set_endpoints(a, (x, b.y))
+                self.space.reindex_shape(self.plate_lo)
+        del rho
+
+    # ------------------------------------------------------------------ theory
+    def cart_bars(self, v: float, lam: float) -> tuple[float, float]:
+        """Scaled cart forces ``(Tbar_uc, Tbar_lc)`` at chain speed ``v``."""
+        s = lam * v * v
+        lo = self.lower.force if self.lower is not None else 0.0
+        return self.upper.force / s, lo / s
+
+
+# ----------------------------------------------------------------------------- measuring
+@dataclass
+class ApparatusSample:
+    """One measurement of a running apparatus (tensions scaled by ``lambda*v**2``)."""
+
+    t: float
+    v: float
+    """Mean speed of the links in free flight (m/s)."""
+    v_roller_up: float
+    v_roller_lo: float
+    T0_bar: float
+    """Tension at the fountain start (guide exit)."""
+    TE_bar: float
+    """Tension at the fountain end (floor contact or end channel mouth)."""
+    T_up_bar: float
+    """Tension in the strand leaving the pick-up roller (on the upper plate)."""
+    T_lo_bar: float
+    """Tension in the strand arriving at the folding roller (nan without one)."""
+    uc_bar: float
+    lc_bar: float
+    vertex_x: float
+    vertex_y: float
+    end_x: float
+    end_y: float
+    n_flight: int
+    stretch: float
+    channel_force_x: float
+    """Net contact force of the end channel on the chain, x (N; 'fold', 'open')."""
+    channel_force_y: float
+
+
+def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.ndarray,
+            dt: float, lam: float,
+            roller: tuple[float, float, float, float]) -> tuple[ApparatusSample, dict]:
+    """Measure one sampled step: signed tension from the exact momentum balance summed
+    from the downstream end (:func:`chainfountain.sim.measure.joint_forces`, all contact
+    impulses of floor, channels, plates, rollers and tables subtracted), located on
+    the path. Returns the sample and per-joint profiles of the free flight."""
+    from chainfountain.sim.measure import ChainState, joint_forces, signed_tension, vertex_of
+
+    chain = app.chain
+    n = len(post.angle)
+    pre = ChainState(position=post.position, angle=post.angle, velocity=pre_vel,
+                     angular_velocity=post.angular_velocity)
+    F = joint_forces(pre, post, chain.mass, dt, app.g, n - 1, contacts)
+    ten, _ = signed_tension(F, post, n - 1)
+    L = app.L
+    u = np.column_stack((np.cos(post.angle), np.sin(post.angle)))
+    back = post.position - 0.5 * L * u
+    front = post.position + 0.5 * L * u
+    J = 0.5 * (back[:-1] + front[1:])  # joint j between link j and j+1
+    gaps = np.linalg.norm(back[:-1] - front[1:], axis=1)
+    d0 = np.hypot(J[:, 0], J[:, 1])
+    j0 = int(np.argmin(d0))
+    if app.variant == "floor":
+        below = np.flatnonzero(J[:j0, 1] < -app.H + app.rho)
+        jE = int(below[-1]) if len(below) else 0
+    else:
+        ex, ey = app.end
+        dE = np.hypot(J[:j0, 0] - ex, J[:j0, 1] - ey)
+        jE = int(np.argmin(dE)) if j0 > 0 else 0
+    links = np.arange(jE + 1, j0 + 1)
+    speed = np.hypot(post.velocity[links, 0], post.velocity[links, 1]) if len(links) \
+        else np.array([np.nan])
+    v = float(np.mean(speed))
+    scale = lam * v * v
+    # strand tensions a few links away from the roller tops
+    def at(x: float, y: float) -> float:
+        k = int(np.argmin(np.hypot(J[:, 0] - x, J[:, 1] - y)))
+        lo, hi = max(k - 2, 0), min(k + 3, len(ten))
+        return float(np.mean(ten[lo:hi])) / scale
+
+    xu, vu, xl, vl = roller
+    T_up = at(xu + 6 * L, app.y_up)
+    T_lo = at(xl - 6 * L, app.y_lo) if app.lower is not None else math.nan
+    flight = J[jE:j0 + 1]
+    xv, yv = vertex_of(flight[::-1]) if len(flight) > 2 else (math.nan, math.nan)
+    uc, lc = app.cart_bars(v, lam)
+    end_contacts = (math.nan, math.nan)
+    if app.channel_lo is not None and jE > 0:
+        lo_x, hi_x = app.channel_lo[:, 0].min() - 0.01, app.channel_lo[:, 0].max()
+        pos = post.position[:jE + 1]
+        inside = (pos[:, 0] > lo_x) & (pos[:, 0] < hi_x) & (pos[:, 1] < app.y_lo + 0.01)
+        imp = contacts[:jE + 1][inside].sum(axis=0) / dt
+        end_contacts = (float(imp[0]), float(imp[1]))
+    s = ApparatusSample(
+        t=t, v=v, v_roller_up=vu, v_roller_lo=vl, T0_bar=float(ten[j0]) / scale,
+        TE_bar=float(ten[jE]) / scale, T_up_bar=T_up, T_lo_bar=T_lo, uc_bar=uc, lc_bar=lc,
+        vertex_x=xv, vertex_y=yv, end_x=float(J[jE, 0]), end_y=float(J[jE, 1]),
+        n_flight=len(links), stretch=float(gaps.sum() / (n * L)),
+        channel_force_x=end_contacts[0], channel_force_y=end_contacts[1])
+    prof = {"tension_bar": ten[jE:j0 + 1][::-1] / scale, "x": flight[::-1, 0].copy(),
+            "y": flight[::-1, 1].copy(), "speed": speed[::-1].copy()}
+    return s, prof
+
+
+# ----------------------------------------------------------------------------- report
+def catenary_through(alpha0: float, end: tuple[float, float]) -> float:
+    """``q`` of the inverted catenary leaving (0, 0) at ``alpha0`` through ``end``
+    (paper Eq. func_graph in the launch frame); nan if none."""
+    from scipy.optimize import brentq
+
+    ex, ey = end
+    c0 = math.cos(alpha0)
+
+    def miss(lq: float) -> float:
+        q = math.exp(lq)
+        h = (1.0 / c0 - 1.0) / q
+        xr = math.acosh(1.0 + q * h) / q
+        return h + (1.0 - math.cosh(q * (ex - xr))) / q - ey
+
+    try:
+        return math.exp(brentq(miss, math.log(1e-3), math.log(1e3)))
+    except ValueError:
+        return math.nan
+
+
+def report(sim, rec, t0: float, t1: float) -> dict:
+    """Measured and predicted quantities of an apparatus run over ``[t0, t1]``.
+
+    Tensions are scaled by ``lambda*v**2`` with the measured speed. Paper
+    ("Generating Steady-State Chain Fountains"), rollers ``p = d = 1/2``::
+
+        Tbar_0 = 1/2 + Tbar_uc + xi2*k*H,   Tbar_E = 1/2 + Tbar_lc - xi3*k*H,
+        steady: Tbar_uc = Tbar_lc + k*H*(1 - xi2 - xi3).
+
+    Measured mechanism laws (``docs/apparatus.md``, alpha = 0): pick-up
+    ``p`` = :data:`PICKUP_BAR`, put-down ``d`` = :data:`PUTDOWN_BAR`::
+
+        Tbar_0 = p + Tbar_uc + xi2*k*H,     Tbar_E = d + Tbar_lc - xi3*k*H,
+        steady: Tbar_uc = Tbar_lc + k*H*(1 - xi2 - xi3) + d - p.
+
+    The ``floor`` variant has ``Tbar_E`` from the floor (about 0), so its speed
+    follows from ``p + Tbar_uc + xi2*k*H = k*H + Tbar_E``:
+    ``v**2 = (g*H*(1 - xi2) - F_uc/lambda)/(p + Tbar_E)``.
+    """
+    app: Apparatus = sim.apparatus
+    S = [s for s in rec.apparatus_samples if t0 - 1e-9 <= s.t <= t1 + 1e-9]
+    if not S:
+        raise ValueError("no apparatus samples in the window")
+    cfg = sim.config
+    a = cfg.apparatus
+    lam, g, H = cfg.chain.linear_density, cfg.gravity, a.drop
+
+    def mean(name: str) -> float:
+        vals = np.array([getattr(s, name) for s in S], dtype=float)
+        return float(np.nanmean(vals)) if np.any(np.isfinite(vals)) else math.nan
+
+    t = np.array([s.t for s in S])
+    v_series = np.array([s.v for s in S])
+    v = float(np.mean(v_series))
+    slope = float(np.polyfit(t, v_series, 1)[0]) if len(S) > 2 else math.nan
+    k = g / v**2
+    kH = k * H
+    uc, lc = app.cart_bars(v, lam)
+    T0, TE = mean("T0_bar"), mean("TE_bar")
+    T_up, T_lo = mean("T_up_bar"), mean("T_lo_bar")
+    p_meas = T_up - uc
+    d_meas = T_lo - lc if app.lower is not None else math.nan
+    xi2, xi3 = a.xi2, a.xi3
+    fold = app.variant == "fold"
+    end = (mean("end_x"), mean("end_y"))
+    vx, vy = mean("vertex_x"), mean("vertex_y")
+    q_ends = catenary_through(app.alpha0, end)
+    h_ends = (1.0 / math.cos(app.alpha0) - 1.0) / q_ends if q_ends == q_ends else math.nan
+    q_forces = k / (math.cos(app.alpha0) * (1.0 - T0)) if T0 < 1 else math.nan
+    h_forces = (1.0 / math.cos(app.alpha0) - 1.0) / q_forces if q_forces == q_forces \
+        else math.nan
+    drop = -end[1]  # measured fountain drop (end height below the start)
+    xi = vy / drop if drop > 0 else math.nan
+    qH = q_ends * drop
+    T0_lo = qH / (1.0 + qH * (1.0 + xi))
+    T0_hi = 1.0 - k / q_ends
+    out: dict = {
+        "variant": app.variant,
+        "window": [float(t[0]), float(t[-1])],
+        "measured": {
+            "v": v, "k": k, "kH": kH, "xi2": xi2, "xi3": xi3 if fold else None,
+            "T0_bar": T0, "TE_bar": TE, "Tbar_uc": uc, "Tbar_lc": lc if fold else None,
+            "T_pickup_exit_bar": T_up, "T_putdown_entry_bar": T_lo if fold else None,
+            "pickup_p": p_meas, "putdown_d": d_meas if fold else None,
+            "roller_ratio_up": mean("v_roller_up") / v,
+            "roller_ratio_lo": mean("v_roller_lo") / v if app.lower is not None else None,
+            "speed_drift_per_s": slope / v,
+            "acceleration": slope,
+            "vertex": [vx, vy], "end": list(end),
+            "cart_force_uc_N": app.upper.force,
+            "cart_force_lc_N": app.lower.force if app.lower is not None else None,
+            "end_channel_force_N": [mean("channel_force_x"), mean("channel_force_y")]
+            if app.channel_lo is not None else None,
+        },
+        "catenary": {
+            "q_through_ends": q_ends, "vertex_y_through_ends": h_ends,
+            "vertex_y_rel_error": vy / h_ends - 1.0 if h_ends == h_ends else math.nan,
+            "q_from_k_T0": q_forces, "vertex_y_from_k_T0": h_forces,
+        },
+        "paper_ranges": {
+            "TE_bar": [0.0, 0.5], "TE_in_range": bool(0.0 - 0.02 <= TE < 0.5),
+            "T0_bar": [T0_lo, T0_hi], "T0_in_range": bool(T0_lo <= T0 < T0_hi),
+            "k_max": q_ends / (1.0 + q_ends * (vy + drop)),
+        },
+    }
+    paper = {"T0_bar": 0.5 + uc + xi2 * kH}
+    law = {"T0_bar": PICKUP_BAR + uc + xi2 * kH}
+    if fold:
+        paper["TE_bar"] = 0.5 + lc - xi3 * kH
+        law["TE_bar"] = PUTDOWN_BAR + lc - xi3 * kH
+        paper["Tbar_uc_steady"] = lc + kH * (1.0 - xi2 - xi3)
+        law["Tbar_uc_steady"] = lc + kH * (1.0 - xi2 - xi3) + PUTDOWN_BAR - PICKUP_BAR
+        law["Tbar_uc_steady_with_measured_p_d"] = lc + kH * (1.0 - xi2 - xi3) + d_meas - p_meas
+    else:
+        paper["TE_bar"] = law["TE_bar"] = 0.0 if app.variant == "floor" else None
+        F_uc = app.upper.force
+        for dct, pp in ((paper, 0.5), (law, PICKUP_BAR)):
+            v2 = (g * H * (1.0 - xi2) - F_uc / lam) / pp
+            dct["v_steady"] = math.sqrt(v2) if v2 > 0 else math.nan
+            dct["k_steady"] = g / v2 if v2 > 0 else math.nan
+    out["predicted_paper"] = paper
+    out["predicted_measured_laws"] = law
+    return out
