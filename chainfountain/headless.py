@@ -85,6 +85,8 @@ def summarize(level: Level, sim: Simulation, rec: Recorder, duration: float,
     tb = s.extras.get("tension_bar")
     TE_bar = float(tb[-1]) if tb is not None and len(tb) else float("nan")
     speed_cv = s.speed_uniformity
+    app = getattr(sim, "apparatus", None)
+    H = level.sim.apparatus.drop if app is not None else level.sim.feed.drop
     out: dict[str, Any] = {
         "level": level.meta.name,
         "kind": level.sim.kind,
@@ -106,10 +108,10 @@ def summarize(level: Level, sim: Simulation, rec: Recorder, duration: float,
         "max_stretch": _f(s.stretch_max),
         "vertex": [_f(s.vertex_x), _f(s.vertex_y)],
         "start": [0.0, 0.0],
-        "end": [_f(s.landing_x), _f(-level.sim.feed.drop)],
+        "end": [_f(s.landing_x), _f(-H)],
         "h": _f(s.vertex_y),
         "l": _f(s.landing_x),
-        "H": level.sim.feed.drop,
+        "H": H,
         "q_fit": _f(s.q_fit),
         "k": _f(sim.g / s.speed_mean**2) if s.speed_mean > 0 else None,
         "T0_bar": _f(s.T0_bar),
@@ -142,7 +144,24 @@ def summarize(level: Level, sim: Simulation, rec: Recorder, duration: float,
         }
     else:
         out["theory"] = None
+    if app is not None:
+        from chainfountain.sim.apparatus import report
+
+        rep = report(sim, rec, s.t0, s.t1)
+        out["TE_bar"] = _f(rep["measured"]["TE_bar"])
+        out["apparatus"] = _json_safe(rep)
     return out
+
+
+def _json_safe(obj: Any) -> Any:
+    """Nested dict/list with NaN/inf as null (for the apparatus report)."""
+    if isinstance(obj, dict):
+        return {k: _json_safe(v) for k, v in obj.items()}
+    if isinstance(obj, list | tuple):
+        return [_json_safe(v) for v in obj]
+    if isinstance(obj, bool) or obj is None or isinstance(obj, str):
+        return obj
+    return _f(obj)
 
 
 def _write_tensions(path: Path, rec: Recorder, lam: float) -> None:

@@ -159,6 +159,8 @@ def from_mapping(cls: type, data: Any, where: str, prefix: str = "", skip: froze
 def check_consistency(level: Level, where: str) -> None:
     """Cross-field checks: the configured fountain must be reachable."""
     sim = level.sim
+    if sim.kind == "apparatus":
+        _check_apparatus(level, where)
     if sim.kind == "feed":
         feed = sim.feed
         g = sim.gravity
@@ -177,6 +179,25 @@ def check_consistency(level: Level, where: str) -> None:
                 f"{sim.chain.link_length!r} m is too coarse for a drop of {feed.drop:g} m; "
                 f"allowed: at most a tenth of feed.drop ({0.1 * feed.drop:.4g} m)",
             )
+
+
+def _check_apparatus(level: Level, where: str) -> None:
+    """Apparatus cross-field checks (paper: ``Tbar_E + k*H < 1`` for the launch)."""
+    sim = level.sim
+    a = sim.apparatus
+    g = sim.gravity
+    if g <= 0:
+        _fail(where, "gravity", f"{g!r} is out of range; allowed: a number > 0 (m/s^2)")
+    v_need = math.sqrt(g * a.drop / (1.0 - a.end_tension))
+    if a.speed <= v_need:
+        _fail(where, "apparatus.speed",
+              f"{a.speed!r} m/s cannot launch a fountain that ends {a.drop:g} m lower with "
+              f"Tbar_E = {a.end_tension:g}; allowed: a speed > sqrt(g*H/(1 - Tbar_E)) = "
+              f"{v_need:.4g} m/s")
+    if sim.chain.link_length > 0.1 * a.drop:
+        _fail(where, "chain.link_length",
+              f"{sim.chain.link_length!r} m is too coarse for a drop of {a.drop:g} m; "
+              f"allowed: at most a tenth of apparatus.drop ({0.1 * a.drop:.4g} m)")
 
 
 def parse_level(data: dict[str, Any], where: str = "<level>") -> Level:

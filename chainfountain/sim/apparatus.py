@@ -414,6 +414,7 @@ class Apparatus:
             s_lo_wrap = float(s_all[idx])
         pts, s = _resample(path, L)
         self._lay(pts, s, s_wrap0, s_wrap1, s_lo_wrap, v0, vR, R)
+        self.start_x = (self.upper.x, self.lower.x if self.lower is not None else 0.0)
         self._sync_plates()
 
     # ------------------------------------------------------------------ layout
@@ -646,7 +647,8 @@ def catenary_through(alpha0: float, end: tuple[float, float]) -> float:
         q = math.exp(lq)
         h = (1.0 / c0 - 1.0) / q
         xr = math.acosh(1.0 + q * h) / q
-        return h + (1.0 - math.cosh(q * (ex - xr))) / q - ey
+        z = min(abs(q * (ex - xr)), 700.0)
+        return h + (1.0 - math.cosh(z)) / q - ey
 
     try:
         return math.exp(brentq(miss, math.log(1e-3), math.log(1e3)))

@@ -205,6 +205,13 @@ class Simulation:
         elif path == "solver.collision_slop":
             self.space.collision_slop = v
             self.config.solver.collision_slop = v
+        elif path.startswith("carts[") and path.endswith("].mass") and \
+                self.apparatus is not None:
+            i = int(path[len("carts["):path.index("]")])
+            unit = (self.apparatus.upper, self.apparatus.lower)[i]
+            if unit is None or unit.cart is None:
+                raise KeyError(f"{path}: no such cart in this apparatus")
+            unit.set_cart_mass(v, self.config.apparatus.carriage_mass)
         elif path.startswith("rollers[") and path.endswith("].angular_speed"):
             i = int(path[len("rollers["):path.index("]")])
             self.set_roller_speed(i, v)
@@ -292,27 +299,90 @@ class Simulation:
         return (0.0, 0.0), self.feed.u
 
     def floor_geometry(self) -> tuple[float, float, float, str]:
-        """``(y, x0, x1, mode)`` of the floor; for an absorbing floor x0/x1 span the scene."""
+        """``(y, x0, x1, mode)`` of the floor; for an absorbing floor x0/x1 span the scene.
+
+        Apparatus: the floor of the ``floor`` variant, else the fountain end height
+        with mode ``"none"``."""
+        app = self.apparatus
+        if app is not None:
+            if app.floor is not None:
+                a, b = app.floor.a, app.floor.b
+                return -app.H, float(a.x), float(b.x), "solid"
+            return -app.H, app.end[0] - 0.1, app.end[0] + 0.1, "none"
         f = self.config.feed
         if self.floor is not None:
             return self.floor.y, self.floor.x0, self.floor.x1, "solid"
         span = 0.5 * f.floor_width
         return -f.drop, -span, span, "absorbing"
 
+    def guide_geometry_segments(self) -> list[tuple[tuple[float, float], tuple[float, float]]]:
+        """Static walls, plates, tables and floor of an apparatus as segments ``((x0, y0),
+        (x1, y1))`` (empty for a feed level)."""
+        app = self.apparatus
+        if app is None:
+            return []
+        shapes = list(app.walls) + [app.plate_up, app.table_up]
+        for extra in (app.plate_lo, getattr(app, "table_lo", None), app.floor):
+            if extra is not None:
+                shapes.append(extra)
+        return [((float(sh.a.x), float(sh.a.y)), (float(sh.b.x), float(sh.b.y)))
+                for sh in shapes]
+
     def roller_geometry(self) -> list[tuple[float, float, float, float]]:
-        """``(x, y, radius, angle)`` of every roller."""
+        """``(x, y, radius, angle)`` of every roller (apparatus: pick-up, then folding)."""
+        app = self.apparatus
+        if app is not None:
+            return [(u.roller.position.x, u.roller.position.y, app.r, u.roller.angle)
+                    for u in (app.upper, app.lower) if u is not None]
         return [(r.body.position.x, r.body.position.y, r.cfg.radius, r.body.angle)
                 for r in self.rollers]
+
+    def _apparatus_carts(self) -> list[tuple[tuple[float, float], tuple[float, float],
+                                               float, float]]:
+        """Drawing of apparatus carts: (track start, track end, position along, incline).
+
+        The cart is a rope-tied weight on an inclined track behind its roller: it
+        moves down its track by the distance its roller travels."""
+        app = self.apparatus
+        out = []
+        if app is None:
+            return out
+        for i, u in enumerate((app.upper, app.lower)):
+            if u is None or u.cart is None:
+                continue
+            c = u.cart
+            beta = c.incline
+            x0 = u.x - u.direction * 0.3  # track top near the roller's start
+            top = (x0, u.yc + 0.3)
+            d = (-u.direction * math.cos(beta), -math.sin(beta))
+            end = (top[0] + d[0] * c.track_length, top[1] + d[1] * c.track_length)
+            out.append((top, end, abs(u.x - app.start_x[i]), beta))
+        return out
 
     def cart_geometry(self) -> list[np.ndarray]:
         """World vertices ``(4, 2)`` of every cart box."""
         out = []
+        if self.apparatus is not None:
+            for top, end, s, _ in self._apparatus_carts():
+                dx, dy = end[0] - top[0], end[1] - top[1]
+                n = math.hypot(dx, dy) or 1.0
+                ux, uy = dx / n, dy / n
+                s = min(s, n)
+                cx, cy = top[0] + ux * s, top[1] + uy * s
+                w, h = 0.05, 0.02
+                px, py = -uy, ux
+                out.append(np.array([(cx + a * ux * w / 2 + b * px * h / 2,
+                                      cy + a * uy * w / 2 + b * py * h / 2)
+                                     for a, b in ((-1, -1), (1, -1), (1, 1), (-1, 1))]))
+            return out
         for c in self.carts:
             out.append(np.array([tuple(c.body.local_to_world(v)) for v in c.shape.get_vertices()]))
         return out
 
     def track_geometry(self) -> list[tuple[tuple[float, float], tuple[float, float]]]:
         """End points of every cart track."""
+        if self.apparatus is not None:
+            return [(top, end) for top, end, _, _ in self._apparatus_carts()]
         return [(c.track_start, c.track_end) for c in self.carts]
 
     def kinetic_energy(self) -> float:
@@ -325,6 +395,12 @@ class Simulation:
 
     def describe(self) -> str:
         """One line about the running level."""
+        app = self.apparatus
+        if app is not None:
+            return (f"{self.config.name or 'apparatus'} ({app.variant}): t={self.time:.3f} s, "
+                    f"{self.n_links} links of {self.chain.L * 1e3:.1f} mm, "
+                    f"v={app.speed:.2f} m/s (twice the pick-up roller speed), "
+                    f"H={app.H:g} m, xi2={self.config.apparatus.xi2:g}")
         r = self.reference
         pred = "" if r is None else f", predicted h={r.h:.3f} m, l={r.landing_x:.3f} m"
         return (f"{self.config.name or 'feed'}: t={self.time:.3f} s, {self.n_free} free links "
