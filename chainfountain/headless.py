@@ -128,7 +128,7 @@ def summarize(level: Level, sim: Simulation, rec: Recorder, duration: float,
             "k": ref.k,
             "v": ref.v,
             "T0_bar": ref.T0_bar,
-            "TE_bar": 0.0,
+            "TE_bar": ref.TE_bar,
             "rel_error": {
                 "h": _f(errs["vertex_y"]),
                 "vertex_x": _f(errs["vertex_x"]),
@@ -138,7 +138,7 @@ def summarize(level: Level, sim: Simulation, rec: Recorder, duration: float,
             },
             "abs_error": {
                 "T0_bar": _f(errs["T0_bar"]),
-                "TE_bar": _f(TE_bar),
+                "TE_bar": _f(TE_bar - ref.TE_bar),
                 "tension_rms": _f(s.tension_rms),
             },
         }

@@ -90,6 +90,11 @@ class FeedConfig:
     chain_length: float = param(
         0.0, unit="m", doc="Total chain length to feed; 0 = infinite feed", min=0.0, max=1e4,
     )
+    end_tension: float = param(
+        0.0, unit="1", doc="Scaled pull Tbar_E = T_E/(lambda*v^2) of the absorbing floor on the "
+        "chain end (0 = the end is free); the paper's floor reaction force", min=0.0, max=0.99,
+        live=True,
+    )
     floor: str = param(
         "absorbing", unit="", doc="Floor under the fountain: 'absorbing' removes landing links, "
         "'solid' is a static segment links land and pile on",

@@ -48,6 +48,8 @@ class Feed:
         self.absorbed = 0
         """Links removed by the absorbing floor so far."""
         self.floor_y = -float(cfg.drop)
+        self.end_force: tuple[float, float] | None = None
+        """World force the floor applied to the end link (link 0) in the last step."""
 
     # ------------------------------------------------------------------ geometry
     @property
@@ -166,6 +168,22 @@ class Feed:
         for j in range(self.n_guide):
             d = self.offset - (j + 0.5) * L
             links[n - self.n_guide + j].body.position = (d * ux, d * uy)
+
+    def before_step(self) -> None:
+        """Apply the floor's pull ``Tbar_E*lambda*v^2`` to the chain end (absorbing floor only).
+
+        The force acts at the downstream end of the end link, along that link
+        (downstream): the end tension of the paper's string model.
+        """
+        self.end_force = None
+        te = self.cfg.end_tension
+        if te <= 0.0 or self.cfg.floor != "absorbing" or self.n_free < 1:
+            return
+        body = self.chain.links[0].body
+        F = te * self.chain.cfg.linear_density * self.speed**2
+        body.apply_force_at_local_point((F, 0.0), (0.5 * self.chain.L, 0.0))
+        a = body.angle
+        self.end_force = (F * math.cos(a), F * math.sin(a))
 
     def _absorb(self) -> None:
         chain = self.chain

@@ -91,6 +91,11 @@ class Recorder:
                       lo.speed if lo else float("nan"))
             self._raw.append(("apparatus", sim.time, pre.velocity, post, contacts, roller))
             return
+        end_force = sim.feed.end_force
+        if end_force is not None:  # the floor's pull is an external force on link 0
+            if contacts is None:
+                contacts = np.zeros((len(post.angle), 2))
+            contacts[0] += np.asarray(end_force) * sim.dt
         self._raw.append((sim.time, n, sim.feed.speed, sim.feed.floor_y, pre.velocity, post,
                           contacts))
 

@@ -34,24 +34,18 @@ class LaunchReference:
     q: float
     h: float
     T0_bar: float
+    TE_bar: float = 0.0
 
     @classmethod
-    def from_launch(cls, v: float, alpha0: float, H: float, g: float = 9.81) -> LaunchReference:
-        """Closed-form prediction with zero end tension (``Tbar_E = 0``)."""
-        try:  # prefer the project's theory package when it is there
-            from chainfountain.theory import Fountain  # type: ignore[attr-defined]
+    def from_launch(cls, v: float, alpha0: float, H: float, g: float = 9.81,
+                    TE_bar: float = 0.0) -> LaunchReference:
+        """The paper's fountain for a launch at ``v``, ``alpha0`` with end tension ``TE_bar``
+        at the floor ``H`` below (:meth:`chainfountain.theory.Fountain.from_launch`)."""
+        from chainfountain.theory import Fountain
 
-            f = Fountain.from_launch(v=v, alpha0=alpha0, H=H, TE_bar=0.0, g=g)
-            return cls(v=v, alpha0=alpha0, H=H, g=g, k=float(f.k), q=float(f.q), h=float(f.h),
-                       T0_bar=float(f.T0_bar))
-        except (ImportError, AttributeError, TypeError):
-            pass
-        k = g / v**2
-        if k * H >= 1.0:
-            raise ValueError(f"no tensile fountain: k*H = {k * H:.3f} >= 1 (feed too slow)")
-        q = k / (math.cos(alpha0) * (1.0 - k * H))
-        h = (1.0 / math.cos(alpha0) - 1.0) / q
-        return cls(v=v, alpha0=alpha0, H=H, g=g, k=k, q=q, h=h, T0_bar=k * H)
+        f = Fountain.from_launch(v=v, alpha0=alpha0, H=H, TE_bar=TE_bar, g=g)
+        return cls(v=v, alpha0=alpha0, H=H, g=g, k=float(f.k), q=float(f.q), h=float(f.h),
+                   T0_bar=float(f.T0_bar), TE_bar=float(TE_bar))
 
     @property
     def x_rise(self) -> float:

@@ -79,7 +79,8 @@ class Simulation:
                       for c in cfg.carts]
         try:
             self.reference: LaunchReference | None = LaunchReference.from_launch(
-                cfg.feed.speed, cfg.feed.launch_angle, cfg.feed.drop, cfg.gravity)
+                cfg.feed.speed, cfg.feed.launch_angle, cfg.feed.drop, cfg.gravity,
+                TE_bar=cfg.feed.end_tension)
         except ValueError:
             self.reference = None
         self.feed = Feed(self.chain, cfg.feed)
@@ -140,6 +141,8 @@ class Simulation:
             pre = self.reader.read()
         if self.apparatus is not None:
             self.apparatus.before_step()
+        else:
+            self.feed.before_step()
         self.space.step(dt)
         self.steps += 1
         self.time = self.steps * dt
@@ -161,7 +164,8 @@ class Simulation:
         self.feed.set_speed(v)
         try:
             self.reference = LaunchReference.from_launch(
-                v, self.config.feed.launch_angle, self.config.feed.drop, self.g)
+                v, self.config.feed.launch_angle, self.config.feed.drop, self.g,
+                TE_bar=self.config.feed.end_tension)
         except ValueError:
             self.reference = None
 
@@ -190,6 +194,9 @@ class Simulation:
         if path == "feed.speed":
             self.set_feed_speed(v)
             self.config.feed.speed = v
+        elif path == "feed.end_tension":
+            self.config.feed.end_tension = v
+            self.set_feed_speed(self.config.feed.speed)  # recomputes the reference
         elif path == "chain.bending_stiffness":
             self.set_bending(stiffness=v)
         elif path == "chain.bending_damping":
