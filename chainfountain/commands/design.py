@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+from pathlib import Path
 
 from chainfountain.commands.args import number
 from chainfountain.errors import UserError
@@ -21,7 +22,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         description=(
             "Step 1: the free fountain for span --l, overshoot --h, drop --H at speed --v "
             "(or --k). Step 2: offsets xi2, xi3 and cart masses so that the paper's pulley "
-            "apparatus supplies its end tensions."
+            "apparatus supplies its end tensions. --out writes a fed level that generates the "
+            "fountain."
         ),
         allow_abbrev=False,
     )
@@ -46,6 +48,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="cart track angle in degrees (default 30)")
     p.add_argument("--g", type=number("gravity in m/s^2", min=0, min_inclusive=False),
                    default=G0)
+    p.add_argument("--out", type=Path, default=None, metavar="LEVEL.toml",
+                   help="write a level that generates the fountain (run/play accept it)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=run)
 
@@ -87,6 +91,10 @@ def run(args: argparse.Namespace) -> int:
     except ValueError as exc:
         raise UserError(str(exc)) from None
     out = design_dict(d)
+    if args.out is not None:
+        from chainfountain.design_level import write_design_level
+
+        out["level"] = str(write_design_level(d, args.out))
     if args.json:
         print(json.dumps(out, indent=2))
         return 0
@@ -106,4 +114,7 @@ def run(args: argparse.Namespace) -> int:
     for lab, a in d.alternatives:
         print(f"  {lab}: xi2 = {a.xi2:.4f}, xi3 = {a.xi3:.4f}, "
               f"Tbar_uc = {a.T_uc:.4f}, Tbar_lc = {a.T_lc:.4f}")
+    if "level" in out:
+        print(f"wrote {out['level']} (fed level: guide at v and alpha0, floor pulling with "
+              f"Tbar_E); try: chainfountain run {out['level']}")
     return 0

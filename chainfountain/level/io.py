@@ -36,7 +36,7 @@ import tomli_w
 from chainfountain import atomic
 from chainfountain.errors import UserError
 from chainfountain.level.fields import REQUIRED, allowed_text, in_range, param
-from chainfountain.sim.config import SimConfig
+from chainfountain.sim.config import KINDS, SimConfig
 
 SCHEMA_VERSION = 1
 _SKIP_TOP = frozenset({"name"})  # SimConfig.name mirrors meta.name
@@ -270,7 +270,13 @@ def to_mapping(obj: Any, skip: frozenset = frozenset()) -> dict[str, Any]:
 def dumps(level: Level) -> str:
     """TOML text of a level; :func:`loads` of it gives an equal level."""
     data: dict[str, Any] = {"schema_version": SCHEMA_VERSION}
-    sim_map = to_mapping(level.sim, skip=_SKIP_TOP)
+    skip = set(_SKIP_TOP)
+    defaults = SimConfig()
+    for kind in KINDS:  # a kind's own table is left out of other kinds' files while unused
+        if kind != level.sim.kind and hasattr(level.sim, kind) and \
+                getattr(level.sim, kind) == getattr(defaults, kind):
+            skip.add(kind)
+    sim_map = to_mapping(level.sim, skip=frozenset(skip))
     data.update({k: v for k, v in sim_map.items() if not isinstance(v, dict | list)})
     data["meta"] = to_mapping(level.meta)
     data.update({k: v for k, v in sim_map.items() if isinstance(v, dict | list)})
