@@ -48,6 +48,8 @@ class Feed:
         self.absorbed = 0
         """Links removed by the absorbing floor so far."""
         self.floor_y = -float(cfg.drop)
+        self.end_dir: tuple[float, float] = (0.0, -1.0)
+        """Unit direction of the floor's pull (the predicted landing tangent)."""
         self.end_force: tuple[float, float] | None = None
         """World force the floor applied to the end link (link 0) in the last step."""
 
@@ -169,11 +171,25 @@ class Feed:
             d = self.offset - (j + 0.5) * L
             links[n - self.n_guide + j].body.position = (d * ux, d * uy)
 
+    def aim_end_force(self, ref: LaunchReference | None) -> None:
+        """Point the floor's pull along the predicted landing tangent of ``ref``.
+
+        A dead load in a fixed direction: a force that turned with the end link
+        (a follower force) destabilises narrow fountains (measured: the paper's
+        fountain D flew apart), while in the steady state both coincide.
+        """
+        if ref is None:
+            self.end_dir = (0.0, -1.0)
+            return
+        c = 1.0 / (1.0 + ref.q * (ref.h + ref.H))  # cos(alpha_E), section "Inverted Catenary"
+        self.end_dir = (c, -math.sqrt(max(0.0, 1.0 - c * c)))
+
     def before_step(self) -> None:
         """Apply the floor's pull ``Tbar_E*lambda*v^2`` to the chain end (absorbing floor only).
 
-        The force acts at the downstream end of the end link, along that link
-        (downstream): the end tension of the paper's string model.
+        The force acts at the downstream end of the end link, along the
+        predicted landing direction (see :meth:`aim_end_force`): the end
+        tension of the paper's string model.
         """
         self.end_force = None
         te = self.cfg.end_tension
@@ -181,9 +197,9 @@ class Feed:
             return
         body = self.chain.links[0].body
         F = te * self.chain.cfg.linear_density * self.speed**2
-        body.apply_force_at_local_point((F, 0.0), (0.5 * self.chain.L, 0.0))
-        a = body.angle
-        self.end_force = (F * math.cos(a), F * math.sin(a))
+        fx, fy = F * self.end_dir[0], F * self.end_dir[1]
+        body.apply_force_at_world_point((fx, fy), body.local_to_world((0.5 * self.chain.L, 0.0)))
+        self.end_force = (fx, fy)
 
     def _absorb(self) -> None:
         chain = self.chain

@@ -85,6 +85,7 @@ class Simulation:
             self.reference = None
         self.feed = Feed(self.chain, cfg.feed)
         self.feed.initialise(cfg.initial, self.reference)
+        self.feed.aim_end_force(self.reference)
         self.reader = ChainReader(space, self.chain)
         self.time = 0.0
         self.steps = 0
@@ -168,6 +169,7 @@ class Simulation:
                 TE_bar=self.config.feed.end_tension)
         except ValueError:
             self.reference = None
+        self.feed.aim_end_force(self.reference)
 
     def set_bending(self, stiffness: float | None = None, damping: float | None = None) -> None:
         """Change the joint spring ``c`` (N*m/rad) and/or damper ``d`` (N*m*s/rad) live."""
@@ -312,6 +314,8 @@ class Simulation:
         with mode ``"none"``."""
         app = self.apparatus
         if app is not None:
+            if app.end_mode == "absorbing":
+                return -app.H, app.floor_span[0], app.floor_span[1], "absorbing"
             if app.floor is not None:
                 a, b = app.floor.a, app.floor.b
                 return -app.H, float(a.x), float(b.x), "solid"
