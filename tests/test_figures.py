@@ -22,7 +22,8 @@ def out(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, list[Path]]:
 def test_main_writes_all(out: tuple[Path, list[Path]]) -> None:
     d, written = out
     names = set(figures.FIGURES)
-    assert names == {"sol", "schematic_chain_fountain", "force_ranges", "sim_vs_theory"}
+    assert names == {"sol", "schematic_chain_fountain", "force_ranges", "sim_vs_theory",
+                     "apparatus"}
     expected = {d / f"{n}.{ext}" for n in names for ext in ("png", "svg", "txt")}
     assert set(written) == expected
     for p in expected:

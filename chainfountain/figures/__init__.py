@@ -17,6 +17,7 @@ from matplotlib.figure import Figure
 from tqdm import tqdm
 
 from chainfountain.figures._io import save_figure
+from chainfountain.figures.apparatus_design import fig_apparatus_paper
 from chainfountain.figures.hooks import fig_apparatus, fig_sim_vs_theory
 from chainfountain.figures.paper import (
     fig_force_ranges,
@@ -41,6 +42,7 @@ FIGURES: dict[str, Callable[[], tuple[Figure, str]]] = {
     "force_ranges": fig_force_ranges,
     "schematic_chain_fountain": fig_schematic_chain_fountain,
     "sim_vs_theory": fig_sim_vs_theory_run,
+    "apparatus": fig_apparatus_paper,
 }
 
 
