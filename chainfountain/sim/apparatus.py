@@ -65,6 +65,45 @@ PUTDOWN_BAR = 0.24
 """Measured put-down force at alpha = 0 over ``lambda*v**2`` with a forward push
 (``docs/apparatus.md``; paper: 1/2)."""
 
+PICKUP_RIG_2CM = ((2.4, 0.343), (2.9, 0.315), (3.3, 0.302))
+"""Pick-up force ``p`` at alpha = 0 against chain speed ``v`` (m/s) measured in the rig
+(:mod:`chainfountain.sim.pickup`) with the apparatus presets' chain (2 cm rod links,
+friction 0.6, 20 g roller) and solver (dt 0.25 ms, 10 iterations), 1.35 s averages;
+block standard error 0.003-0.007, run-to-run spread up to 0.017 (``docs/apparatus.md``).
+It falls with ``v`` (about ``0.28 + 0.0175 N/(lambda*v**2)``): a speed-independent
+rolling resistance on top of a nearly loss-free unfolding."""
+PICKUP_RIG_2CM_ERR = 0.018
+"""Uncertainty of :data:`PICKUP_RIG_2CM` (block s.e. and run-to-run spread combined)."""
+
+
+def pickup_rig_2cm(v: float) -> float:
+    """:data:`PICKUP_RIG_2CM` interpolated (clamped) at speed ``v``."""
+    vs, ps = zip(*PICKUP_RIG_2CM, strict=True)
+    return float(np.interp(v, vs, ps))
+
+
+def selected_speed(g: float, H: float, xi2: float, F_uc: float, lam: float,
+                   p: float | None = None) -> float:
+    """Speed a free-ended ('floor', Tbar_E = 0) apparatus selects.
+
+    Steady state needs the fountain's ``Tbar_0 = Tbar_E + k*H = k*H`` (paper Eq.
+    for the catenary tension, ``Tbar_0 - Tbar_E = k*H``) to equal the mechanism's
+    ``Tbar_0 = p + Tbar_uc + xi2*k*H`` (paper, apparatus section, with the pick-up
+    intercept ``p``; paper ``p = 1/2``), so ``k*H*(1 - xi2) = p + F_uc/(lambda*v**2)``:
+    ``v**2 = (g*H*(1 - xi2) - F_uc/lambda)/p``. With ``p=None`` the speed-dependent
+    rig law :func:`pickup_rig_2cm` is used (fixed point). nan if no positive root.
+    """
+    num = g * H * (1.0 - xi2) - F_uc / lam
+    if num <= 0:
+        return math.nan
+    if p is not None:
+        return math.sqrt(num / p)
+    v = math.sqrt(num / 0.3)
+    for _ in range(50):
+        v = math.sqrt(num / pickup_rig_2cm(v))
+    return v
+
+
 _WALL_R = 0.002
 """Radius of channel wall segments (m)."""
 _CLEAR = 0.0008
@@ -347,6 +386,8 @@ class Apparatus:
         xs = np.linspace(0.0, ex, 400)[1:]
         parts.append(np.column_stack((xs, f.h + f.y_of_x(xs - x_rise))))
         self.floor: pymunk.Segment | None = None
+        self.floor_span = (ex - 0.1, ex + 0.1)
+        """x range of the floor (drawing; 'floor' variant)."""
         self.lower: RollerUnit | None = None
         self.plate_lo: pymunk.Segment | None = None
         self.channel_lo: np.ndarray | None = None
@@ -354,8 +395,13 @@ class Apparatus:
         alphaE = math.atan(math.sinh(f.q * (ex - x_rise)))
         self.alphaE = alphaE
         s_lo_wrap = math.inf
-        if self.variant == "floor":
+        self.end_mode = a.end if self.variant == "floor" else "channel"
+        if self.end_mode == "absorbing":
             w = a.floor_width
+            self.floor_span = (ex - 0.3 * w, ex + 0.7 * w)
+        elif self.variant == "floor":
+            w = a.floor_width
+            self.floor_span = (ex - 0.3 * w, ex + 0.7 * w)
             self.floor = pymunk.Segment(space.static_body, (ex - 0.3 * w, -H - rho - 0.005),
                                         (ex + 0.7 * w, -H - rho - 0.005), 0.005)
             self.floor.friction = cfg.chain.friction
@@ -498,8 +544,15 @@ class Apparatus:
             chain.append(new)
             self.added += 1
             last = new.body
-        # downstream end: drop links that lie at rest
-        if self.variant == "floor":
+        # downstream end: absorb at the floor height / drop links that lie at rest
+        if self.end_mode == "absorbing":
+            # as chainfountain.sim.feed: remove the end link when its *centre* reaches the
+            # floor, so the free end (Tbar_E = 0) is on average exactly at -H
+            y_floor = -self.H
+            while len(links) > n_keep + 10 and links[0].body.position.y <= y_floor:
+                chain.pop_front()
+                self.absorbed += 1
+        elif self.variant == "floor":
             y_rest = -self.H + 0.02
             while len(links) > n_keep + 10 and links[0].body.position.y < y_rest and \
                     links[n_keep].body.position.y < y_rest:
@@ -592,7 +645,9 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
     gaps = np.linalg.norm(back[:-1] - front[1:], axis=1)
     d0 = np.hypot(J[:, 0], J[:, 1])
     j0 = int(np.argmin(d0))
-    if app.variant == "floor":
+    if app.end_mode == "absorbing":
+        jE = 0  # joint behind the end link: the free end (Tbar_E = 0) is one link ahead
+    elif app.variant == "floor":
         below = np.flatnonzero(J[:j0, 1] < -app.H + app.rho)
         jE = int(below[-1]) if len(below) else 0
     else:
@@ -671,9 +726,10 @@ def report(sim, rec, t0: float, t1: float) -> dict:
         Tbar_0 = p + Tbar_uc + xi2*k*H,     Tbar_E = d + Tbar_lc - xi3*k*H,
         steady: Tbar_uc = Tbar_lc + k*H*(1 - xi2 - xi3) + d - p.
 
-    The ``floor`` variant has ``Tbar_E`` from the floor (about 0), so its speed
-    follows from ``p + Tbar_uc + xi2*k*H = k*H + Tbar_E``:
-    ``v**2 = (g*H*(1 - xi2) - F_uc/lambda)/(p + Tbar_E)``.
+    The ``floor`` variant with ``end = "absorbing"`` has ``Tbar_E = 0``, so its
+    speed follows from ``p + Tbar_uc + xi2*k*H = k*H`` (:func:`selected_speed`),
+    reported under ``speed_selection`` for the paper's ``p = 1/2``, the 10-mm rig's
+    0.27 and the rig law for the presets' 2 cm links (:data:`PICKUP_RIG_2CM`).
     """
     app: Apparatus = sim.apparatus
     S = [s for s in rec.apparatus_samples if t0 - 1e-9 <= s.t <= t1 + 1e-9]
@@ -753,9 +809,26 @@ def report(sim, rec, t0: float, t1: float) -> dict:
         paper["TE_bar"] = law["TE_bar"] = 0.0 if app.variant == "floor" else None
         F_uc = app.upper.force
         for dct, pp in ((paper, 0.5), (law, PICKUP_BAR)):
-            v2 = (g * H * (1.0 - xi2) - F_uc / lam) / pp
-            dct["v_steady"] = math.sqrt(v2) if v2 > 0 else math.nan
-            dct["k_steady"] = g / v2 if v2 > 0 else math.nan
+            vs = selected_speed(g, H, xi2, F_uc, lam, pp)
+            dct["v_steady"] = vs
+            dct["k_steady"] = g / vs**2 if vs == vs else math.nan
+        if app.variant == "floor":
+            v_rig = selected_speed(g, H, xi2, F_uc, lam)
+            v_hi = selected_speed(g, H, xi2, F_uc, lam, pickup_rig_2cm(v_rig) - PICKUP_RIG_2CM_ERR)
+            v_lo = selected_speed(g, H, xi2, F_uc, lam, pickup_rig_2cm(v_rig) + PICKUP_RIG_2CM_ERR)
+            out["speed_selection"] = {
+                "end": app.end_mode,
+                "v_measured": v,
+                "v_paper_p_half": paper["v_steady"],
+                "v_p_0.27": law["v_steady"],
+                "v_rig_2cm": v_rig, "p_rig_2cm": pickup_rig_2cm(v_rig),
+                "v_rig_2cm_range": [v_lo, v_hi],
+                "rel_error_rig_2cm": v / v_rig - 1.0 if v_rig == v_rig else math.nan,
+                "rel_error_paper": v / paper["v_steady"] - 1.0
+                if paper["v_steady"] == paper["v_steady"] else math.nan,
+                "p_from_balance": T0 - xi2 * kH - uc,
+                "formula": "v^2 = (g*H*(1 - xi2) - F_uc/lambda)/p",
+            }
     out["predicted_paper"] = paper
     out["predicted_measured_laws"] = law
     return out

@@ -211,8 +211,11 @@ class ApparatusConfig:
     channel that lifts it ``xi2*H`` to the start at ``launch_angle``.
     Downstream, by ``variant``:
 
-    - ``"floor"`` (idealized beaker, real floor): the chain lands on a solid
-      floor at the fountain end height; its speed selects itself;
+    - ``"floor"`` (idealized beaker, real floor): the chain ends at the fountain
+      end height; with ``end = "absorbing"`` (default) links vanish there (free
+      end, ``Tbar_E = 0``) and the speed selects itself,
+      ``v**2 = (g*H*(1 - xi2) - F_uc/lambda)/p``; ``end = "solid"`` is a static
+      floor the chain piles on (it pushes back in the simulation);
     - ``"fold"`` (full arrangement): an end channel catches the chain at the
       fountain end, turns it and lifts it ``xi3*H`` onto a plate; a second
       roller folds it back to rest on a lower table;
@@ -276,6 +279,12 @@ class ApparatusConfig:
     )
     floor_width: float = param(4.0, unit="m", doc="Length of the floor ('floor' variant)",
                                min=0.1, max=100.0)
+    end: str = param(
+        "absorbing", unit="", doc="Floor of the 'floor' variant: 'absorbing' removes a link when "
+        "its centre reaches the floor height (free end, Tbar_E = 0, the paper's real floor "
+        "where chain elements just stop); 'solid': a static floor the chain piles on",
+        choices=("absorbing", "solid"),
+    )
     rest_links: int = param(
         20, unit="1", doc="Resting links kept in the solver ahead of the pick-up roller and "
         "behind the folding roller / on the floor (older ones leave the solver)", min=5,
