@@ -21,9 +21,10 @@ from typing import Any
 from chainfountain.level.fields import allowed_text
 
 CONTROL_PATTERNS: tuple[str, ...] = (
-    r"feed\.speed",
-    r"feed\.launch_angle",
-    r"feed\.drop",
+    r"(feed|apparatus)\.speed",
+    r"(feed|apparatus)\.launch_angle",
+    r"(feed|apparatus)\.drop",
+    r"feed\.end_tension",
     r"(.*\.)?xi2",
     r"(.*\.)?xi3",
     r"carts\[\d+\]\.mass",
@@ -41,6 +42,10 @@ LABELS: dict[str, str] = {
     "feed.speed": "launch speed v",
     "feed.launch_angle": "launch angle alpha0",
     "feed.drop": "drop H",
+    "feed.end_tension": "floor pull Tbar_E",
+    "apparatus.speed": "start speed v0",
+    "apparatus.launch_angle": "launch angle alpha0",
+    "apparatus.drop": "drop H",
     "chain.bending_stiffness": "bending stiffness c",
     "chain.bending_damping": "bending damping d",
     "chain.link_length": "link length",
@@ -276,8 +281,16 @@ def make_spec(path: str, tp: Any, meta: dict, current: float) -> FieldSpec:
 
 
 def control_fields(config: Any, patterns: tuple[str, ...] = CONTROL_PATTERNS) -> list[FieldSpec]:
-    """Specs for every field of ``config`` matching ``patterns``, in pattern order."""
-    fields = list(iter_numeric_fields(config))
+    """Specs for every field of ``config`` matching ``patterns``, in pattern order.
+
+    Sections that belong to another level kind (``apparatus.*`` in a feed
+    level, ``feed.*`` in an apparatus level) get no controls.
+    """
+    from chainfountain.sim.config import KINDS
+
+    kind = getattr(config, "kind", None)
+    other = tuple(f"{k}." for k in KINDS if k != kind)
+    fields = [f for f in iter_numeric_fields(config) if not f[0].startswith(other)]
     out: list[FieldSpec] = []
     seen: set[str] = set()
     for pat in patterns:
