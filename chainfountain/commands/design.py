@@ -8,11 +8,10 @@ import math
 from pathlib import Path
 
 from chainfountain.commands.args import number
+from chainfountain.commands.theory import add_fountain_args
 from chainfountain.errors import UserError
-from chainfountain.theory import G0, Fountain
+from chainfountain.theory import Fountain
 from chainfountain.theory.design import Design, DesignError, design
-
-LENGTH = "a length in m"
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -27,15 +26,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         ),
         allow_abbrev=False,
     )
-    p.add_argument("--l", type=number(LENGTH, min=0, min_inclusive=False), required=True,
-                   metavar="L", help="horizontal distance start to end (m)")
-    p.add_argument("--h", type=number(LENGTH, min=0), required=True, metavar="OVERSHOOT",
-                   help="height of the vertex above the start (m)")
-    p.add_argument("--H", type=number(LENGTH, min=0, min_inclusive=False), required=True,
-                   metavar="DROP", help="drop from the start to the end (m)")
-    speed = p.add_mutually_exclusive_group(required=True)
-    speed.add_argument("--k", type=number("k = g/v^2 in 1/m", min=0, min_inclusive=False))
-    speed.add_argument("--v", type=number("a speed in m/s", min=0, min_inclusive=False))
+    add_fountain_args(p, speed_required=True)
     p.add_argument("--xi2", type=number("an offset (fraction of H)", min=0), default=None,
                    help="beaker offset below the fountain start, as a fraction of H")
     p.add_argument("--xi3", type=number("an offset (fraction of H)", min=0), default=None,
@@ -46,8 +37,6 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--slope", type=number("a track angle in degrees", min=0, max=90,
                                           min_inclusive=False), default=30.0,
                    help="cart track angle in degrees (default 30)")
-    p.add_argument("--g", type=number("gravity in m/s^2", min=0, min_inclusive=False),
-                   default=G0)
     p.add_argument("--out", type=Path, default=None, metavar="LEVEL.toml",
                    help="write a level that generates the fountain (run/play accept it)")
     p.add_argument("--json", action="store_true", help="print one JSON object")

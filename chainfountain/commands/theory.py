@@ -14,6 +14,23 @@ from chainfountain.theory import G0, Fountain
 LENGTH = "a length in m"
 
 
+def add_fountain_args(p: argparse.ArgumentParser, *, speed_required: bool) -> None:
+    """The paper's fountain flags: ``--l --h --H``, ``--k`` or ``--v``, ``--g``."""
+    p.add_argument("--l", type=number(LENGTH, min=0, min_inclusive=False), required=True,
+                   metavar="L", help="horizontal distance start to end (m)")
+    p.add_argument("--h", type=number(LENGTH, min=0), required=True, metavar="OVERSHOOT",
+                   help="height of the vertex above the start (m)")
+    p.add_argument("--H", type=number(LENGTH, min=0, min_inclusive=False), required=True,
+                   metavar="DROP", help="drop from the start to the end (m)")
+    speed = p.add_mutually_exclusive_group(required=speed_required)
+    speed.add_argument("--k", type=number("k = g/v^2 in 1/m", min=0, min_inclusive=False),
+                       help="k = g/v^2 (1/m)")
+    speed.add_argument("--v", type=number("a speed in m/s", min=0, min_inclusive=False),
+                       help="chain speed (m/s)")
+    p.add_argument("--g", type=number("gravity in m/s^2", min=0, min_inclusive=False),
+                   default=G0, help=f"gravitational acceleration (default {G0})")
+
+
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "theory",
@@ -25,19 +42,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         ),
         allow_abbrev=False,
     )
-    p.add_argument("--l", type=number(LENGTH, min=0, min_inclusive=False), required=True,
-                   metavar="L", help="horizontal distance start to end (m)")
-    p.add_argument("--h", type=number(LENGTH, min=0), required=True, metavar="OVERSHOOT",
-                   help="height of the vertex above the start (m)")
-    p.add_argument("--H", type=number(LENGTH, min=0, min_inclusive=False), required=True,
-                   metavar="DROP", help="drop from the start to the end (m)")
-    speed = p.add_mutually_exclusive_group()
-    speed.add_argument("--k", type=number("k = g/v^2 in 1/m", min=0, min_inclusive=False),
-                       help="k = g/v^2 (1/m)")
-    speed.add_argument("--v", type=number("a speed in m/s", min=0, min_inclusive=False),
-                       help="chain speed (m/s)")
-    p.add_argument("--g", type=number("gravity in m/s^2", min=0, min_inclusive=False),
-                   default=G0, help=f"gravitational acceleration (default {G0})")
+    add_fountain_args(p, speed_required=False)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=run)
 
