@@ -49,6 +49,7 @@ Heights: ``y_up = -xi2*H`` (chain centre line on top of the upper roller),
 from __future__ import annotations
 
 import math
+from collections import deque
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -65,42 +66,44 @@ PUTDOWN_BAR = 0.24
 """Measured put-down force at alpha = 0 over ``lambda*v**2`` with a forward push
 (``docs/apparatus.md``; paper: 1/2)."""
 
-PICKUP_RIG_2CM = ((2.4, 0.343), (2.9, 0.315), (3.3, 0.302))
-"""Pick-up force ``p`` at alpha = 0 against chain speed ``v`` (m/s) measured in the rig
+PICKUP_RIG_2CM = ((2.6, 0.331), (2.9, 0.315))
+"""Pick-up force ``p`` at alpha = 0 against chain speed ``v`` (m/s), measured in the rig
 (:mod:`chainfountain.sim.pickup`) with the apparatus presets' chain (2 cm rod links,
-friction 0.6, 20 g roller) and solver (dt 0.25 ms, 10 iterations), 1.35 s averages;
-block standard error 0.003-0.007, run-to-run spread up to 0.017 (``docs/apparatus.md``).
-It falls with ``v`` (about ``0.28 + 0.0175 N/(lambda*v**2)``): a speed-independent
-rolling resistance on top of a nearly loss-free unfolding."""
-PICKUP_RIG_2CM_ERR = 0.018
-"""Uncertainty of :data:`PICKUP_RIG_2CM` (block s.e. and run-to-run spread combined)."""
+friction 0.6, 20 g roller, dt 0.25 ms, 10 iterations, 2.1-s averages, cart forces
+0-0.3 ``lambda*v**2``; ``docs/apparatus.md``); linear in ``v`` in between and beyond."""
+PICKUP_RIG_2CM_ERR = 0.005
+"""Standard uncertainty of :data:`PICKUP_RIG_2CM` (fit, chi2/dof 1.16)."""
+CART_GAIN_2CM = 0.68
+"""Rise of the pick-up exit tension per unit cart force in the same rig fit
+(10-mm links at 5 m/s: 1.0; the paper: 1)."""
+CART_GAIN_2CM_ERR = 0.021
 
 
 def pickup_rig_2cm(v: float) -> float:
-    """:data:`PICKUP_RIG_2CM` interpolated (clamped) at speed ``v``."""
-    vs, ps = zip(*PICKUP_RIG_2CM, strict=True)
-    return float(np.interp(v, vs, ps))
+    """:data:`PICKUP_RIG_2CM` at speed ``v`` (linear through the two points)."""
+    (v0, p0), (v1, p1) = PICKUP_RIG_2CM
+    return p0 + (p1 - p0) * (v - v0) / (v1 - v0)
 
 
 def selected_speed(g: float, H: float, xi2: float, F_uc: float, lam: float,
-                   p: float | None = None) -> float:
+                   p: float | None = None, gain: float = 1.0, dp: float = 0.0) -> float:
     """Speed a free-ended ('floor', Tbar_E = 0) apparatus selects.
 
-    Steady state needs the fountain's ``Tbar_0 = Tbar_E + k*H = k*H`` (paper Eq.
-    for the catenary tension, ``Tbar_0 - Tbar_E = k*H``) to equal the mechanism's
-    ``Tbar_0 = p + Tbar_uc + xi2*k*H`` (paper, apparatus section, with the pick-up
-    intercept ``p``; paper ``p = 1/2``), so ``k*H*(1 - xi2) = p + F_uc/(lambda*v**2)``:
-    ``v**2 = (g*H*(1 - xi2) - F_uc/lambda)/p``. With ``p=None`` the speed-dependent
-    rig law :func:`pickup_rig_2cm` is used (fixed point). nan if no positive root.
+    Steady state needs the fountain's ``Tbar_0 = Tbar_E + k*H = k*H`` (paper: along
+    the catenary ``Tbar_0 - Tbar_E = k*H``) to equal the mechanism's
+    ``Tbar_0 = p + G*Tbar_uc + xi2*k*H`` (paper, apparatus section, with the pick-up
+    intercept ``p`` and cart gain ``G``; paper ``p = 1/2``, ``G = 1``), so
+    ``v**2 = (g*H*(1 - xi2) - G*F_uc/lambda)/p``. With ``p=None`` the rig law
+    :func:`pickup_rig_2cm` ``+ dp`` is used (fixed point). nan if no positive root.
     """
-    num = g * H * (1.0 - xi2) - F_uc / lam
+    num = g * H * (1.0 - xi2) - gain * F_uc / lam
     if num <= 0:
         return math.nan
     if p is not None:
         return math.sqrt(num / p)
     v = math.sqrt(num / 0.3)
-    for _ in range(50):
-        v = math.sqrt(num / pickup_rig_2cm(v))
+    for _ in range(60):
+        v = math.sqrt(num / (pickup_rig_2cm(v) + dp))
     return v
 
 
@@ -363,7 +366,12 @@ class Apparatus:
                                        (self.x_plate_up_end, self.y_up - rho - 0.002), 0.002)
         self.plate_up.friction = 0.0
         self.plate_up.filter = _ONLY_CHAIN
-        space.add(self.plate_up)
+        self.plate_mode = a.plate
+        if self.plate_mode == "contact":
+            space.add(self.plate_up)
+        self._grooves: deque[tuple[Link, pymunk.GrooveJoint]] = deque()
+        self._g_next = -1
+        """Chain index of the next link to put into a plate groove (``plate = "groove"``)."""
         self.walls: list[pymunk.Segment] = []
         off = rho + _CLEAR + _WALL_R
         ch = Channel(ch_pts)
@@ -462,6 +470,8 @@ class Apparatus:
         self._lay(pts, s, s_wrap0, s_wrap1, s_lo_wrap, v0, vR, R)
         self.start_x = (self.upper.x, self.lower.x if self.lower is not None else 0.0)
         self._sync_plates()
+        if self.plate_mode == "groove":
+            self._init_grooves()
 
     # ------------------------------------------------------------------ layout
     def _lay(self, pts: np.ndarray, s: np.ndarray, s_w0: float, s_w1: float, s_lw: float,
@@ -545,6 +555,7 @@ class Apparatus:
             self.added += 1
             last = new.body
         # downstream end: absorb at the floor height / drop links that lie at rest
+        popped = 0
         if self.end_mode == "absorbing":
             # as chainfountain.sim.feed: remove the end link when its *centre* reaches the
             # floor, so the free end (Tbar_E = 0) is on average exactly at -H
@@ -552,12 +563,14 @@ class Apparatus:
             while len(links) > n_keep + 10 and links[0].body.position.y <= y_floor:
                 chain.pop_front()
                 self.absorbed += 1
+                popped += 1
         elif self.variant == "floor":
             y_rest = -self.H + 0.02
             while len(links) > n_keep + 10 and links[0].body.position.y < y_rest and \
                     links[n_keep].body.position.y < y_rest:
                 chain.pop_front()
                 self.absorbed += 1
+                popped += 1
         elif self.lower is not None:
             x_lim = self.lower.x - 2.0 * self.r - n_keep * L
             y_rest = self.y_table_lo + 2.0 * self.rho
@@ -567,6 +580,60 @@ class Apparatus:
                 self.lo_tail.append((float(b.x), float(b.y)))
                 chain.pop_front()
                 self.absorbed += 1
+                popped += 1
+        if self.plate_mode == "groove":
+            self._update_grooves(popped)
+
+    # ------------------------------------------------------------------ plate grooves
+    def _on_plate(self, body: pymunk.Body) -> bool:
+        """Is a link centre on the upper plate line, clear of the roller wrap?"""
+        p = body.position
+        return (self.upper.x + self.L < p.x < self.x_plate_up_end
+                and abs(p.y - self.y_up) < 0.5 * self.rho)
+
+    def _groove(self, link: Link) -> None:
+        body = link.body
+        j = pymunk.GrooveJoint(self.space.static_body, body,
+                               (self.upper.x - 1.0, self.y_up),
+                               (self.x_plate_up_end + 0.2, self.y_up), (0.0, 0.0))
+        j.error_bias = self.sim_cfg.solver.joint_error_bias
+        self.space.add(j)
+        if link.shape is not None:  # nothing to touch on the plate: out of the broadphase
+            self.space.remove(link.shape)
+        self._grooves.append((link, j))
+
+    def _init_grooves(self) -> None:
+        links = self.chain.links
+        on = [i for i, lk in enumerate(links) if self._on_plate(lk.body)]
+        if on:
+            i0, i1 = on[0], on[-1]
+            for i in range(i0, i1 + 1):
+                self._groove(links[i])
+            self._g_next = i1 + 1
+        else:  # nothing on the plate yet: the first link off the roller's top comes next
+            self._g_next = max(i for i, lk in enumerate(links)
+                               if lk.body.position.x > self.upper.x) + 1
+
+    def _update_grooves(self, popped: int) -> None:
+        """``plate = "groove"``: the strand on the upper plate runs in a frictionless
+        groove joint per link (link centre on the line ``y = y_up``) instead of one
+        contact per link: same normal force (the strand is straight and horizontal,
+        the plate carries its weight), two-sided, and much cheaper. A link gets its
+        groove when it leaves the roller's wrap onto the plate line and loses it in
+        the horizontal lead of the upper channel. Grooved links leave the collision
+        broadphase (their shapes are removed and put back)."""
+        links = self.chain.links
+        self._g_next -= popped
+        g = self._grooves
+        lim = self.x_plate_up_end + 0.02
+        while g and g[0][0].body.position.x > lim:
+            link, j = g.popleft()
+            self.space.remove(j)
+            if link.shape is not None:
+                self.space.add(link.shape)
+        while 0 <= self._g_next < len(links) and self._on_plate(links[self._g_next].body):
+            self._groove(links[self._g_next])
+            self._g_next += 1
 
     def _sync_plates(self) -> None:
         L, rho = self.L, self.rho
@@ -574,7 +641,8 @@ class Apparatus:
         x = self.upper.x + 0.5 * L
         if abs(a.x - x) > 1e-4:
             self.plate_up.unsafe_set_endpoints((x, a.y), b)
-            self.space.reindex_shape(self.plate_up)
+            if self.plate_up.space is not None:
+                self.space.reindex_shape(self.plate_up)
         if self.lower is not None and self.plate_lo is not None:
             a, b = self.plate_lo.a, self.plate_lo.b
             x = self.lower.x - 0.5 * L
@@ -666,7 +734,13 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
         return float(np.mean(ten[lo:hi])) / scale
 
     xu, vu, xl, vl = roller
-    T_up = at(xu + 6 * L, app.y_up)
+    if app.plate_mode == "groove":
+        # the grooves' vertical impulses are not in ``contacts``: on the horizontal
+        # plate the tension is the horizontal joint force alone (grooves add none)
+        k = int(np.argmin(np.hypot(J[:, 0] - xu - 6 * L, J[:, 1] - app.y_up)))
+        T_up = float(np.mean(-F[max(k - 2, 0):min(k + 3, len(F)), 0])) / scale
+    else:
+        T_up = at(xu + 6 * L, app.y_up)
     T_lo = at(xl - 6 * L, app.y_lo) if app.lower is not None else math.nan
     flight = J[jE:j0 + 1]
     xv, yv = vertex_of(flight[::-1]) if len(flight) > 2 else (math.nan, math.nan)
@@ -729,7 +803,8 @@ def report(sim, rec, t0: float, t1: float) -> dict:
     The ``floor`` variant with ``end = "absorbing"`` has ``Tbar_E = 0``, so its
     speed follows from ``p + Tbar_uc + xi2*k*H = k*H`` (:func:`selected_speed`),
     reported under ``speed_selection`` for the paper's ``p = 1/2``, the 10-mm rig's
-    0.27 and the rig law for the presets' 2 cm links (:data:`PICKUP_RIG_2CM`).
+    0.27 (cart gain 1) and the rig law for the presets' 2 cm links
+    (:data:`PICKUP_RIG_2CM`, :data:`CART_GAIN_2CM`).
     """
     app: Apparatus = sim.apparatus
     S = [s for s in rec.apparatus_samples if t0 - 1e-9 <= s.t <= t1 + 1e-9]
@@ -813,21 +888,24 @@ def report(sim, rec, t0: float, t1: float) -> dict:
             dct["v_steady"] = vs
             dct["k_steady"] = g / vs**2 if vs == vs else math.nan
         if app.variant == "floor":
-            v_rig = selected_speed(g, H, xi2, F_uc, lam)
-            v_hi = selected_speed(g, H, xi2, F_uc, lam, pickup_rig_2cm(v_rig) - PICKUP_RIG_2CM_ERR)
-            v_lo = selected_speed(g, H, xi2, F_uc, lam, pickup_rig_2cm(v_rig) + PICKUP_RIG_2CM_ERR)
+            G, dG, dp = CART_GAIN_2CM, CART_GAIN_2CM_ERR, PICKUP_RIG_2CM_ERR
+            v_rig = selected_speed(g, H, xi2, F_uc, lam, gain=G)
+            # standard uncertainty of v_rig from those of p and G (added in quadrature)
+            sv_p = abs(selected_speed(g, H, xi2, F_uc, lam, gain=G, dp=dp) - v_rig)
+            sv_g = abs(selected_speed(g, H, xi2, F_uc, lam, gain=G + dG) - v_rig)
+            sigma = math.hypot(sv_p, sv_g)
             out["speed_selection"] = {
                 "end": app.end_mode,
                 "v_measured": v,
                 "v_paper_p_half": paper["v_steady"],
-                "v_p_0.27": law["v_steady"],
-                "v_rig_2cm": v_rig, "p_rig_2cm": pickup_rig_2cm(v_rig),
-                "v_rig_2cm_range": [v_lo, v_hi],
+                "v_p_0.27_gain_1": law["v_steady"],
+                "v_rig_2cm": v_rig, "p_rig_2cm": pickup_rig_2cm(v_rig), "gain_rig_2cm": G,
+                "v_rig_2cm_sigma": sigma,
                 "rel_error_rig_2cm": v / v_rig - 1.0 if v_rig == v_rig else math.nan,
                 "rel_error_paper": v / paper["v_steady"] - 1.0
                 if paper["v_steady"] == paper["v_steady"] else math.nan,
-                "p_from_balance": T0 - xi2 * kH - uc,
-                "formula": "v^2 = (g*H*(1 - xi2) - F_uc/lambda)/p",
+                "p_from_balance": T0 - xi2 * kH - G * uc,
+                "formula": "v^2 = (g*H*(1 - xi2) - G*F_uc/lambda)/p",
             }
     out["predicted_paper"] = paper
     out["predicted_measured_laws"] = law

@@ -285,6 +285,12 @@ class ApparatusConfig:
         "where chain elements just stop); 'solid': a static floor the chain piles on",
         choices=("absorbing", "solid"),
     )
+    plate: str = param(
+        "groove", unit="", doc="Upper plate (roller to channel): 'groove' holds each link centre "
+        "on the plate line with a frictionless groove joint (two-sided, cheap); 'contact' is a "
+        "frictionless static segment the strand slides on (one contact per link)",
+        choices=("groove", "contact"),
+    )
     rest_links: int = param(
         20, unit="1", doc="Resting links kept in the solver ahead of the pick-up roller and "
         "behind the folding roller / on the floor (older ones leave the solver)", min=5,
