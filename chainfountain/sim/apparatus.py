@@ -524,6 +524,20 @@ class Apparatus:
         """Chain speed: twice the pick-up roller speed (paper: ``v_R = v/2`` at alpha = 0)."""
         return 2.0 * abs(self.upper.speed)
 
+    @property
+    def strand_speed(self) -> float:
+        """Mean speed of the links in the plate grooves (m/s): the straight strand moves
+        rigidly, so this is the cleanest reading of the chain speed (nan without grooves)."""
+        g = self._grooves
+        if not g:
+            return math.nan
+        return float(sum(lk.body.velocity.x for lk, _ in g) / len(g))
+
+    def moving_mass(self, v_min: float = 1.0) -> float:
+        """Mass of the links moving faster than ``v_min`` (kg)."""
+        n = sum(1 for lk in self.chain.links if lk.body.velocity.length > v_min)
+        return n * self.chain.mass
+
     def set_speed(self, v: float) -> None:
         raise KeyError("the apparatus has no feed speed: its speed follows from the carts")
 
