@@ -109,6 +109,8 @@ def selected_speed(g: float, H: float, xi2: float, F_uc: float, lam: float,
 
 _WALL_R = 0.002
 """Radius of channel wall segments (m)."""
+_FUNNEL = (0.06, 0.02)
+"""Length and half-opening (m) of the funnel before the end channel's mouth."""
 _CLEAR = 0.0008
 """Clearance between a link capsule and each channel wall (m)."""
 _ONLY_CHAIN = pymunk.ShapeFilter(categories=SCENERY_CATEGORY, mask=CHAIN_CATEGORY)
@@ -420,8 +422,13 @@ class Apparatus:
             lead = 0.1
             cp, self.i_end = end_channel(ex, -H, alphaE, rise, a.channel_radius, lead, step)
             self.channel_lo = cp
-            for wl in Channel(cp).walls(off):
-                self.walls += _static_polyline(space, wl, _WALL_R)
+            # funnel before the mouth: the landing angle wanders by a few degrees and a
+            # link arriving on a blunt wall end jams the chain (seen in 'open' runs)
+            t0 = (cp[1] - cp[0]) / np.linalg.norm(cp[1] - cp[0])
+            n0 = np.array([-t0[1], t0[0]])
+            for wl, side in zip(Channel(cp).walls(off), (1.0, -1.0), strict=True):
+                flare = wl[0] - _FUNNEL[0] * t0 + side * _FUNNEL[1] * n0
+                self.walls += _static_polyline(space, np.vstack((flare, wl)), _WALL_R)
             self.y_lo = float(cp[-1, 1])
             xl = float(cp[-1, 0])
             self.x_plate_lo_start = xl
