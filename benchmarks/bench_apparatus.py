@@ -1,24 +1,33 @@
 """Speed of the apparatus presets: real-time factor, links, steps per second.
 
-    .venv/bin/python benchmarks/bench_apparatus.py [--seconds 2]
+    .venv/bin/python benchmarks/bench_apparatus.py [--seconds 6]
+    .venv/bin/python benchmarks/bench_apparatus.py --figure docs/img/apparatus_floor.png
+
+``--figure`` instead runs the two floor presets (6 s and 5 s, about 15 s of wall
+time) and draws the chain speed against time with the selected-speed
+predictions (rig law for these links, paper ``p = 1/2``), and the last fountain
+of ``apparatus_floor`` against the inverted catenary through its measured ends
+(paper Eq. of the catenary, launch at ``alpha0``).
 """
 
 from __future__ import annotations
 
 import argparse
+import math
 import time
 from pathlib import Path
 
+import numpy as np
+
 from chainfountain.level import io
-from chainfountain.sim import Simulation
+from chainfountain.sim import Recorder, Simulation
+from chainfountain.sim.apparatus import catenary_through, report
 
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__)
-    ap.add_argument("--seconds", type=float, default=2.0, help="simulated seconds per preset")
-    args = ap.parse_args()
+def bench(seconds: float) -> None:
+    """Markdown table of the real-time factor of every apparatus preset."""
     print("| preset | links (start/end) | steps/s | real-time factor |")
     print("|---|---|---|---|")
     for path in sorted((ROOT / "levels").glob("apparatus_*.toml")):
@@ -26,10 +35,79 @@ def main() -> None:
         sim = Simulation(lvl.sim)
         n0 = sim.n_links
         t0 = time.perf_counter()
-        steps = sim.advance(args.seconds)
+        steps = sim.advance(seconds)
         wall = time.perf_counter() - t0
         print(f"| {path.stem} | {n0}/{sim.n_links} | {steps / wall:.0f} | "
-              f"{args.seconds / wall:.2f} |")
+              f"{seconds / wall:.2f} |")
+
+
+def figure(out: Path) -> None:
+    """Speed selection of the two floor presets and the fountain against the catenary."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4.2))
+    shape = None
+    for name, T, col in (("apparatus_floor", 6.0, "C0"), ("apparatus_floor_heavy", 5.0, "C3")):
+        lvl = io.load(ROOT / "levels" / f"{name}.toml")
+        sim = Simulation(lvl.sim)
+        rec = Recorder(sim, profiles=False)
+        app = sim.apparatus
+        t, v = [], []
+        for _ in range(int(round(T / 0.01))):
+            sim.advance(0.01)
+            t.append(sim.time)
+            v.append(app.strand_speed)
+        rep = report(sim, rec, 3.0, T)
+        sel = rep["speed_selection"]
+        m_cart = lvl.sim.carts[0].mass * 1e3
+        ax.plot(t, v, color=col, label=f"{m_cart:.0f} g cart: measured {sel['v_measured']:.2f}")
+        vr, sv = sel["v_rig_2cm"], sel["v_rig_2cm_sigma"]
+        ax.axhspan(vr - 2 * sv, vr + 2 * sv, color=col, alpha=0.15)
+        ax.axhline(vr, color=col, ls="--", lw=1, label=f"rig law {vr:.2f} +- 2 sigma")
+        ax.axhline(sel["v_paper_p_half"], color=col, ls=":", lw=1,
+                   label=f"paper p = 1/2: {sel['v_paper_p_half']:.2f}")
+        if shape is None:
+            st = sim.state()
+            P = st.position
+            fl = (P[:, 0] > 0.0) & (P[:, 1] > -app.H)
+            m = rep["measured"]
+            shape = (P[fl], m["end"], app.alpha0)
+    ax.set_xlabel("t (s)")
+    ax.set_ylabel("chain speed on the plate (m/s)")
+    ax.set_ylim(1.9, 3.2)
+    ax.legend(fontsize=7, loc="lower right", ncol=2)
+    ax.set_title("free end (absorbing floor): the speed selects itself")
+    pts, end, a0 = shape
+    q = catenary_through(a0, tuple(end))
+    h = (1.0 / math.cos(a0) - 1.0) / q
+    xr = math.acosh(1.0 + q * h) / q
+    xs = np.linspace(0.0, end[0], 200)
+    bx.plot(pts[:, 0], pts[:, 1], ".", ms=3, label="links (t = 6 s)")
+    bx.plot(xs, h + (1.0 - np.cosh(q * (xs - xr))) / q, "k-", lw=1,
+            label="catenary through the measured ends")
+    bx.set_aspect("equal")
+    bx.set_xlabel("x (m)")
+    bx.set_ylabel("y (m)")
+    bx.legend(fontsize=7, loc="lower left")
+    bx.set_title("apparatus_floor: fountain (start at 0, 0)")
+    fig.tight_layout()
+    out.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(out, dpi=90)
+    print(f"wrote {out}")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__)
+    ap.add_argument("--seconds", type=float, default=6.0, help="simulated seconds per preset")
+    ap.add_argument("--figure", type=Path, default=None, help="draw the speed-selection figure")
+    args = ap.parse_args()
+    if args.figure is not None:
+        figure(args.figure)
+    else:
+        bench(args.seconds)
 
 
 if __name__ == "__main__":
