@@ -5,8 +5,9 @@
 "Generating Steady-State Chain Fountains", free end ``Tbar_E = 0``):
 ``v**2 = (g*H*(1 - xi2) - G*F_uc/lambda)/p``. What is asserted is what the
 simulation does (``docs/apparatus.md``): the heavy cart selects a clearly lower
-speed, slightly below the rig-law prediction (``p(v)``, ``G = 0.68`` for these
-links: 2.74 m/s); the paper's ``p = 1/2, G = 1`` gives 1.98 m/s.
+speed, steady, within two standard uncertainties of the rig-law prediction
+(``p(v)``, ``G = 0.68`` for these links: 2.74 m/s; measured 2.73); the paper's
+``p = 1/2, G = 1`` gives 1.98 m/s.
 """
 
 from __future__ import annotations
@@ -33,19 +34,18 @@ def rep():
 
 def test_heavier_cart_selects_a_lower_speed(rep) -> None:
     sel = rep["speed_selection"]
-    assert sel["v_measured"] < 2.93 - 0.2  # light preset: 2.93 m/s
+    assert sel["v_measured"] < 2.93 - 0.15  # light preset: 2.93 m/s; measured 2.73
     assert sel["v_measured"] > sel["v_paper_p_half"] * 1.2  # paper p = 1/2: far too slow
 
 
-def test_heavy_cart_near_the_rig_law(rep) -> None:
-    """Measured law: 0-4 % below the rig-law prediction (2.74 m/s; still creeping up)."""
-    assert -0.04 < rep["speed_selection"]["rel_error_rig_2cm"] < 0.0
+def test_heavy_cart_steady_within_two_sigma_of_the_rig_law(rep) -> None:
+    sel = rep["speed_selection"]
+    assert abs(rep["measured"]["speed_drift_per_s"]) <= 0.01
+    assert abs(sel["v_measured"] - sel["v_rig_2cm"]) <= 2.0 * sel["v_rig_2cm_sigma"]
 
 
 def test_heavy_cart_free_end(rep) -> None:
     m = rep["measured"]
     assert 0.0 <= m["TE_bar"] < 0.05
     assert 0.5 < m["T0_bar"] < 1.0
-    # not as steady as the 9 g preset: the low fountain breathes (vertex 15-40 % above
-    # the catenary through the ends) and Tbar_0 - Tbar_E falls about 0.05 short of k*H
-    assert m["T0_bar"] - m["TE_bar"] == pytest.approx(m["kH"], abs=0.08)
+    assert m["T0_bar"] - m["TE_bar"] == pytest.approx(m["kH"], abs=0.03)
