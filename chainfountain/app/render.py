@@ -110,7 +110,7 @@ class Camera:
 
 def scene_bounds(sim: Simulation, readout: Readout | None) -> tuple[float, float, float, float]:
     """World box that shows launch point, fountain, floor, rollers and carts."""
-    H = float(sim.config.feed.drop)
+    H = sim.drop
     xs = [-0.25, 0.3]
     ys = [-H - 0.05, 0.3]
     ref = sim.reference
@@ -120,6 +120,10 @@ def scene_bounds(sim: Simulation, readout: Readout | None) -> tuple[float, float
     if readout is not None and readout.curve is not None and len(readout.curve):
         xs += [float(readout.curve[:, 0].max()) + 0.1]
         ys += [float(readout.curve[:, 1].max()) + 0.1]
+    pts = sim.chain_polyline()
+    if len(pts):
+        xs += [float(pts[:, 0].max()) + 0.2]
+        ys += [float(pts[:, 1].max()) + 0.15]
     for x, y, r, _ in sim.roller_geometry():
         xs += [x - r, x + r]
         ys += [y - r, y + r]
@@ -255,7 +259,8 @@ def _draw_guide(surf: pygame.Surface, cam: Camera, sim: Simulation) -> None:
     box.center = c
     pygame.draw.rect(surf, (70, 75, 90), box, 0, 3)
     pygame.draw.rect(surf, GUIDE, box, 1, 3)
-    lbl = font(16).render(f"feed {sim.feed.speed:.2f} m/s", True, GUIDE)
+    what = "start" if getattr(sim, "apparatus", None) is not None else "feed"
+    lbl = font(16).render(f"{what} {sim.feed.speed:.2f} m/s", True, GUIDE)
     x = box.left - lbl.get_width() - 4
     if x < cam.rect.left + 2:  # no room on the left: put it below the motor box
         surf.blit(lbl, (box.left, box.bottom + 2))

@@ -451,13 +451,13 @@ class Session:
 
         sim = self.sim
         cfg = sim.config
-        H = float(cfg.feed.drop)
+        H = sim.drop
         g = float(cfg.gravity)
         r = Readout(t=sim.time, H=H)
         hist = self.history.arrays()
         t = hist["t"]
         avg_span = 0.25
-        landed = sim.feed.absorbed > 0 or cfg.feed.floor != "absorbing"
+        landed = sim.feed.absorbed > 0 or sim.floor_geometry()[3] != "absorbing"
         if len(t) >= 3 and sim.n_free >= 8 and landed:
             sel = t >= t[-1] - avg_span
             v = float(np.nanmean(hist["speed"][sel]))

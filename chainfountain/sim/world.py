@@ -307,6 +307,13 @@ class Simulation:
         """Launch point and unit launch direction."""
         return (0.0, 0.0), self.feed.u
 
+    @property
+    def drop(self) -> float:
+        """The fountain's drop ``H`` (m): ``apparatus.drop`` or ``feed.drop`` by level kind."""
+        if self.apparatus is not None:
+            return float(self.apparatus.H)
+        return float(self.config.feed.drop)
+
     def floor_geometry(self) -> tuple[float, float, float, str]:
         """``(y, x0, x1, mode)`` of the floor; for an absorbing floor x0/x1 span the scene.
 
