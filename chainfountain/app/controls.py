@@ -18,7 +18,7 @@ import typing
 from dataclasses import dataclass
 from typing import Any
 
-from chainfountain.level.fields import allowed_text
+from chainfountain.level.fields import allowed_text, tuple_item_type
 
 CONTROL_PATTERNS: tuple[str, ...] = (
     r"(feed|apparatus)\.speed",
@@ -95,14 +95,6 @@ def set_value(config: Any, path: str, value: Any) -> None:
     setattr(obj, name, value)
 
 
-def _tuple_item(tp: Any) -> Any | None:
-    if typing.get_origin(tp) is tuple:
-        args = typing.get_args(tp)
-        if len(args) == 2 and args[1] is Ellipsis:
-            return args[0]
-    return None
-
-
 def iter_numeric_fields(obj: Any, prefix: str = "") -> typing.Iterator[tuple[str, Any, dict]]:
     """``(path, python type, metadata)`` of every int/float leaf of a config instance."""
     hints = typing.get_type_hints(type(obj))
@@ -112,7 +104,7 @@ def iter_numeric_fields(obj: Any, prefix: str = "") -> typing.Iterator[tuple[str
         path = prefix + f.name
         if dataclasses.is_dataclass(val):
             yield from iter_numeric_fields(val, path + ".")
-        elif isinstance(val, tuple) and _tuple_item(tp) is not None:
+        elif isinstance(val, tuple) and tuple_item_type(tp) is not None:
             for i, item in enumerate(val):
                 if dataclasses.is_dataclass(item):
                     yield from iter_numeric_fields(item, f"{path}[{i}].")

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import typing
 from typing import Any
 
 
@@ -101,3 +102,12 @@ def in_range(value: float, meta: dict[str, Any]) -> bool:
     if hi is not None and (value > hi or (value == hi and not meta.get("max_inclusive", True))):
         return False
     return True
+
+
+def tuple_item_type(tp: Any) -> Any | None:
+    """``X`` for a ``tuple[X, ...]`` annotation (arrays of tables in level files), else None."""
+    if typing.get_origin(tp) is tuple:
+        args = typing.get_args(tp)
+        if len(args) == 2 and args[1] is Ellipsis:
+            return args[0]
+    return None

@@ -35,7 +35,7 @@ import tomli_w
 
 from chainfountain import atomic
 from chainfountain.errors import UserError
-from chainfountain.level.fields import REQUIRED, allowed_text, in_range, param
+from chainfountain.level.fields import REQUIRED, allowed_text, in_range, param, tuple_item_type
 from chainfountain.sim.config import KINDS, SimConfig
 
 SCHEMA_VERSION = 1
@@ -111,14 +111,6 @@ def _convert_scalar(value: Any, tp: Any, meta: dict[str, Any], where: str, field
     raise TypeError(f"unsupported field type {tp!r} for {field}")  # programming error
 
 
-def _tuple_item_type(tp: Any) -> Any | None:
-    if typing.get_origin(tp) is tuple:
-        args = typing.get_args(tp)
-        if len(args) == 2 and args[1] is Ellipsis:
-            return args[0]
-    return None
-
-
 def from_mapping(cls: type, data: Any, where: str, prefix: str = "", skip: frozenset = frozenset()):
     """Build dataclass ``cls`` from a TOML table, validating every field."""
     label = prefix.rstrip(".") or "top level"
@@ -141,7 +133,7 @@ def from_mapping(cls: type, data: Any, where: str, prefix: str = "", skip: froze
                       + (f", {allowed_text(meta)}" if meta else ""))
             continue
         value = data[name]
-        item_tp = _tuple_item_type(tp)
+        item_tp = tuple_item_type(tp)
         if _is_dataclass_type(tp):
             kwargs[name] = from_mapping(tp, value, where, path + ".")
         elif item_tp is not None and _is_dataclass_type(item_tp):
@@ -315,7 +307,7 @@ def _rows(cls: type, prefix: str, skip: frozenset = frozenset()) -> list[str]:
         if f.name in skip:
             continue
         tp = hints[f.name]
-        item = _tuple_item_type(tp)
+        item = tuple_item_type(tp)
         if _is_dataclass_type(tp):
             nested.append((f"{prefix}{f.name}", tp))
             continue
@@ -381,7 +373,7 @@ def field_meta(path: str) -> dict[str, Any]:
         tp = _hints(cls)[part]
         if i == len(parts) - 1:
             return dict(f.metadata)
-        cls = tp if _is_dataclass_type(tp) else _tuple_item_type(tp)
+        cls = tp if _is_dataclass_type(tp) else tuple_item_type(tp)
         if cls is None:
             raise KeyError(path)
     raise KeyError(path)
