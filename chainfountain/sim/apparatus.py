@@ -111,6 +111,10 @@ _WALL_R = 0.002
 """Radius of channel wall segments (m)."""
 _FUNNEL = (0.06, 0.02)
 """Length and half-opening (m) of the funnel before the end channel's mouth."""
+_CATCH = (0.25, 0.08)
+"""Length along the landing tangent and outward flare (m) by which the 'open' variant's
+one-sided catch wall reaches up above the end channel's mouth (the fountain above its
+end lies outside the tangent, on the catenary's convex side)."""
 _CLEAR = 0.0008
 """Clearance between a link capsule and each channel wall (m)."""
 _ONLY_CHAIN = pymunk.ShapeFilter(categories=SCENERY_CATEGORY, mask=CHAIN_CATEGORY)
@@ -426,9 +430,17 @@ class Apparatus:
             # link arriving on a blunt wall end jams the chain (seen in 'open' runs)
             t0 = (cp[1] - cp[0]) / np.linalg.norm(cp[1] - cp[0])
             n0 = np.array([-t0[1], t0[0]])
-            for wl, side in zip(Channel(cp).walls(off), (1.0, -1.0), strict=True):
-                flare = wl[0] - _FUNNEL[0] * t0 + side * _FUNNEL[1] * n0
-                self.walls += _static_polyline(space, np.vstack((flare, wl)), _WALL_R)
+            if self.variant == "open":
+                # one-sided catch: only the outer wall of the turn (the chain, at
+                # T < lambda*v**2, presses on it), flared up and out above the mouth;
+                # no inner wall and no mouth lip the falling chain could hook on
+                outer = Channel(cp).walls(off)[1]
+                top = outer[0] - _CATCH[0] * t0 - _CATCH[1] * n0
+                self.walls += _static_polyline(space, np.vstack((top, outer)), _WALL_R)
+            else:
+                for wl, side in zip(Channel(cp).walls(off), (1.0, -1.0), strict=True):
+                    flare = wl[0] - _FUNNEL[0] * t0 + side * _FUNNEL[1] * n0
+                    self.walls += _static_polyline(space, np.vstack((flare, wl)), _WALL_R)
             self.y_lo = float(cp[-1, 1])
             xl = float(cp[-1, 0])
             self.x_plate_lo_start = xl
@@ -549,11 +561,20 @@ class Apparatus:
         raise KeyError("the apparatus has no feed speed: its speed follows from the carts")
 
     # ------------------------------------------------------------------ stepping
+    @property
+    def end_pull(self) -> float:
+        """Constant pull on the downstream end link in ``+x`` (N; 'open' only)."""
+        return float(self.cfg.end_pull) if self.variant == "open" else 0.0
+
     def before_step(self) -> None:
-        """Apply the cart forces (constant, along the track, on the carriage)."""
+        """Apply the cart forces (constant, along the track, on the carriage) and the
+        end pull ('open')."""
         for unit in (self.upper, self.lower):
             if unit is not None and unit.force:
                 unit.carriage.apply_force_at_local_point((unit.direction * unit.force, 0.0))
+        if self.end_pull:
+            self.chain.links[0].body.apply_force_at_world_point(
+                (self.end_pull, 0.0), self.chain.links[0].body.position)
 
     def after_step(self, dt: float) -> None:
         """Move the plate ends with the rollers; add resting links ahead of the pick-up
@@ -724,6 +745,9 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
     n = len(post.angle)
     pre = ChainState(position=post.position, angle=post.angle, velocity=pre_vel,
                      angular_velocity=post.angular_velocity)
+    if app.end_pull:  # external force on the end link, like a contact
+        contacts = contacts.copy()
+        contacts[0, 0] += app.end_pull * dt
     F = joint_forces(pre, post, chain.mass, dt, app.g, n - 1, contacts)
     ten, _ = signed_tension(F, post, n - 1)
     L = app.L

@@ -291,6 +291,12 @@ class ApparatusConfig:
         "frictionless static segment the strand slides on (one contact per link)",
         choices=("groove", "contact"),
     )
+    end_pull: float = param(
+        0.0, unit="N", doc="'open' only: constant horizontal force pulling the downstream end "
+        "of the chain away (a light weight on a string over an ideal pulley); gives the "
+        "chain a positive tension Tbar_E at the end channel so it enters without buckling",
+        min=0.0, max=100.0,
+    )
     rest_links: int = param(
         20, unit="1", doc="Resting links kept in the solver ahead of the pick-up roller and "
         "behind the folding roller / on the floor (older ones leave the solver)", min=5,
