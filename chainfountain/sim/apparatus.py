@@ -111,10 +111,20 @@ _WALL_R = 0.002
 """Radius of channel wall segments (m)."""
 _FUNNEL = (0.06, 0.02)
 """Length and half-opening (m) of the funnel before the end channel's mouth."""
-_CATCH = (0.25, 0.08)
+_CATCH = (0.05, 0.0)
 """Length along the landing tangent and outward flare (m) by which the 'open' variant's
 one-sided catch wall reaches up above the end channel's mouth (the fountain above its
 end lies outside the tangent, on the catenary's convex side)."""
+_CAPTURE = (0.02, math.radians(3.0))
+"""'open' joint guide: capture band (m) around the turn's radius and angular margin
+before the mouth (rad) within which a falling link is taken into the guide."""
+_PLAY = 0.001
+"""Outward play (m) of the 'open' joint guide beyond its radius."""
+_GUIDE_BIAS = 0.0018
+"""Joint error bias of the 'open' turn's slide joints (pymunk's default)."""
+_CLOSE_RATE = 0.2
+"""Speed (m/s) at which the outer limit of a link captured outside the 'open' guide's
+radius closes in to it."""
 _CLEAR = 0.0008
 """Clearance between a link capsule and each channel wall (m)."""
 _ONLY_CHAIN = pymunk.ShapeFilter(categories=SCENERY_CATEGORY, mask=CHAIN_CATEGORY)
@@ -295,7 +305,7 @@ def _add_roller(space: pymunk.Space, x: float, y_table: float, rho: float, r: fl
 
 
 def _static_polyline(space: pymunk.Space, pts: np.ndarray, radius: float,
-                     friction: float = 0.0) -> list[pymunk.Segment]:
+                     friction: float = 0.0, add: bool = True) -> list[pymunk.Segment]:
     out = []
     b = space.static_body
     for i in range(len(pts) - 1):
@@ -307,7 +317,8 @@ def _static_polyline(space: pymunk.Space, pts: np.ndarray, radius: float,
         prev = pts[i - 1] if i > 0 else pts[i]
         nxt = pts[i + 2] if i + 2 < len(pts) else pts[i + 1]
         s.set_neighbors(tuple(prev), tuple(nxt))
-    space.add(*out)
+    if add:
+        space.add(*out)
     return out
 
 
@@ -406,6 +417,10 @@ class Apparatus:
         self.plate_lo: pymunk.Segment | None = None
         self.channel_lo: np.ndarray | None = None
         self.lo_tail: list[tuple[float, float]] = []
+        self.guided = False
+        """'open' with ``plate = "groove"``: the turn after landing is a joint guide."""
+        self.guide_centre = (math.nan, math.nan)
+        self.guide_radius = math.nan
         alphaE = math.atan(math.sinh(f.q * (ex - x_rise)))
         self.alphaE = alphaE
         s_lo_wrap = math.inf
@@ -430,20 +445,28 @@ class Apparatus:
             # link arriving on a blunt wall end jams the chain (seen in 'open' runs)
             t0 = (cp[1] - cp[0]) / np.linalg.norm(cp[1] - cp[0])
             n0 = np.array([-t0[1], t0[0]])
+            # 'open' with grooves: the turn is a frictionless circular guide of joints
+            # (centre of the end channel's bend, radius channel_radius), see _update_guide
+            Rc = a.channel_radius
+            self.guide_centre = (ex + Rc * math.sin(alphaE), -H + Rc * math.cos(alphaE))
+            self.guide_radius = Rc
+            self.guided = self.variant == "open" and a.plate == "groove"
             if self.variant == "open":
                 # one-sided catch: only the outer wall of the turn (the chain, at
                 # T < lambda*v**2, presses on it), flared up and out above the mouth;
                 # no inner wall and no mouth lip the falling chain could hook on
+                # (drawn only when the joint guide is used)
                 outer = Channel(cp).walls(off)[1]
                 top = outer[0] - _CATCH[0] * t0 - _CATCH[1] * n0
-                self.walls += _static_polyline(space, np.vstack((top, outer)), _WALL_R)
+                self.walls += _static_polyline(space, np.vstack((top, outer)), _WALL_R,
+                                               add=not self.guided)
             else:
                 for wl, side in zip(Channel(cp).walls(off), (1.0, -1.0), strict=True):
                     flare = wl[0] - _FUNNEL[0] * t0 + side * _FUNNEL[1] * n0
                     self.walls += _static_polyline(space, np.vstack((flare, wl)), _WALL_R)
             self.y_lo = float(cp[-1, 1])
             xl = float(cp[-1, 0])
-            self.x_plate_lo_start = xl
+            self.x_plate_lo_start = self.guide_centre[0] if self.guided else xl
             parts.append(cp[self.i_end + 1:])
             if self.variant == "open":
                 far = xl + v0 * a.duration * 1.5 + 1.0
@@ -451,7 +474,9 @@ class Apparatus:
                                                (far, self.y_lo - rho - 0.002), 0.002)
                 self.plate_lo.friction = 0.0
                 self.plate_lo.filter = _ONLY_CHAIN
-                space.add(self.plate_lo)
+                self.far_lo = far
+                if a.plate == "contact":
+                    space.add(self.plate_lo)
                 parts.append(np.array([[xl + 0.2, self.y_lo]]))
             else:
                 x_lo = xl + 0.15
@@ -489,8 +514,15 @@ class Apparatus:
         self._lay(pts, s, s_wrap0, s_wrap1, s_lo_wrap, v0, vR, R)
         self.start_x = (self.upper.x, self.lower.x if self.lower is not None else 0.0)
         self._sync_plates()
+        self._lo_n = 0
+        """'open' with ``plate = "groove"``: links ``0 .. _lo_n-1`` (the tail on the lower
+        plate) run in frictionless groove joints on the line ``y = y_lo``."""
+        self._lo_joints: list[pymunk.GrooveJoint] = []
+        self._arc: deque[tuple[Link, pymunk.SlideJoint]] = deque()
+        """'open' guide: links ``_lo_n .. _lo_n + len(_arc) - 1`` held on the turn."""
         if self.plate_mode == "groove":
             self._init_grooves()
+            self._update_lo_grooves()
 
     # ------------------------------------------------------------------ layout
     def _lay(self, pts: np.ndarray, s: np.ndarray, s_w0: float, s_w1: float, s_lw: float,
@@ -625,6 +657,96 @@ class Apparatus:
                 popped += 1
         if self.plate_mode == "groove":
             self._update_grooves(popped)
+            self._update_lo_grooves()
+
+    def lo_grooved(self, position: np.ndarray) -> int:
+        """Number of leading links (chain order) on the lower plate line past the end
+        channel in a recorded state: the links the grooves hold ('open'; samples are
+        analysed after the run, so this is read from the positions)."""
+        if self.variant != "open" or self.plate_mode != "groove":
+            return 0
+        on = (position[:, 0] > self.x_plate_lo_start) & \
+            (np.abs(position[:, 1] - self.y_lo) < 2.0 * self.rho)
+        if self.guided:
+            cx, cy = self.guide_centre
+            d = np.hypot(position[:, 0] - cx, position[:, 1] - cy)
+            th = np.arctan2(position[:, 1] - cy, position[:, 0] - cx)
+            th_mouth = math.atan2(-math.cos(self.alphaE), -math.sin(self.alphaE))
+            on |= (th >= th_mouth - _CAPTURE[1]) & (th <= -0.5 * math.pi + 0.05) & \
+                (np.abs(d - self.guide_radius) < _CAPTURE[0])
+        off = np.flatnonzero(~on)
+        return int(off[0]) if len(off) else len(on)
+
+    def _update_lo_grooves(self) -> None:
+        """'open': the tail leaving the end channel runs in a frictionless groove joint per
+        link on the lower plate line (as the upper plate; no plate contacts, no waves on
+        the tail). The tail only grows at its upstream side, so the grooved links are
+        always the first ``_lo_n`` of the chain."""
+        if self.variant != "open":
+            return
+        links = self.chain.links
+        xl, y = self.x_plate_lo_start, self.y_lo
+        space = self.space
+        if self.guided:
+            # the turn: a link whose centre comes within the capture band of the circle
+            # (past the mouth, before the bottom) gets a slide joint to the centre
+            # (distance limits around R: a frictionless two-sided circular groove with a
+            # little play); past the bottom it moves to the plate groove
+            cx, cy = self.guide_centre
+            Rc = self.guide_radius
+            th_mouth = math.atan2(-math.cos(self.alphaE), -math.sin(self.alphaE))
+            while not self._arc and self._lo_n < len(links):  # the tail laid out on the plate
+                b = links[self._lo_n].body
+                if not (b.position.x > xl and abs(b.position.y - y) < 2.0 * self.rho):
+                    break
+                self._groove_lo(links[self._lo_n])
+            while True:
+                i = self._lo_n + len(self._arc)
+                if i >= len(links):
+                    break
+                link = links[i]
+                p = link.body.position
+                d = math.hypot(p.x - cx, p.y - cy)
+                th = math.atan2(p.y - cy, p.x - cx)
+                if not (th_mouth - _CAPTURE[1] <= th <= -0.5 * math.pi + 0.05
+                        and abs(d - Rc) < _CAPTURE[0]):
+                    break
+                # the limit starts where the link is (no position kick: a stiff
+                # correction would feed energy into the chain) and closes in to R + play
+                j = pymunk.SlideJoint(space.static_body, link.body, (cx, cy), (0.0, 0.0),
+                                      Rc - _CAPTURE[0], max(Rc + _PLAY, d))
+                j.error_bias = _GUIDE_BIAS
+                space.add(j)
+                if link.shape is not None and link.shape.space is not None:
+                    space.remove(link.shape)
+                self._arc.append((link, j))
+            close = _CLOSE_RATE * self.sim_cfg.solver.dt
+            for link, j in self._arc:
+                if j.max > Rc + _PLAY:
+                    j.max = max(Rc + _PLAY, min(j.max - close, math.hypot(
+                        link.body.position.x - cx, link.body.position.y - cy)))
+            while self._arc and self._arc[0][0].body.position.x > cx:
+                link, j = self._arc.popleft()
+                space.remove(j)
+                self._groove_lo(link)
+            return
+        while self._lo_n < len(links):
+            b = links[self._lo_n].body
+            if not (b.position.x > xl and abs(b.position.y - y) < 2.0 * self.rho):
+                break
+            self._groove_lo(links[self._lo_n])
+
+    def _groove_lo(self, link: Link) -> None:
+        """Put ``links[_lo_n]`` into a frictionless groove on the lower plate line."""
+        y = self.y_lo
+        j = pymunk.GrooveJoint(self.space.static_body, link.body,
+                               (self.x_plate_lo_start - 0.05, y), (self.far_lo, y), (0.0, 0.0))
+        j.error_bias = self.sim_cfg.solver.joint_error_bias
+        self.space.add(j)
+        if link.shape is not None and link.shape.space is not None:
+            self.space.remove(link.shape)
+        self._lo_joints.append(j)
+        self._lo_n += 1
 
     # ------------------------------------------------------------------ plate grooves
     def _on_plate(self, body: pymunk.Body) -> bool:
@@ -732,6 +854,44 @@ class ApparatusSample:
     channel_force_y: float
 
 
+def _guided_impulses(app: Apparatus, pre_vel: np.ndarray, post, dt: float,
+                     k: int) -> np.ndarray:
+    """'open': 'contact' impulses for the first ``k`` links, which the lower guide joints
+    hold (their impulses are not among the contacts), such that the momentum balance
+    summed from the end gives, at joint ``k-1``, the tension of the guided chain.
+
+    The guide forces are normal to the path (frictionless grooves, slide joints to
+    the turn's centre), so each guided link's balance along its own axis ``u_i``
+    gives the tension recursively from the free end (shear neglected, end pull
+    included): ``T_i (e_i.u_i) = T_{i-1} (e_{i-1}.u_i) - m (dv_i/dt + g y).u_i
+    + F_pull x.u_i`` with ``e_j`` the joint direction as in ``signed_tension``.
+    The returned rows make the summed force at joint ``k-1`` equal ``-T_{k-1} e_{k-1}``.
+    """
+    m, g = app.chain.mass, app.g
+    ang = post.angle
+    u = np.column_stack((np.cos(ang), np.sin(ang)))
+    n = len(ang)
+    kk = min(k, n - 1)
+    e = u[:kk] + u[1:kk + 1]
+    e /= np.linalg.norm(e, axis=1)[:, None]
+    acc = (post.velocity[:kk] - pre_vel[:kk]) / dt
+    acc[:, 1] += g
+    T = 0.0
+    e_prev = np.zeros(2)
+    for i in range(kk):
+        rhs = T * float(e_prev @ u[i]) - m * float(acc[i] @ u[i])
+        if i == 0:
+            rhs += app.end_pull * float(u[0, 0])
+        T = rhs / float(e[i] @ u[i])
+        e_prev = e[i]
+    raw = m * (post.velocity[:k] - pre_vel[:k])
+    raw[:, 1] += m * g * dt
+    target = np.zeros((k, 2))
+    if kk:
+        target[kk - 1] = -T * e[kk - 1] * dt
+    return raw - target
+
+
 def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.ndarray,
             dt: float, lam: float,
             roller: tuple[float, float, float, float]) -> tuple[ApparatusSample, dict]:
@@ -745,9 +905,13 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
     n = len(post.angle)
     pre = ChainState(position=post.position, angle=post.angle, velocity=pre_vel,
                      angular_velocity=post.angular_velocity)
-    if app.end_pull:  # external force on the end link, like a contact
+    k = app.lo_grooved(post.position) if app._lo_n or app._arc else 0
+    if app.end_pull or k:
         contacts = contacts.copy()
-        contacts[0, 0] += app.end_pull * dt
+        if k:
+            contacts[:k] = _guided_impulses(app, pre_vel, post, dt, k)
+        else:  # external force on the end link, like a contact
+            contacts[0, 0] += app.end_pull * dt
     F = joint_forces(pre, post, chain.mass, dt, app.g, n - 1, contacts)
     ten, _ = signed_tension(F, post, n - 1)
     L = app.L
@@ -928,8 +1092,12 @@ def report(sim, rec, t0: float, t1: float) -> dict:
     else:
         paper["TE_bar"] = law["TE_bar"] = 0.0 if app.variant == "floor" else None
         F_uc = app.upper.force
+        # driving drop: to the floor ('floor'), to the guide's horizontal exit plus the
+        # end pull as an equivalent height ('open')
+        H_d, xi_d = (H, xi2) if app.variant == "floor" else \
+            (app.y_up - app.y_lo + app.end_pull / (lam * g), 0.0)
         for dct, pp in ((paper, 0.5), (law, PICKUP_BAR)):
-            vs = selected_speed(g, H, xi2, F_uc, lam, pp)
+            vs = selected_speed(g, H_d, xi_d, F_uc, lam, pp)
             dct["v_steady"] = vs
             dct["k_steady"] = g / vs**2 if vs == vs else math.nan
         if app.variant == "floor":
@@ -952,6 +1120,26 @@ def report(sim, rec, t0: float, t1: float) -> dict:
                 "p_from_balance": T0 - xi2 * kH - G * uc,
                 "formula": "v^2 = (g*H*(1 - xi2) - G*F_uc/lambda)/p",
             }
+    if app.variant == "open":
+        # non-stationary: M(t) dv/dt = lambda*g*(y_up - y_lo) + F_pull - T_exit(v), the
+        # moving mass growing at lambda*v/2; mouth tension = weight hanging in the turn
+        drop = app.guide_radius * (1.0 - math.cos(app.alphaE)) if app.guided else math.nan
+        M = app.moving_mass(0.5)
+        drive = lam * g * (app.y_up - app.y_lo) + app.end_pull
+        T_ex = T_up * lam * v * v
+        G = CART_GAIN_2CM
+        T_rig = pickup_rig_2cm(v) * lam * v * v + G * app.upper.force
+        out["open"] = {
+            "TE_bar_predicted": (lam * g * drop + app.end_pull) / (lam * v * v),
+            "drive_N": drive, "exit_tension_N": T_ex, "exit_tension_rig_N": T_rig,
+            "moving_mass_kg_end": M, "moving_mass_rate_predicted": 0.5 * lam * v,
+            "acceleration_predicted_measured_exit": (drive - T_ex) / M,
+            "acceleration_predicted_rig": (drive - T_rig) / M,
+            "v_selected_rig": selected_speed(g, app.y_up - app.y_lo + app.end_pull / (lam * g),
+                                             0.0, app.upper.force, lam, gain=G),
+            "formula": "M(t) dv/dt = lambda g (y_up - y_lo) + F_pull - T_exit(v), "
+                       "dM/dt = lambda v/2",
+        }
     out["predicted_paper"] = paper
     out["predicted_measured_laws"] = law
     return out
