@@ -38,7 +38,9 @@ is the downstream end, as for the feed):
    pick-up: moving in ``+x`` at ``v/2``, the chain wraps around its front) lays
    it onto the lower table, pushed forward by the lower cart; ``open``: the end
    channel turns the chain horizontal and it slides away on a long
-   frictionless plate.
+   frictionless plate (with ``plate = "groove"``: a frictionless joint guide,
+   slide joints to the bend centre then plate grooves, the tail beyond 30
+   links lumped into the end link; the moving mass grows at ``lambda*v/2``).
 
 Heights: ``y_up = -xi2*H`` (chain centre line on top of the upper roller),
 ``y_lo = -H + xi3*H`` (same for the lower roller): the paper's "beaker" and
@@ -123,6 +125,9 @@ _PLAY = 0.001
 _GUIDE_BIAS = 0.0018
 """Joint error bias of the 'open' turn's slide joints (pymunk's default)."""
 _CLOSE_RATE = 0.2
+_TAIL_KEEP = 30
+"""'open': links kept in the lower plate grooves; the tail beyond is lumped into the
+end link (:meth:`Apparatus._lump_tail`)."""
 """Speed (m/s) at which the outer limit of a link captured outside the 'open' guide's
 radius closes in to it."""
 _CLEAR = 0.0008
@@ -518,6 +523,10 @@ class Apparatus:
         """'open' with ``plate = "groove"``: links ``0 .. _lo_n-1`` (the tail on the lower
         plate) run in frictionless groove joints on the line ``y = y_lo``."""
         self._lo_joints: list[pymunk.GrooveJoint] = []
+        self.tail_mass = 0.0
+        """'open': mass (kg) of the tail links lumped into the end link (see _lump_tail)."""
+        self._lump_hist: list[tuple[float, float]] = []
+        self._t = 0.0
         self._arc: deque[tuple[Link, pymunk.SlideJoint]] = deque()
         """'open' guide: links ``_lo_n .. _lo_n + len(_arc) - 1`` held on the turn."""
         if self.plate_mode == "groove":
@@ -585,9 +594,45 @@ class Apparatus:
         return float(sum(lk.body.velocity.x for lk, _ in g) / len(g))
 
     def moving_mass(self, v_min: float = 1.0) -> float:
-        """Mass of the links moving faster than ``v_min`` (kg)."""
+        """Mass of the links moving faster than ``v_min`` (kg), the lumped tail included."""
         n = sum(1 for lk in self.chain.links if lk.body.velocity.length > v_min)
-        return n * self.chain.mass
+        return n * self.chain.mass + self.tail_mass
+
+    def tail_mass_at(self, t: float) -> float:
+        """Mass lumped into the end link at time ``t`` ('open'; kg)."""
+        h = self._lump_hist
+        if not h or t < h[0][0]:
+            return 0.0
+        i = int(np.searchsorted([x[0] for x in h], t + 1e-12, side="right")) - 1
+        return h[i][1]
+
+    def _lump_tail(self) -> int:
+        """'open' with the joint guide: keep at most ``_TAIL_KEEP`` links in the plate
+        grooves; the far end link beyond is removed and its mass added to the next one
+        (the tail is straight, horizontal and frictionless, so it moves as one body
+        and the lumped mass is exact for the chain's motion along the path, while the
+        solver keeps a short chain of grooves: a tail of hundreds of grooved links made
+        the turn's slide joints yield). Returns the number of links removed."""
+        if not self.guided:
+            return 0
+        links = self.chain.links
+        n = 0
+        while self._lo_n > _TAIL_KEEP and len(links) > 2:
+            j = self._lo_joints.pop(0)
+            self.space.remove(j)
+            end, nxt = links[0], links[1].body
+            if end.shape is not None and end.shape.space is None:
+                self.space.add(end.shape)  # so the chain can remove it
+            m_end = end.body.mass
+            nxt.mass = nxt.mass + m_end
+            nxt.moment = nxt.moment + m_end * self.L**2 / 12.0
+            self.chain.pop_front()
+            self._lo_n -= 1
+            self.tail_mass = nxt.mass - self.chain.mass
+            n += 1
+        if n:
+            self._lump_hist.append((self._t, self.tail_mass))
+        return n
 
     def set_speed(self, v: float) -> None:
         raise KeyError("the apparatus has no feed speed: its speed follows from the carts")
@@ -629,7 +674,8 @@ class Apparatus:
             self.added += 1
             last = new.body
         # downstream end: absorb at the floor height / drop links that lie at rest
-        popped = 0
+        self._t += dt
+        popped = self._lump_tail()
         if self.end_mode == "absorbing":
             # as chainfountain.sim.feed: remove the end link when its *centre* reaches the
             # floor, so the free end (Tbar_E = 0) is on average exactly at -H
@@ -855,7 +901,7 @@ class ApparatusSample:
 
 
 def _guided_impulses(app: Apparatus, pre_vel: np.ndarray, post, dt: float,
-                     k: int) -> np.ndarray:
+                     k: int, t: float) -> np.ndarray:
     """'open': 'contact' impulses for the first ``k`` links, which the lower guide joints
     hold (their impulses are not among the contacts), such that the momentum balance
     summed from the end gives, at joint ``k-1``, the tension of the guided chain.
@@ -878,8 +924,9 @@ def _guided_impulses(app: Apparatus, pre_vel: np.ndarray, post, dt: float,
     acc[:, 1] += g
     T = 0.0
     e_prev = np.zeros(2)
+    m0 = m + app.tail_mass_at(t)  # the end link carries the lumped tail
     for i in range(kk):
-        rhs = T * float(e_prev @ u[i]) - m * float(acc[i] @ u[i])
+        rhs = T * float(e_prev @ u[i]) - (m0 if i == 0 else m) * float(acc[i] @ u[i])
         if i == 0:
             rhs += app.end_pull * float(u[0, 0])
         T = rhs / float(e[i] @ u[i])
@@ -909,7 +956,7 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
     if app.end_pull or k:
         contacts = contacts.copy()
         if k:
-            contacts[:k] = _guided_impulses(app, pre_vel, post, dt, k)
+            contacts[:k] = _guided_impulses(app, pre_vel, post, dt, k, t)
         else:  # external force on the end link, like a contact
             contacts[0, 0] += app.end_pull * dt
     F = joint_forces(pre, post, chain.mass, dt, app.g, n - 1, contacts)
