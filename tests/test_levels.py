@@ -106,3 +106,13 @@ def test_docs_levels_md_is_current():
     assert (ROOT / "docs" / "levels.md").read_text() == io.schema_markdown(), (
         "regenerate with: chainfountain schema --out docs/levels.md"
     )
+
+
+def test_level_name_resolves_even_if_a_folder_has_that_name(tmp_path, monkeypatch):
+    from chainfountain.level import library
+
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "classroom").mkdir()  # e.g. an output folder from an earlier run
+    assert library.resolve("classroom") == library.shipped_dir() / "classroom.toml"
+    with pytest.raises(io.LevelError, match="known levels"):
+        library.resolve("no_such_level")

@@ -39,7 +39,7 @@ def available() -> list[Path]:
 def resolve(name_or_path: str | os.PathLike[str]) -> Path:
     """A level path from a file path or a bare level name (``paper_tall``)."""
     p = Path(name_or_path)
-    if p.suffix == ".toml" or p.exists():
+    if p.suffix == ".toml" or p.is_file():
         return p
     for d in (shipped_dir(), user_dir()):
         cand = d / f"{p.name}.toml"
