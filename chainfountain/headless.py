@@ -62,6 +62,8 @@ def simulate(level: Level, duration: float, *, seed: int | None = None,
                 step()
             done += m
             bar.update(m * sim.dt)
+            if done % (20 * chunk) < chunk:  # analyse as we go: raw states are large
+                rec.samples  # noqa: B018 - property access processes the raw samples
     wall = time.perf_counter() - t0
     return sim, rec, wall
 
