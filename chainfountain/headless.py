@@ -31,6 +31,14 @@ from chainfountain.sim.world import Simulation
 
 MAX_TENSION_SAMPLES = 200
 DEFAULT_DURATION = 8.0
+"""Simulated seconds of a headless run when none is given."""
+
+
+def default_out_dir(level: Level) -> Path:
+    """Where a headless run of ``level`` writes by default: ``./runs/<name>``."""
+    from chainfountain.level.library import safe_name
+
+    return Path("runs") / safe_name(level.meta.name)
 
 
 def _progress(total: float, enabled: bool):
@@ -79,8 +87,7 @@ def _f(x: Any) -> Any:
 def summarize(level: Level, sim: Simulation, rec: Recorder, duration: float,
               wall: float) -> dict[str, Any]:
     """The ``summary.json`` object."""
-    full = rec.summary(window=duration)  # for the steady-state time
-    steady = full.steady_from
+    steady = rec.steady_from(window=duration)
     window_start = steady if steady is not None else max(0.0, sim.time - rec.cfg.window)
     s = rec.summary(window=sim.time - window_start)
     ref = sim.reference

@@ -73,17 +73,12 @@ def open_app(level: Level | None = None, source: Path | None = None, *,
     return app.run(frames=frames, screenshot=screenshot)
 
 
-def output_dir(level: Level) -> Path:
-    """Where a headless run of ``level`` writes: ``./runs/<name>`` (as ``chainfountain run``)."""
-    from chainfountain.app.paths import safe_name
-
-    return Path("runs") / safe_name(level.meta.name)
-
-
 def run_headless(level: Level, reason: str, out_dir: Path | None = None,
                  duration: float | None = None) -> int:
     """No display: say so and run ``level`` headless (outputs and a snapshot)."""
-    out = out_dir or output_dir(level)
+    from chainfountain.headless import default_out_dir
+
+    out = out_dir or default_out_dir(level)
     print(f"chainfountain: no display ({reason}); running level {level.meta.name!r} "
           f"headless, writing to {out}", file=sys.stderr)
     from chainfountain.headless import describe_outputs, run_level

@@ -3,10 +3,11 @@
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 from collections.abc import Callable
 from typing import NoReturn
+
+from chainfountain.level.fields import in_range
 
 
 class OneLineParser(argparse.ArgumentParser):
@@ -31,6 +32,8 @@ def number(
     if max is not None:
         parts.append(f"{'<=' if max_inclusive else '<'} {max:g}")
     allowed = f"{what}" + (f" {' and '.join(parts)}" if parts else "")
+    meta = {"min": min, "max": max, "min_inclusive": min_inclusive,
+            "max_inclusive": max_inclusive}
 
     def parse(text: str) -> float:
         try:
@@ -39,12 +42,7 @@ def number(
             raise argparse.ArgumentTypeError(
                 f"{text!r} is not a number; allowed: {allowed}"
             ) from None
-        bad = not math.isfinite(val)
-        if min is not None and (val < min or (val == min and not min_inclusive)):
-            bad = True
-        if max is not None and (val > max or (val == max and not max_inclusive)):
-            bad = True
-        if bad:
+        if not in_range(val, meta):
             raise argparse.ArgumentTypeError(f"{text} is out of range; allowed: {allowed}")
         return val
 

@@ -32,12 +32,18 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from chainfountain.headless import describe_outputs, run_level
+    from chainfountain.headless import (
+        DEFAULT_DURATION,
+        default_out_dir,
+        describe_outputs,
+        run_level,
+    )
     from chainfountain.level import io, library
 
     level = io.load(library.resolve(args.level))
-    out = args.out or Path("runs") / level.meta.name
-    print(f"running {level.meta.name} headless for {args.duration or 8:g} simulated s ...",
+    out = args.out or default_out_dir(level)
+    duration = args.duration or DEFAULT_DURATION
+    print(f"running {level.meta.name} headless for {duration:g} simulated s ...",
           file=sys.stderr)
     path = run_level(level, out, args.duration, seed=args.seed, progress=not args.quiet)
     print(describe_outputs(path))

@@ -16,15 +16,25 @@ def shipped_dir() -> Path:
     return Path(__file__).resolve().parents[2] / "levels"
 
 
-def user_dir(create: bool = False) -> Path:
-    """The user's level folder: ``$CHAINFOUNTAIN_HOME/levels`` or
-    ``~/.local/share/chainfountain/levels``."""
+def home_dir() -> Path:
+    """``$CHAINFOUNTAIN_HOME`` or ``~/.local/share/chainfountain`` (not created here)."""
     home = os.environ.get("CHAINFOUNTAIN_HOME")
-    base = Path(home) if home else Path.home() / ".local" / "share" / "chainfountain"
-    d = base / "levels"
+    return Path(home).expanduser() if home else Path.home() / ".local" / "share" / "chainfountain"
+
+
+def user_dir(create: bool = False) -> Path:
+    """The user's level folder (levels saved from the app): ``home_dir()/levels``."""
+    d = home_dir() / "levels"
     if create:
         d.mkdir(parents=True, exist_ok=True)
     return d
+
+
+def safe_name(name: str) -> str:
+    """A file-name-safe version of a level name (letters, digits, ``-``, ``_``)."""
+    keep = "".join(c if (c.isalnum() or c in "-_") else "_" for c in name.strip())
+    keep = keep.strip("_")[:60]
+    return keep or "level"
 
 
 def available() -> list[Path]:

@@ -183,6 +183,16 @@ class Recorder:
         """One recorded scalar (a :class:`Sample` field) as an array over samples."""
         return np.array([getattr(s, name) for s in self.samples], dtype=float)
 
+    def steady_from(self, window: float | None = None) -> float | None:
+        """Time from which vertex height and mean speed stay within the steady tolerance
+        (``None`` if they never do); ``window`` as in :meth:`summary`."""
+        window = self.cfg.window if window is None else window
+        t = self.series("t")
+        tol, smooth = self.cfg.steady_tolerance, self.cfg.smoothing
+        ts = steady_time(t, self.series("vertex_y"), tol, smooth, window)
+        tv = steady_time(t, self.series("speed_mean"), tol, smooth, window)
+        return None if ts is None or tv is None else max(ts, tv)
+
     def summary(self, window: float | None = None, t_end: float | None = None) -> Summary:
         """Time averages over the last ``window`` seconds (ending at ``t_end``)."""
         if not self.samples:
@@ -221,10 +231,7 @@ class Recorder:
                 resid = tb - ref.tension_bar(ya)
                 tension_rms = float(np.sqrt(np.mean(resid**2)))
                 extras["tension_resid"] = resid
-        tol = self.cfg.steady_tolerance
-        ts = steady_time(t, self.series("vertex_y"), tol, self.cfg.smoothing, window)
-        tv = steady_time(t, self.series("speed_mean"), tol, self.cfg.smoothing, window)
-        steady = None if ts is None or tv is None else max(ts, tv)
+        steady = self.steady_from(window)
         return Summary(
             t0=float(t[sel[0]]), t1=float(t[sel[-1]]), samples=len(sel),
             vertex_x=mean("vertex_x"), vertex_y=mean("vertex_y"),
