@@ -81,7 +81,7 @@ def run(args: argparse.Namespace) -> int:
         raise UserError(str(exc)) from None
     out = design_dict(d)
     if args.out is not None:
-        from chainfountain.design_level import write_design_level
+        from chainfountain.design_level import near_critical_note, write_design_level
 
         out["level"] = str(write_design_level(d, args.out))
     if args.json:
@@ -106,4 +106,7 @@ def run(args: argparse.Namespace) -> int:
     if "level" in out:
         print(f"wrote {out['level']} (fed level: guide at v and alpha0, floor pulling with "
               f"Tbar_E); try: chainfountain run {out['level']}")
+        note = near_critical_note(d)
+        if note:
+            print(" ", note.strip())
     return 0
