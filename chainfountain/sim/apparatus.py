@@ -81,6 +81,14 @@ CART_GAIN_2CM = 0.68
 CART_GAIN_2CM_ERR = 0.021
 
 
+PUTDOWN_RIG_2CM = (0.13, 0.78)
+"""Put-down (folding) entry tension at alpha = 0 with 2 cm links: ``Tbar = d + G_d*Fbar_c``
+(intercept ``d``, cart gain ``G_d``), fitted to rig runs at 3 m/s, dt 0.5 ms, 10
+iterations, ``Fbar_c = 0.3, 0.4, 0.5`` (2.5-s averages, about +-0.02 each;
+``docs/apparatus.md``). Below ``Fbar_c`` of about 0.25 the roller falls behind
+and the chain piles up (not steady)."""
+
+
 def pickup_rig_2cm(v: float) -> float:
     """:data:`PICKUP_RIG_2CM` at speed ``v`` (linear through the two points)."""
     (v0, p0), (v1, p1) = PICKUP_RIG_2CM
@@ -130,6 +138,8 @@ _TAIL_KEEP = 30
 end link (:meth:`Apparatus._lump_tail`)."""
 """Speed (m/s) at which the outer limit of a link captured outside the 'open' guide's
 radius closes in to it."""
+_LO_START = 0.15
+"""'fold': start distance (m) of the folding roller from the end channel's exit."""
 _CLEAR = 0.0008
 """Clearance between a link capsule and each channel wall (m)."""
 _ONLY_CHAIN = pymunk.ShapeFilter(categories=SCENERY_CATEGORY, mask=CHAIN_CATEGORY)
@@ -198,6 +208,26 @@ def upper_channel(H: float, xi2: float, alpha0: float, R: float, lead: float,
     return out, R
 
 
+def end_channel_bends(alphaE: float, rise: float, R: float,
+                      up: float = math.radians(60.0)) -> tuple[float, float]:
+    """Bend radius and straight length of a rising end channel (:func:`end_channel`):
+    bend from the landing heading ``-alphaE`` up to ``up``, straight ``S``, bend back to
+    horizontal, total rise ``rise``; the radius shrinks (by 0.8) until ``S >= 0``."""
+    phi = -alphaE
+
+    def straight(R: float) -> float:
+        return (rise + R * (math.cos(phi) - math.cos(up)) - R * (1 - math.cos(up))) / \
+            math.sin(up)
+
+    S = straight(R)
+    while S < 0 and R > 0.02:
+        R *= 0.8
+        S = straight(R)
+    if S < 0:
+        raise ValueError(f"end channel cannot rise only {rise:.3g} m")
+    return R, S
+
+
 def end_channel(xE: float, yE: float, alphaE: float, rise: float, R: float, lead: float,
                 step: float, *, up: float = math.radians(60.0),
                 mouth: float = 0.06) -> tuple[np.ndarray, int]:
@@ -214,16 +244,7 @@ def end_channel(xE: float, yE: float, alphaE: float, rise: float, R: float, lead
         p, x, y = _bend(x, y, phi, 0.0, R, step)
         pts.append(p)
     else:
-        # rise of bend(phi -> up) + straight + bend(up -> 0) = rise (solve for R, straight)
-        drop = R * (math.cos(phi) - math.cos(up))  # the first bend's y change (negative)
-        gain = R * (1.0 - math.cos(up))
-        S = (rise - (-drop) - gain) / math.sin(up)
-        while S < 0 and R > 0.02:
-            R *= 0.8
-            S = (rise + R * (math.cos(phi) - math.cos(up)) - R * (1 - math.cos(up))) / \
-                math.sin(up)
-        if S < 0:
-            raise ValueError(f"end channel cannot rise only {rise:.3g} m")
+        R, S = end_channel_bends(alphaE, rise, R, up)
         p, x, y = _bend(x, y, phi, up, R, step)
         pts.append(p)
         if S > 1e-9:
@@ -246,6 +267,75 @@ def _resample(path: np.ndarray, L: float) -> tuple[np.ndarray, np.ndarray]:
     n = int(s[-1] // L)
     q = np.arange(n + 1) * L
     return np.column_stack((np.interp(q, s, path[:, 0]), np.interp(q, s, path[:, 1]))), q
+
+
+@dataclass
+class GuideElement:
+    """One piece of a frictionless joint guide ('fold' lower channel): a circular arc
+    (links held by a :class:`pymunk.SlideJoint` to its centre) or a straight line (a
+    :class:`pymunk.GrooveJoint`). The chain moves along it from ``start`` to ``end``."""
+
+    kind: str
+    """'arc' or 'line'."""
+    a: tuple[float, float]
+    """Arc: centre; line: start point."""
+    b: tuple[float, float]
+    """Line: end point (unused for an arc)."""
+    R: float = 0.0
+    """Arc radius (m)."""
+    th0: float = 0.0
+    th1: float = 0.0
+    """Arc: polar angle (rad, about the centre) of the start and end points."""
+
+    @property
+    def ccw(self) -> bool:
+        return self.th1 > self.th0
+
+    def passed(self, x: float, y: float) -> bool:
+        """Has a link centre at ``(x, y)`` gone past the element's end?"""
+        if self.kind == "arc":
+            th = math.atan2(y - self.a[1], x - self.a[0])
+            return th > self.th1 if self.ccw else th < self.th1
+        (ax, ay), (bx, by) = self.a, self.b
+        tx, ty = bx - ax, by - ay
+        return (x - ax) * tx + (y - ay) * ty > tx * tx + ty * ty
+
+    def on(self, P: np.ndarray, tol: float) -> np.ndarray:
+        """Which of the points ``P`` (n, 2) lie on the element within ``tol`` (m)."""
+        if self.kind == "arc":
+            d = np.hypot(P[:, 0] - self.a[0], P[:, 1] - self.a[1])
+            th = np.arctan2(P[:, 1] - self.a[1], P[:, 0] - self.a[0])
+            lo, hi = min(self.th0, self.th1), max(self.th0, self.th1)
+            return (np.abs(d - self.R) < tol) & (th >= lo - 0.05) & (th <= hi + 0.05)
+        (ax, ay), (bx, by) = self.a, self.b
+        t = np.array([bx - ax, by - ay])
+        ln = float(np.hypot(*t))
+        t /= ln
+        rel = P - np.array([ax, ay])
+        s = rel @ t
+        d = np.abs(rel @ np.array([-t[1], t[0]]))
+        return (d < tol) & (s >= -0.01) & (s <= ln + 0.01)
+
+    def joint(self, space: pymunk.Space, body: pymunk.Body, error_bias: float) -> \
+            pymunk.Constraint:
+        """A frictionless constraint holding the link centre on the element; an arc's
+        limits start where the link is (no position kick) and close in later."""
+        if self.kind == "arc":
+            p = body.position
+            d = math.hypot(p.x - self.a[0], p.y - self.a[1])
+            j: pymunk.Constraint = pymunk.SlideJoint(
+                space.static_body, body, self.a, (0.0, 0.0), min(self.R - _PLAY, d),
+                max(self.R + _PLAY, d))
+            j.error_bias = _GUIDE_BIAS
+        else:
+            (ax, ay), (bx, by) = self.a, self.b
+            ln = math.hypot(bx - ax, by - ay)
+            tx, ty = (bx - ax) / ln, (by - ay) / ln
+            j = pymunk.GrooveJoint(space.static_body, body, (ax - 0.05 * tx, ay - 0.05 * ty),
+                                   (bx + 0.05 * tx, by + 0.05 * ty), (0.0, 0.0))
+            j.error_bias = error_bias
+        space.add(j)
+        return j
 
 
 # ----------------------------------------------------------------------------- bodies
@@ -424,6 +514,10 @@ class Apparatus:
         self.lo_tail: list[tuple[float, float]] = []
         self.guided = False
         """'open' with ``plate = "groove"``: the turn after landing is a joint guide."""
+        self.fold_guided = False
+        """'fold' with ``plate = "groove"``: the lower channel (turn, rise, turn) and the
+        lower plate are a frictionless joint guide (:attr:`guide`)."""
+        self.guide: list[GuideElement] = []
         self.guide_centre = (math.nan, math.nan)
         self.guide_radius = math.nan
         alphaE = math.atan(math.sinh(f.q * (ex - x_rise)))
@@ -466,9 +560,13 @@ class Apparatus:
                 self.walls += _static_polyline(space, np.vstack((top, outer)), _WALL_R,
                                                add=not self.guided)
             else:
+                # with grooves: the lower channel is a frictionless joint guide
+                # (GuideElement); its walls are drawn only
+                self.fold_guided = a.plate == "groove"
                 for wl, side in zip(Channel(cp).walls(off), (1.0, -1.0), strict=True):
                     flare = wl[0] - _FUNNEL[0] * t0 + side * _FUNNEL[1] * n0
-                    self.walls += _static_polyline(space, np.vstack((flare, wl)), _WALL_R)
+                    self.walls += _static_polyline(space, np.vstack((flare, wl)), _WALL_R,
+                                                   add=not self.fold_guided)
             self.y_lo = float(cp[-1, 1])
             xl = float(cp[-1, 0])
             self.x_plate_lo_start = self.guide_centre[0] if self.guided else xl
@@ -484,7 +582,7 @@ class Apparatus:
                     space.add(self.plate_lo)
                 parts.append(np.array([[xl + 0.2, self.y_lo]]))
             else:
-                x_lo = xl + 0.15
+                x_lo = xl + _LO_START
                 ylt = self.y_lo - 3.0 * rho - 2.0 * r
                 self.y_table_lo = ylt
                 self.lower = _add_roller(space, x_lo, ylt, rho, r, a.roller_mass,
@@ -501,7 +599,11 @@ class Apparatus:
                     (x_lo - 0.5 * L, self.y_lo - rho - 0.002), 0.002)
                 self.plate_lo.friction = 0.0
                 self.plate_lo.filter = _ONLY_CHAIN
-                space.add(self.plate_lo)
+                if not self.fold_guided:
+                    space.add(self.plate_lo)
+                if self.fold_guided:
+                    self.guide = self._fold_guide(ex, alphaE, rise, a.channel_radius,
+                                                  x_lo + travel + 1.0)
                 ycl = self.lower.yc
                 parts.append(np.array([[x_lo, self.y_lo]]))
                 th = np.linspace(0.5 * math.pi, -0.5 * math.pi, 60)[1:]
@@ -529,9 +631,17 @@ class Apparatus:
         self._t = 0.0
         self._arc: deque[tuple[Link, pymunk.SlideJoint]] = deque()
         """'open' guide: links ``_lo_n .. _lo_n + len(_arc) - 1`` held on the turn."""
+        self._gq: list[deque[tuple[Link, pymunk.Constraint]]] = [deque() for _ in self.guide]
+        """'fold' guide: links held by each element (most downstream first)."""
+        self._cap_next = -1
+        """'fold' guide: chain index of the next link to capture at the mouth."""
+        self.released = 0
+        """'fold' guide: links handed from the lower plate to the folding roller."""
         if self.plate_mode == "groove":
             self._init_grooves()
             self._update_lo_grooves()
+        if self.fold_guided:
+            self._init_fold_guide()
 
     # ------------------------------------------------------------------ layout
     def _lay(self, pts: np.ndarray, s: np.ndarray, s_w0: float, s_w1: float, s_lw: float,
@@ -704,6 +814,8 @@ class Apparatus:
         if self.plate_mode == "groove":
             self._update_grooves(popped)
             self._update_lo_grooves()
+        if self.fold_guided:
+            self._update_fold_guide(popped)
 
     def lo_grooved(self, position: np.ndarray) -> int:
         """Number of leading links (chain order) on the lower plate line past the end
@@ -794,6 +906,140 @@ class Apparatus:
         self._lo_joints.append(j)
         self._lo_n += 1
 
+    # ------------------------------------------------------------------ fold guide
+    def _fold_guide(self, xE: float, alphaE: float, rise: float, R: float,
+                    far: float) -> list[GuideElement]:
+        """Elements of the 'fold' joint guide, along the end channel's centre line:
+        turn from the landing heading ``-alphaE`` (centre :attr:`guide_centre`) up to
+        60 deg, straight rise, turn back to horizontal, lower plate line to ``far``."""
+        up = math.radians(60.0) if rise > 1e-9 else 0.0
+        H = self.H
+        out: list[GuideElement] = []
+        if rise > 1e-9:
+            R, S = end_channel_bends(alphaE, rise, R, up)
+        else:
+            S = 0.0
+        c1 = (xE + R * math.sin(alphaE), -H + R * math.cos(alphaE))
+        self.guide_centre, self.guide_radius = c1, R
+        th0 = math.atan2(-math.cos(alphaE), -math.sin(alphaE))
+        th1 = up - 0.5 * math.pi
+        out.append(GuideElement("arc", c1, c1, R, th0, th1))
+        p1 = (c1[0] + R * math.cos(th1), c1[1] + R * math.sin(th1))
+        p2 = p1
+        if S > 1e-6:
+            p2 = (p1[0] + S * math.cos(up), p1[1] + S * math.sin(up))
+            out.append(GuideElement("line", p1, p2))
+        if rise > 1e-9:
+            c2 = (p2[0] + R * math.sin(up), p2[1] - R * math.cos(up))
+            out.append(GuideElement("arc", c2, c2, R, up + 0.5 * math.pi, 0.5 * math.pi))
+            p3 = (c2[0], c2[1] + R)
+        else:
+            p3 = (c1[0], c1[1] - R)
+        out.append(GuideElement("line", p3, (far, p3[1])))
+        self.x_plate_lo_start = p3[0]
+        return out
+
+    def _init_fold_guide(self) -> None:
+        """Put the links laid along the lower channel and plate into their elements."""
+        links = self.chain.links
+        P = np.array([[lk.body.position.x, lk.body.position.y] for lk in links])
+        x_rel = self.lower.x - 0.5 * self.L
+        last = -1
+        order = list(range(len(self.guide) - 1, -1, -1))  # plate first (downstream)
+        cur = 0
+        for i, lk in enumerate(links):
+            p = P[i:i + 1]
+            for jj in order[cur:]:
+                el = self.guide[jj]
+                if el is self.guide[-1] and p[0, 0] >= x_rel:
+                    continue
+                if el.on(p, 0.003)[0]:
+                    cur = order.index(jj)
+                    self._hold(jj, lk)
+                    last = i
+                    break
+            else:
+                if last >= 0:
+                    break
+        self._cap_next = last + 1
+
+    def _hold(self, k: int, link: Link) -> None:
+        """Hold ``link`` in guide element ``k`` (out of the collision broadphase)."""
+        j = self.guide[k].joint(self.space, link.body, self.sim_cfg.solver.joint_error_bias)
+        if link.shape is not None and link.shape.space is not None:
+            self.space.remove(link.shape)
+        self._gq[k].append((link, j))
+
+    def _update_fold_guide(self, popped: int) -> None:
+        """'fold': capture links landing at the mouth into the first turn, move links
+        from element to element as they pass each end, and hand them to the folding
+        roller (shape back in the space) when they reach its top."""
+        links = self.chain.links
+        self._cap_next -= popped
+        el0 = self.guide[0]
+        cx, cy = el0.a
+        Rc = el0.R
+        lim = -0.5 * math.pi + 0.05
+        while 0 <= self._cap_next < len(links):
+            p = links[self._cap_next].body.position
+            d = math.hypot(p.x - cx, p.y - cy)
+            th = math.atan2(p.y - cy, p.x - cx)
+            if not (el0.th0 - _CAPTURE[1] <= th <= max(lim, el0.th1)
+                    and abs(d - Rc) < _CAPTURE[0]):
+                break
+            self._hold(0, links[self._cap_next])
+            self._cap_next += 1
+        close = _CLOSE_RATE * self.sim_cfg.solver.dt
+        space = self.space
+        n_el = len(self.guide)
+        for k in range(n_el - 1, -1, -1):  # downstream elements first
+            q = self._gq[k]
+            el = self.guide[k]
+            if el.kind == "arc":
+                for link, j in q:
+                    if j.max > el.R + _PLAY or j.min < el.R - _PLAY:
+                        p = link.body.position
+                        d = math.hypot(p.x - el.a[0], p.y - el.a[1])
+                        j.max = max(el.R + _PLAY, min(j.max - close, d))
+                        j.min = min(el.R - _PLAY, max(j.min + close, d))
+            if k == n_el - 1:  # the lower plate: hand links to the folding roller
+                x_rel = self.lower.x - 0.5 * self.L
+                while q and q[0][0].body.position.x > x_rel:
+                    link, j = q.popleft()
+                    space.remove(j)
+                    if link.shape is not None:
+                        space.add(link.shape)
+                    self.released += 1
+                continue
+            while q and el.passed(q[0][0].body.position.x, q[0][0].body.position.y):
+                link, j = q.popleft()
+                space.remove(j)
+                self._hold(k + 1, link)
+
+    def fold_guided_range(self, position: np.ndarray, x_lower: float) -> tuple[int, int]:
+        """'fold' guide, from a recorded state: index ``i_p`` of the lower-plate link
+        about 6 links before the folding roller (its horizontal joint force is the
+        tension: the grooves add none) and ``k``, one past the last guided link
+        (the mouth). ``(-1, 0)`` if the plate is empty."""
+        L = self.L
+        el = self.guide[-1]
+        y = el.a[1]
+        on_plate = (np.abs(position[:, 1] - y) < 2.0 * self.rho) & \
+            (position[:, 0] > el.a[0] - 0.01) & (position[:, 0] < x_lower - 3.0 * L)
+        idx = np.flatnonzero(on_plate)
+        if not len(idx):
+            return -1, 0
+        ip = int(idx[np.argmin(np.abs(position[idx, 0] - (x_lower - 6.0 * L)))])
+        on = np.zeros(len(position), dtype=bool)
+        for e in self.guide[:-1]:
+            on |= e.on(position, 0.004)
+        e0 = self.guide[0]
+        on |= e0.on(position, _CAPTURE[0])
+        on |= (np.abs(position[:, 1] - y) < 2.0 * self.rho) & (position[:, 0] > el.a[0] - 0.01)
+        off = np.flatnonzero(~on[ip:])
+        k = ip + int(off[0]) if len(off) else len(position)
+        return ip, k
+
     # ------------------------------------------------------------------ plate grooves
     def _on_plate(self, body: pymunk.Body) -> bool:
         """Is a link centre on the upper plate line, clear of the roller wrap?"""
@@ -858,7 +1104,8 @@ class Apparatus:
             x = self.lower.x - 0.5 * L
             if abs(b.x - x) > 1e-4:
                 self.plate_lo.unsafe_set_endpoints(a, (x, b.y))
-                self.space.reindex_shape(self.plate_lo)
+                if self.plate_lo.space is not None:
+                    self.space.reindex_shape(self.plate_lo)
         del rho
 
     # ------------------------------------------------------------------ theory
@@ -901,7 +1148,7 @@ class ApparatusSample:
 
 
 def _guided_impulses(app: Apparatus, pre_vel: np.ndarray, post, dt: float,
-                     k: int, t: float) -> np.ndarray:
+                     k: int, t: float, start: tuple[int, float] | None = None) -> np.ndarray:
     """'open': 'contact' impulses for the first ``k`` links, which the lower guide joints
     hold (their impulses are not among the contacts), such that the momentum balance
     summed from the end gives, at joint ``k-1``, the tension of the guided chain.
@@ -912,6 +1159,8 @@ def _guided_impulses(app: Apparatus, pre_vel: np.ndarray, post, dt: float,
     included): ``T_i (e_i.u_i) = T_{i-1} (e_{i-1}.u_i) - m (dv_i/dt + g y).u_i
     + F_pull x.u_i`` with ``e_j`` the joint direction as in ``signed_tension``.
     The returned rows make the summed force at joint ``k-1`` equal ``-T_{k-1} e_{k-1}``.
+    ``start = (i, T_i)`` ('fold'): the recursion starts from a known tension at joint
+    ``i`` (on the lower plate, from the horizontal joint force) instead of the free end.
     """
     m, g = app.chain.mass, app.g
     ang = post.angle
@@ -925,7 +1174,11 @@ def _guided_impulses(app: Apparatus, pre_vel: np.ndarray, post, dt: float,
     T = 0.0
     e_prev = np.zeros(2)
     m0 = m + app.tail_mass_at(t)  # the end link carries the lumped tail
-    for i in range(kk):
+    i_first = 0
+    if start is not None:
+        i_first, T = start[0] + 1, start[1]
+        e_prev = e[start[0]]
+    for i in range(i_first, kk):
         rhs = T * float(e_prev @ u[i]) - (m0 if i == 0 else m) * float(acc[i] @ u[i])
         if i == 0:
             rhs += app.end_pull * float(u[0, 0])
@@ -953,7 +1206,20 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
     pre = ChainState(position=post.position, angle=post.angle, velocity=pre_vel,
                      angular_velocity=post.angular_velocity)
     k = app.lo_grooved(post.position) if app._lo_n or app._arc else 0
-    if app.end_pull or k:
+    T_lo_fold = math.nan
+    if app.fold_guided:
+        # tension on the lower plate from the horizontal joint force (grooves add none),
+        # then along the guided links' axes up to the mouth
+        ip, k = app.fold_guided_range(post.position, roller[2])
+        if ip >= 2 and k > ip + 1:
+            F1 = joint_forces(pre, post, chain.mass, dt, app.g, n - 1, contacts)
+            T_lo_fold = float(-np.mean(F1[ip - 2:ip + 3, 0]))
+            contacts = contacts.copy()
+            contacts[:k] = _guided_impulses(app, pre_vel, post, dt, k, t,
+                                            start=(ip, float(-F1[ip, 0])))
+        else:
+            k = 0
+    elif app.end_pull or k:
         contacts = contacts.copy()
         if k:
             contacts[:k] = _guided_impulses(app, pre_vel, post, dt, k, t)
@@ -969,7 +1235,9 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
     gaps = np.linalg.norm(back[:-1] - front[1:], axis=1)
     d0 = np.hypot(J[:, 0], J[:, 1])
     j0 = int(np.argmin(d0))
-    if app.end_mode == "absorbing":
+    if app.fold_guided and k > 0:
+        jE = k - 1  # the last guided link: the mouth of the joint guide
+    elif app.end_mode == "absorbing":
         jE = 0  # joint behind the end link: the free end (Tbar_E = 0) is one link ahead
     elif app.variant == "floor":
         below = np.flatnonzero(J[:j0, 1] < -app.H + app.rho)
@@ -997,7 +1265,10 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
         T_up = float(np.mean(-F[max(k - 2, 0):min(k + 3, len(F)), 0])) / scale
     else:
         T_up = at(xu + 6 * L, app.y_up)
-    T_lo = at(xl - 6 * L, app.y_lo) if app.lower is not None else math.nan
+    if app.fold_guided:
+        T_lo = T_lo_fold / scale
+    else:
+        T_lo = at(xl - 6 * L, app.y_lo) if app.lower is not None else math.nan
     flight = J[jE:j0 + 1]
     xv, yv = vertex_of(flight[::-1]) if len(flight) > 2 else (math.nan, math.nan)
     uc, lc = app.cart_bars(v, lam)
@@ -1186,6 +1457,28 @@ def report(sim, rec, t0: float, t1: float) -> dict:
                                              0.0, app.upper.force, lam, gain=G),
             "formula": "M(t) dv/dt = lambda g (y_up - y_lo) + F_pull - T_exit(v), "
                        "dM/dt = lambda v/2",
+        }
+    if fold:
+        # whole moving chain (upper roller exit to folding roller entry) on its fixed
+        # frictionless path: M dv/dt = lambda g H (1 - xi2 - xi3) + T_in - T_exit
+        d_r, G_d = PUTDOWN_RIG_2CM
+        G = CART_GAIN_2CM
+        T_in = (d_r + G_d * lc) * lam * v * v
+        T_ex = (pickup_rig_2cm(v) + G * uc) * lam * v * v
+        drive = lam * g * H * (1.0 - xi2 - xi3)
+        M = app.moving_mass(0.5)
+        out["fold"] = {
+            "T_putdown_entry_rig_bar": d_r + G_d * lc,
+            "T_pickup_exit_rig_bar": pickup_rig_2cm(v) + G * uc,
+            "TE_bar_rig": d_r + G_d * lc - xi3 * kH,
+            "T0_bar_rig": pickup_rig_2cm(v) + G * uc + xi2 * kH,
+            "TE_bar_from_measured_entry": T_lo - xi3 * kH,
+            "moving_mass_kg": M,
+            "acceleration_predicted_rig": (drive + T_in - T_ex) / M,
+            "released_links": app.released,
+            "formula": "M dv/dt = lambda g H (1 - xi2 - xi3) + T_in - T_exit, "
+                       "T_in = (d + G_d Tbar_lc) lambda v^2, "
+                       "T_exit = (p(v) + G Tbar_uc) lambda v^2",
         }
     out["predicted_paper"] = paper
     out["predicted_measured_laws"] = law
