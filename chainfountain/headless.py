@@ -30,6 +30,8 @@ from chainfountain.sim.recorder import Recorder
 from chainfountain.sim.world import Simulation
 
 MAX_TENSION_SAMPLES = 200
+MAX_PROFILES = 2000
+"""Per-link profiles kept in memory by a headless run (thinned evenly beyond; 40 s at 50 Hz)."""
 DEFAULT_DURATION = 8.0
 """Simulated seconds of a headless run when none is given."""
 
@@ -57,7 +59,7 @@ def simulate(level: Level, duration: float, *, seed: int | None = None,
         sim_cfg = dataclasses.replace(
             sim_cfg, initial=dataclasses.replace(sim_cfg.initial, seed=int(seed)))
     sim = Simulation(sim_cfg)
-    rec = Recorder(sim)
+    rec = Recorder(sim, max_profiles=MAX_PROFILES)
     n_steps = int(round(duration / sim.dt))
     chunk = max(1, int(round(0.05 / sim.dt)))
     t0 = time.perf_counter()
@@ -184,8 +186,10 @@ def _write_tensions(path: Path, rec: Recorder, lam: float) -> None:
     buf = _io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
     w.writerow(["t", "joint", "s", "x", "y", "tension_N", "tension_bar"])
+    t_samples = np.array([smp.t for smp in samples])
     for i in idx:
-        p, smp = profs[i], samples[i]
+        p = profs[i]
+        smp = samples[int(np.argmin(np.abs(t_samples - p.t)))]
         v = smp.speed_mean if smp.speed_mean > 0 else 1.0
         xy = np.column_stack([p.x, p.y])
         s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(xy, axis=0), axis=1))])

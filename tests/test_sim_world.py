@@ -162,3 +162,28 @@ def test_unsupported_kind() -> None:
     cfg.kind = "beaker"
     with pytest.raises(ValueError, match="beaker"):
         Simulation(cfg)
+
+
+def test_recorder_thins_profiles_evenly() -> None:
+    """A bounded recorder keeps evenly spaced profiles and the same window averages."""
+    cfg = presets.wide_low()
+    full = Simulation(cfg)
+    rec_full = Recorder(full)
+    bounded = Simulation(cfg)
+    rec = Recorder(bounded, max_profiles=16)
+    for sim in (full, bounded):
+        sim.advance(1.2)
+    n = len(rec.samples)
+    assert n == len(rec_full.samples) and n > 40
+    assert len(rec_full.profiles) == n
+    assert 8 <= len(rec.profiles) <= 16
+    gaps = np.diff([p.t for p in rec.profiles])
+    assert np.allclose(gaps, gaps[0], rtol=1e-6)
+    stride = gaps[0] / (rec.every * bounded.dt)  # samples per kept profile: a power of two
+    assert stride >= 2 and math.log2(stride) == pytest.approx(round(math.log2(stride)), abs=1e-6)
+    assert rec.profiles[-1].t >= rec.samples[-1].t - stride * rec.every * bounded.dt
+    a, b = rec_full.summary(window=1.0), rec.summary(window=1.0)
+    assert b.vertex_y == a.vertex_y  # scalar series are never thinned
+    assert b.tension_rms == pytest.approx(a.tension_rms, abs=0.01)
+    with pytest.raises(ValueError, match="max_profiles"):
+        Recorder(bounded, max_profiles=1)

@@ -254,6 +254,8 @@ class Profiles:
     x: Array  # joint positions
     y: Array
     speed: Array  # per free link
+    t: float = math.nan
+    """Time of the sample the profile belongs to (s)."""
 
 
 def steady_time(t: Array, series: Array, tol: float, smoothing: float = 0.0,

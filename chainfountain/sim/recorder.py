@@ -46,14 +46,25 @@ class Recorder:
     profiles:
         Also keep per-link profiles (tension, position, speed) of every sample,
         needed for the tension comparison in :meth:`summary`.
+    max_profiles:
+        Bound on the kept profiles (long headless runs): when exceeded, every
+        other profile is dropped and from then on only every ``2**m``-th sample
+        keeps its profile, so they stay evenly spaced in time. ``None`` keeps
+        all (then ``profiles[i]`` belongs to ``samples[i]``; with a bound, use
+        :attr:`Profiles.t`).
     """
 
     def __init__(self, sim: Simulation, cfg: RecordingConfig | None = None, *,
-                 profiles: bool = True) -> None:
+                 profiles: bool = True, max_profiles: int | None = None) -> None:
         self.sim = sim
         self.cfg = cfg if cfg is not None else sim.config.recording
         self.every = max(1, int(round(self.cfg.sample_interval / sim.dt)))
         self.keep_profiles = profiles
+        if max_profiles is not None and max_profiles < 2:
+            raise ValueError(f"max_profiles = {max_profiles}: at least 2 (or None)")
+        self.max_profiles = max_profiles
+        self._profile_stride = 1
+        self._n_analysed = 0
         self._samples: list[Sample] = []
         self._profiles: list[Profiles] = []
         self._raw: list[tuple] = []
@@ -70,6 +81,20 @@ class Recorder:
         self._profiles.clear()
         self._raw.clear()
         self._ap_samples.clear()
+        self._profile_stride = 1
+        self._n_analysed = 0
+
+    def _want_profile(self) -> bool:
+        """Whether the sample being analysed keeps its profile (see ``max_profiles``)."""
+        i = self._n_analysed
+        self._n_analysed += 1
+        return self.keep_profiles and i % self._profile_stride == 0
+
+    def _add_profile(self, prof: Profiles) -> None:
+        self._profiles.append(prof)
+        if self.max_profiles is not None and len(self._profiles) > self.max_profiles:
+            del self._profiles[1::2]
+            self._profile_stride *= 2
 
     # ------------------------------------------------------------------ sampling
     def take(self, pre: ChainState, post: ChainState) -> None:
@@ -139,9 +164,9 @@ class Recorder:
             t=t, vertex_x=s.vertex_x, vertex_y=s.vertex_y, landing_x=s.end_x,
             speed_mean=s.v, speed_min=float(np.min(sp)), speed_max=float(np.max(sp)),
             stretch=s.stretch, n_free=s.n_flight, T0_bar=s.T0_bar))
-        if self.keep_profiles:
-            self._profiles.append(Profiles(tension_bar=prof["tension_bar"], x=prof["x"],
-                                           y=prof["y"], speed=sp))
+        if self._want_profile():
+            self._add_profile(Profiles(tension_bar=prof["tension_bar"], x=prof["x"],
+                                       y=prof["y"], speed=sp, t=t))
 
     def _analyse(self, t: float, n: int, v_feed: float, floor_y: float, pre_vel: np.ndarray,
                  post: ChainState, contacts: np.ndarray | None) -> None:
@@ -172,10 +197,10 @@ class Recorder:
             speed_mean=sm, speed_min=float(speed.min()), speed_max=float(speed.max()),
             stretch=stretch, n_free=n, T0_bar=float(tbar[n - 1]),
         ))
-        if self.keep_profiles:
-            self._profiles.append(Profiles(
+        if self._want_profile():
+            self._add_profile(Profiles(
                 tension_bar=tbar[::-1].copy(), x=free[1:, 0][::-1].copy(),
-                y=free[1:, 1][::-1].copy(), speed=speed[::-1].copy(),
+                y=free[1:, 1][::-1].copy(), speed=speed[::-1].copy(), t=t,
             ))
 
     # ------------------------------------------------------------------ readout
@@ -213,7 +238,10 @@ class Recorder:
         uniform = float("nan")
         extras: dict = {}
         if self.keep_profiles and self.profiles:
-            profs = [self.profiles[i] for i in sel]
+            lo, hi = float(t[sel[0]]), float(t[sel[-1]])
+            profs = [p for p in self.profiles if lo - 1e-12 <= p.t <= hi + 1e-12]
+            if not profs:  # thinned profiles: the nearest one to the window's end
+                profs = [min(self.profiles, key=lambda p: abs(p.t - hi))]
             nmin = min(len(p.tension_bar) for p in profs)
             tb = np.mean([p.tension_bar[:nmin] for p in profs], axis=0)
             ya = np.mean([p.y[:nmin] for p in profs], axis=0)
