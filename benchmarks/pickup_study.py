@@ -7,6 +7,12 @@ prints a Markdown table and writes ``docs/img/pickup.png``::
     .venv/bin/python benchmarks/pickup_study.py            # ~1 min
     .venv/bin/python benchmarks/pickup_study.py --no-figure
     .venv/bin/python benchmarks/pickup_study.py --putdown-2cm   # ~25 s, no figure
+    .venv/bin/python benchmarks/pickup_study.py --pickup-2cm --iterations 20
+
+``--pickup-2cm``: pick-up at alpha = 0 with the same chain, 3 m/s, dt 0.5 ms, for cart
+forces 0-0.3, and the line ``Tbar = p + G*Fbar_c`` (carriage mass ``0.02 + F/(g sin 30
+deg)``, the rope-tied cart). ``--iterations`` sets the solver iterations of both studies
+(default 10; the fold preset runs at 20).
 
 ``--putdown-2cm``: put-down at alpha = 0 with the apparatus presets' chain (2 cm rod
 links, friction 0.6) at 3 m/s, dt 0.5 ms, 10 iterations, for several cart forces, and
@@ -36,7 +42,8 @@ def one(mode: str, alpha_deg: float, f_bar: float = 0.0, L: float = 0.01) -> Rig
     return run_rig(cfg, duration=0.6, settle=0.25)
 
 
-def putdown_2cm(forces: tuple[float, ...] = (0.1, 0.2, 0.3, 0.4, 0.5), v: float = 3.0) -> int:
+def putdown_2cm(forces: tuple[float, ...] = (0.1, 0.2, 0.3, 0.4, 0.5), v: float = 3.0,
+                iterations: int = 10, duration: float = 3.0) -> int:
     """Put-down rig at the presets' scale; prints a table and the fit over ``Fbar_c >= 0.3``."""
     from chainfountain.sim.config import SolverConfig
 
@@ -45,11 +52,11 @@ def putdown_2cm(forces: tuple[float, ...] = (0.1, 0.2, 0.3, 0.4, 0.5), v: float 
     fit = []
     for f in forces:
         ch = ChainConfig(link_length=0.02, linear_density=LAM, friction=0.6, link_radius=0.002)
-        sol = SolverConfig(dt=0.0005, iterations=10, joint_error_bias=1e-10,
+        sol = SolverConfig(dt=0.0005, iterations=iterations, joint_error_bias=1e-10,
                            collision_slop=1e-4)
         cfg = RigConfig(mode="putdown", speed=v, cart_force=f * LAM * v * v, chain=ch,
                         solver=sol)
-        r = run_rig(cfg, duration=3.0, settle=0.5)
+        r = run_rig(cfg, duration=duration, settle=0.5)
         h = len(r.t) // 2
         halves = [float(np.mean(r.force[s])) / (LAM * float(np.mean(np.abs(r.v[s]))) ** 2)
                   for s in (slice(0, h), slice(h, None))]
@@ -64,15 +71,51 @@ def putdown_2cm(forces: tuple[float, ...] = (0.1, 0.2, 0.3, 0.4, 0.5), v: float 
     return 0
 
 
+def pickup_2cm(forces: tuple[float, ...] = (0.0, 0.1, 0.2, 0.3), v: float = 3.0,
+               iterations: int = 10, duration: float = 2.0) -> int:
+    """Pick-up rig at the presets' scale (alpha = 0); table and fit ``p + G*Fbar_c``."""
+    from chainfountain.sim.config import SolverConfig
+
+    print("| Fbar_c | chain speed m/s | v_R/v | Tbar exit | halves |")
+    print("|---|---|---|---|---|")
+    pts = []
+    for f in forces:
+        ch = ChainConfig(link_length=0.02, linear_density=LAM, friction=0.6, link_radius=0.002)
+        sol = SolverConfig(dt=0.0005, iterations=iterations, joint_error_bias=1e-10,
+                           collision_slop=1e-4)
+        F = f * LAM * v * v
+        cfg = RigConfig(mode="pickup", speed=v, cart_force=F, chain=ch, solver=sol,
+                        carriage_mass=0.02 + F / (9.81 * 0.5))
+        r = run_rig(cfg, duration=duration, settle=0.25)
+        h = len(r.t) // 2
+        halves = [float(np.mean(r.force[s])) / (LAM * float(np.mean(np.abs(r.v[s]))) ** 2)
+                  for s in (slice(0, h), slice(h, None))]
+        print(f"| {f:.2f} | {r.speed:.3f} | {r.roller_ratio:.3f} | {r.force_bar:.3f} | "
+              f"{halves[0]:.3f} / {halves[1]:.3f} |")
+        sys.stdout.flush()
+        pts.append((f, r.force_bar))
+    G, p = np.polyfit([x for x, _ in pts], [y for _, y in pts], 1)
+    print(f"\nTbar = {p:.3f} + {G:.3f}*Fbar_c")
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--no-figure", action="store_true")
     ap.add_argument("--putdown-2cm", action="store_true",
                     help="put-down at the apparatus presets' scale (2 cm links, 3 m/s)")
+    ap.add_argument("--pickup-2cm", action="store_true",
+                    help="pick-up at the apparatus presets' scale (2 cm links, 3 m/s)")
+    ap.add_argument("--iterations", type=int, default=10,
+                    help="solver iterations for --putdown-2cm / --pickup-2cm")
+    ap.add_argument("--duration", type=float, default=None,
+                    help="averaging time (s) for --putdown-2cm / --pickup-2cm")
     ap.add_argument("--out", default="docs/img/pickup.png")
     args = ap.parse_args(argv)
     if args.putdown_2cm:
-        return putdown_2cm()
+        return putdown_2cm(iterations=args.iterations, duration=args.duration or 3.0)
+    if args.pickup_2cm:
+        return pickup_2cm(iterations=args.iterations, duration=args.duration or 2.0)
     t0 = time.perf_counter()
     rows = []
     print("| mode | alpha deg | cart F/(lambda v^2) | L mm | v_R/v | paper v_R/v | "
