@@ -42,60 +42,36 @@ def one(mode: str, alpha_deg: float, f_bar: float = 0.0, L: float = 0.01) -> Rig
     return run_rig(cfg, duration=0.6, settle=0.25)
 
 
-def putdown_2cm(forces: tuple[float, ...] = (0.1, 0.2, 0.3, 0.4, 0.5), v: float = 3.0,
-                iterations: int = 10, duration: float = 3.0) -> int:
-    """Put-down rig at the presets' scale; prints a table and the fit over ``Fbar_c >= 0.3``."""
+def rig_2cm(mode: str, forces: tuple[float, ...], v: float = 3.0, iterations: int = 10,
+            duration: float = 3.0, fit_from: float = 0.0) -> int:
+    """Pick-up (alpha = 0) or put-down rig at the apparatus presets' scale (2 cm links,
+    dt 0.5 ms); prints a table and the fit ``Tbar = intercept + G*Fbar_c`` over
+    ``Fbar_c >= fit_from``."""
     from chainfountain.sim.config import SolverConfig
 
-    print("| Fbar_c | chain speed m/s | v_R/v | Tbar entry | halves |")
+    word = "exit" if mode == "pickup" else "entry"
+    print(f"| Fbar_c | chain speed m/s | v_R/v | Tbar {word} | halves |")
     print("|---|---|---|---|---|")
     fit = []
+    ch = ChainConfig(link_length=0.02, linear_density=LAM, friction=0.6, link_radius=0.002)
+    sol = SolverConfig(dt=0.0005, iterations=iterations, joint_error_bias=1e-10,
+                       collision_slop=1e-4)
     for f in forces:
-        ch = ChainConfig(link_length=0.02, linear_density=LAM, friction=0.6, link_radius=0.002)
-        sol = SolverConfig(dt=0.0005, iterations=iterations, joint_error_bias=1e-10,
-                           collision_slop=1e-4)
-        cfg = RigConfig(mode="putdown", speed=v, cart_force=f * LAM * v * v, chain=ch,
-                        solver=sol)
-        r = run_rig(cfg, duration=duration, settle=0.5)
+        F = f * LAM * v * v
+        extra = {"carriage_mass": 0.02 + F / (9.81 * 0.5)} if mode == "pickup" else {}
+        cfg = RigConfig(mode=mode, speed=v, cart_force=F, chain=ch, solver=sol, **extra)
+        r = run_rig(cfg, duration=duration, settle=0.25 if mode == "pickup" else 0.5)
         h = len(r.t) // 2
         halves = [float(np.mean(r.force[s])) / (LAM * float(np.mean(np.abs(r.v[s]))) ** 2)
                   for s in (slice(0, h), slice(h, None))]
         print(f"| {f:.2f} | {r.speed:.3f} | {r.roller_ratio:.3f} | {r.force_bar:.3f} | "
               f"{halves[0]:.3f} / {halves[1]:.3f} |")
         sys.stdout.flush()
-        if f >= 0.3 - 1e-9:
+        if f >= fit_from - 1e-9:
             fit.append((f, r.force_bar))
     if len(fit) >= 2:
-        G_d, d = np.polyfit([x for x, _ in fit], [y for _, y in fit], 1)
-        print(f"\nTbar = {d:.3f} + {G_d:.3f}*Fbar_c (Fbar_c >= 0.3)")
-    return 0
-
-
-def pickup_2cm(forces: tuple[float, ...] = (0.0, 0.1, 0.2, 0.3), v: float = 3.0,
-               iterations: int = 10, duration: float = 2.0) -> int:
-    """Pick-up rig at the presets' scale (alpha = 0); table and fit ``p + G*Fbar_c``."""
-    from chainfountain.sim.config import SolverConfig
-
-    print("| Fbar_c | chain speed m/s | v_R/v | Tbar exit | halves |")
-    print("|---|---|---|---|---|")
-    pts = []
-    for f in forces:
-        ch = ChainConfig(link_length=0.02, linear_density=LAM, friction=0.6, link_radius=0.002)
-        sol = SolverConfig(dt=0.0005, iterations=iterations, joint_error_bias=1e-10,
-                           collision_slop=1e-4)
-        F = f * LAM * v * v
-        cfg = RigConfig(mode="pickup", speed=v, cart_force=F, chain=ch, solver=sol,
-                        carriage_mass=0.02 + F / (9.81 * 0.5))
-        r = run_rig(cfg, duration=duration, settle=0.25)
-        h = len(r.t) // 2
-        halves = [float(np.mean(r.force[s])) / (LAM * float(np.mean(np.abs(r.v[s]))) ** 2)
-                  for s in (slice(0, h), slice(h, None))]
-        print(f"| {f:.2f} | {r.speed:.3f} | {r.roller_ratio:.3f} | {r.force_bar:.3f} | "
-              f"{halves[0]:.3f} / {halves[1]:.3f} |")
-        sys.stdout.flush()
-        pts.append((f, r.force_bar))
-    G, p = np.polyfit([x for x, _ in pts], [y for _, y in pts], 1)
-    print(f"\nTbar = {p:.3f} + {G:.3f}*Fbar_c")
+        G, c = np.polyfit([x for x, _ in fit], [y for _, y in fit], 1)
+        print(f"\nTbar = {c:.3f} + {G:.3f}*Fbar_c (Fbar_c >= {fit_from:g})")
     return 0
 
 
@@ -113,9 +89,11 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--out", default="docs/img/pickup.png")
     args = ap.parse_args(argv)
     if args.putdown_2cm:
-        return putdown_2cm(iterations=args.iterations, duration=args.duration or 3.0)
+        return rig_2cm("putdown", (0.1, 0.2, 0.3, 0.4, 0.5), iterations=args.iterations,
+                       duration=args.duration or 3.0, fit_from=0.3)
     if args.pickup_2cm:
-        return pickup_2cm(iterations=args.iterations, duration=args.duration or 2.0)
+        return rig_2cm("pickup", (0.0, 0.1, 0.2, 0.3), iterations=args.iterations,
+                       duration=args.duration or 2.0)
     t0 = time.perf_counter()
     rows = []
     print("| mode | alpha deg | cart F/(lambda v^2) | L mm | v_R/v | paper v_R/v | "
