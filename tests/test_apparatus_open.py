@@ -42,6 +42,7 @@ def run():
     # xi2 raised so that the drop to the guide's exit equals the floor preset's drop to
     # its floor (0.35 m): same driving, same cart, same speed
     a = dataclasses.replace(cfg.apparatus, variant="open", xi2=0.546, end_tension=0.144,
+                            plate_links=0,
                             duration=2.6)
     sim = Simulation(dataclasses.replace(cfg, apparatus=a))
     rec = Recorder(sim, profiles=False)

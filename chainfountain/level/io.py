@@ -190,6 +190,14 @@ def _check_apparatus(level: Level, where: str) -> None:
         _fail(where, "chain.link_length",
               f"{sim.chain.link_length!r} m is too coarse for a drop of {a.drop:g} m; "
               f"allowed: at most a tenth of apparatus.drop ({0.1 * a.drop:.4g} m)")
+    if a.plate_links and a.plate != "groove":
+        _fail(where, "apparatus.plate_links",
+              f"{a.plate_links!r} needs apparatus.plate = 'groove' (it is {a.plate!r}); "
+              "allowed: 0 with a 'contact' plate")
+    if a.plate_links and a.plate_links < 4:
+        _fail(where, "apparatus.plate_links",
+              f"{a.plate_links!r} is too short a plate strand to cut or extend in the middle; "
+              "allowed: 0 (off) or at least 4")
 
 
 def parse_level(data: dict[str, Any], where: str = "<level>") -> Level:

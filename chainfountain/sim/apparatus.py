@@ -139,6 +139,11 @@ end link (:meth:`Apparatus._lump_tail`)."""
 """Speed (m/s) at which the outer limit of a link captured outside the 'open' guide's
 radius closes in to it."""
 _LO_START = 0.15
+# treadmill: a joint made in the tensioned plate strand starts with the tension of the
+# joint it replaces as an internal force pair, faded out over this many steps (the
+# solver's warm start then carries it; in 'fold' runs a cold joint in a plate strand
+# every 13 steps made the lower turn yield sooner)
+_PRELOAD_STEPS = 40
 """'fold': start distance (m) of the folding roller from the end channel's exit."""
 _CLEAR = 0.0008
 """Clearance between a link capsule and each channel wall (m)."""
@@ -463,7 +468,12 @@ class Apparatus:
         self.y_table_up = y_tab
         ch_pts, self.R_up = upper_channel(H, a.xi2, self.alpha0, a.channel_radius, 0.1, step)
         self.x_plate_up_end = float(ch_pts[0, 0])
-        travel = 0.5 * v0 * a.duration + 0.15
+        self.treadmill = a.plate_links > 0 and a.plate == "groove"
+        """The upper plate strand is held at about ``plate_links`` links
+        (:meth:`_treadmill_upper`)."""
+        travel_lo = travel = 0.5 * v0 * a.duration + 0.15
+        if self.treadmill:
+            travel = (int(a.plate_links) + 2) * L
         x_R = self.x_plate_up_end - travel
         vR = 0.5 * v0
         R = r + rho
@@ -511,7 +521,6 @@ class Apparatus:
         self.lower: RollerUnit | None = None
         self.plate_lo: pymunk.Segment | None = None
         self.channel_lo: np.ndarray | None = None
-        self.lo_tail: list[tuple[float, float]] = []
         self.guided = False
         """'open' with ``plate = "groove"``: the turn after landing is a joint guide."""
         self.fold_guided = False
@@ -590,7 +599,7 @@ class Apparatus:
                                          1.0, self.g, eb, vR, -vR / R)
                 self.table_lo = pymunk.Segment(
                     space.static_body, (xl - 0.5, ylt - 0.01),
-                    (x_lo + travel + 1.0, ylt - 0.01), 0.01)
+                    (x_lo + travel_lo + 1.0, ylt - 0.01), 0.01)
                 self.table_lo.friction = a.table_friction
                 self.table_lo.filter = pymunk.ShapeFilter(categories=SCENERY_CATEGORY)
                 space.add(self.table_lo)
@@ -603,7 +612,7 @@ class Apparatus:
                     space.add(self.plate_lo)
                 if self.fold_guided:
                     self.guide = self._fold_guide(ex, alphaE, rise, a.channel_radius,
-                                                  x_lo + travel + 1.0)
+                                                  x_lo + travel_lo + 1.0)
                 ycl = self.lower.yc
                 parts.append(np.array([[x_lo, self.y_lo]]))
                 th = np.linspace(0.5 * math.pi, -0.5 * math.pi, 60)[1:]
@@ -620,6 +629,13 @@ class Apparatus:
         pts, s = _resample(path, L)
         self._lay(pts, s, s_wrap0, s_wrap1, s_lo_wrap, v0, vR, R)
         self.start_x = (self.upper.x, self.lower.x if self.lower is not None else 0.0)
+        self.moved_back = 0
+        """Treadmill: links added to the upper plate strand."""
+        self.shifted = [0.0, 0.0]
+        """Treadmill: distance (m) the upper / lower roller unit was moved back (the
+        lower one is not: see docs/apparatus.md, "Treadmill")."""
+        self._preload: list[list] = []
+        """Treadmill: ``[down, up, force N, steps left]`` of joints made in the strand."""
         self._sync_plates()
         self._lo_n = 0
         """'open' with ``plate = "groove"``: links ``0 .. _lo_n-1`` (the tail on the lower
@@ -762,6 +778,30 @@ class Apparatus:
         if self.end_pull:
             self.chain.links[0].body.apply_force_at_world_point(
                 (self.end_pull, 0.0), self.chain.links[0].body.position)
+        if self._preload:
+            self._apply_preload()
+
+    def _apply_preload(self) -> None:
+        """Treadmill: the internal force pair ``F`` (tension: pulls ``down`` back along
+        its axis, ``up`` forward) on each new strand joint, fading linearly. Equal and
+        opposite at the joint, so it changes no physics; it stands in for the solver's
+        warm start, which a new pymunk joint lacks."""
+        h = 0.5 * self.L
+        keep = []
+        for item in self._preload:
+            down, up, F, n = item
+            if down.up_joint is None or down.body.space is None or up.body.space is None:
+                continue
+            f = F * n / _PRELOAD_STEPS
+            a = down.body.angle
+            fx, fy = f * math.cos(a), f * math.sin(a)
+            p = down.body.local_to_world((-h, 0.0))
+            down.body.apply_force_at_world_point((-fx, -fy), p)
+            up.body.apply_force_at_world_point((fx, fy), p)
+            item[3] = n - 1
+            if n > 1:
+                keep.append(item)
+        self._preload = keep
 
     def after_step(self, dt: float) -> None:
         """Move the plate ends with the rollers; add resting links ahead of the pick-up
@@ -786,6 +826,8 @@ class Apparatus:
         # downstream end: absorb at the floor height / drop links that lie at rest
         self._t += dt
         popped = self._lump_tail()
+        if self.treadmill:
+            self._treadmill_upper()
         if self.end_mode == "absorbing":
             # as chainfountain.sim.feed: remove the end link when its *centre* reaches the
             # floor, so the free end (Tbar_E = 0) is on average exactly at -H
@@ -806,8 +848,6 @@ class Apparatus:
             y_rest = self.y_table_lo + 2.0 * self.rho
             while len(links) > n_keep + 10 and links[0].body.position.x < x_lim and \
                     links[0].body.position.y < y_rest:
-                b = links[0].body.position
-                self.lo_tail.append((float(b.x), float(b.y)))
                 chain.pop_front()
                 self.absorbed += 1
                 popped += 1
@@ -816,6 +856,77 @@ class Apparatus:
             self._update_lo_grooves()
         if self.fold_guided:
             self._update_fold_guide(popped)
+
+    # ------------------------------------------------------------------ treadmill
+    def travel(self, i: int) -> float:
+        """Distance (m) roller ``i`` (0 upper, 1 lower) has rolled since the start,
+        the treadmill's moves back included."""
+        u = (self.upper, self.lower)[i]
+        if u is None:
+            return 0.0
+        return abs(u.x - self.start_x[i] + self.shifted[i])
+
+    def _shift_back(self, bodies: list[pymunk.Body], dx: float) -> None:
+        """Move ``bodies`` by ``dx`` (m) in ``-x`` (velocities unchanged)."""
+        for b in bodies:
+            p = b.position
+            b.position = (p.x - dx, p.y)
+
+    def _treadmill_upper(self) -> None:
+        """Keep the upper plate strand from shrinking: once the pick-up roller has moved
+        half a link length past its start, insert a link into the middle of the grooved
+        strand and move everything upstream of it (strand, wrap, resting chain, roller
+        and carriage) back by one link length. The strand is straight, horizontal and
+        frictionless and all its links move at the chain speed, so the new link (the
+        mean velocity of its neighbours, laid exactly into the gap) changes nothing but
+        the strand's length; the pick-up (roller on the resting chain) is moved rigidly
+        and is untouched."""
+        up = self.upper
+        L = self.L
+        g = self._grooves
+        if up.x - self.start_x[0] < 0.5 * L or len(g) < 4:
+            return
+        chain = self.chain
+        links = chain.links
+        m = len(g) // 2
+        a_link = g[m][0]
+        i = chain.ids.index(a_link.id)
+        b_link = links[i + 1]
+        if g[m + 1][0] is not b_link:
+            return  # not a contiguous strand (should not happen): skip this step
+        h = 0.5 * L
+        pa = a_link.body.local_to_world((-h, 0.0))
+        pb = b_link.body.local_to_world((h, 0.0))
+        dy = pa.y - pb.y
+        dx = math.sqrt(max(L * L - dy * dy, 0.0)) - (pa.x - pb.x)
+        self._shift_back([lk.body for lk in links[i + 1:]] + [up.roller, up.carriage], dx)
+        self.shifted[0] += dx
+        pb = pymunk.Vec2d(pb.x - dx, pb.y)
+        ab = a_link.body
+        F = a_link.up_joint.impulse / self.sim_cfg.solver.dt if a_link.up_joint else 0.0
+        vel = 0.5 * (ab.velocity + b_link.body.velocity)
+        new = chain.make_body((0.5 * (pa.x + pb.x), 0.5 * (pa.y + pb.y)),
+                              math.atan2(pa.y - pb.y, pa.x - pb.x), velocity=tuple(vel))
+        for c in (a_link.up_joint, a_link.up_spring):
+            if c is not None:
+                self.space.remove(c)
+        a_link.up_joint = a_link.up_spring = None
+        self.space.add(new.body)
+        links.insert(i + 1, new)
+        chain.ids.insert(i + 1, new.id)
+        chain.version += 1
+        chain._connect(a_link, new)
+        chain._connect(new, b_link)
+        self._preload += [[a_link, new, F, _PRELOAD_STEPS], [new, b_link, F, _PRELOAD_STEPS]]
+        j = pymunk.GrooveJoint(self.space.static_body, new.body,
+                               (up.x - 1.0, self.y_up), (self.x_plate_up_end + 0.2, self.y_up),
+                               (0.0, 0.0))
+        j.error_bias = self.sim_cfg.solver.joint_error_bias
+        self.space.add(j)
+        g.insert(m + 1, (new, j))
+        self._g_next += 1
+        self.added += 1
+        self.moved_back += 1
 
     def lo_grooved(self, position: np.ndarray) -> int:
         """Number of leading links (chain order) on the lower plate line past the end

@@ -302,6 +302,16 @@ class ApparatusConfig:
         "behind the folding roller / on the floor (older ones leave the solver)", min=5,
         max=10000,
     )
+    plate_links: int = param(
+        0, unit="1", doc="Treadmill (needs plate = 'groove'): keep the upper plate strand at "
+        "about this many links. Each time the pick-up roller has moved one link length, a "
+        "link is added to the middle of the strand and the roller, its carriage and its "
+        "resting chain move back by one link, so the roller stays in place, the solver "
+        "keeps a short strand and 'floor' and 'open' runs may last any time (duration then "
+        "sizes only the lower table of 'fold'). 0: the real geometry, the roller travels at "
+        "v/2 and the upper table is sized by duration",
+        min=0, max=1000,
+    )
 
 
 @dataclass

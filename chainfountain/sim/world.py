@@ -374,7 +374,10 @@ class Simulation:
             top = (x0, u.yc + 0.3)
             d = (-u.direction * math.cos(beta), -math.sin(beta))
             end = (top[0] + d[0] * c.track_length, top[1] + d[1] * c.track_length)
-            out.append((top, end, abs(u.x - app.start_x[i]), beta))
+            s = app.travel(i)
+            if app.treadmill and i == 0:  # endless run: the cart starts its track again
+                s = math.fmod(s, c.track_length)
+            out.append((top, end, s, beta))
         return out
 
     def cart_geometry(self) -> list[np.ndarray]:
