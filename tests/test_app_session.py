@@ -146,3 +146,16 @@ def test_drag_a_link():
     s.release()
     assert not s.dragging
     assert not s.grab((50.0, 50.0), max_dist=0.05)
+
+
+def test_used_up_apparatus_table_pauses_with_a_message() -> None:
+    from pathlib import Path
+
+    lvl = io.load(Path(__file__).resolve().parents[1] / "levels" / "apparatus_floor.toml")
+    lvl.sim.apparatus.plate_links = 0  # the real geometry, sized for a 0.2-s run
+    lvl.sim.apparatus.duration = 0.2
+    s = Session(lvl)
+    s.advance(2.0)  # no exception escapes
+    assert s.paused
+    assert "upper table is used up" in s.messages[-1][1]
+    assert s.sim.time < 1.0

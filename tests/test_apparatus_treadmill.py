@@ -21,6 +21,7 @@ import pytest
 
 from chainfountain.level import io
 from chainfountain.sim import Simulation
+from chainfountain.sim.apparatus import TableUsedUp
 
 LEVEL = Path(__file__).resolve().parents[1] / "levels" / "apparatus_floor.toml"
 RUN = 1.5
@@ -87,3 +88,24 @@ def test_without_treadmill_the_roller_travels() -> None:
     assert not app.treadmill and app.moved_back == 0
     assert app.upper.x - app.start_x[0] == pytest.approx(0.1 * app.speed, rel=0.2)
     assert math.isclose(app.travel(0), app.upper.x - app.start_x[0])
+
+
+def test_used_up_table_is_one_clear_error() -> None:
+    # the real geometry sized for a 0.2-s run at the start speed: the roller reaches the
+    # channel and the run stops with a message naming the field, not a traceback
+    cfg = io.load(LEVEL).sim
+    cfg = dataclasses.replace(cfg, apparatus=dataclasses.replace(
+        cfg.apparatus, plate_links=0, duration=0.2))
+    sim = Simulation(cfg)
+    with pytest.raises(TableUsedUp, match=r"apparatus\.duration = 0\.2 s.*plate_links"):
+        sim.advance(2.0)
+
+
+def test_tiny_links_keep_a_table() -> None:
+    # 1-mm links: the treadmill strand would be 22 mm; the table keeps at least 15 cm
+    cfg = io.load(LEVEL).sim
+    cfg = dataclasses.replace(cfg, chain=dataclasses.replace(cfg.chain, link_length=0.001))
+    sim = Simulation(cfg)
+    sim.advance(0.002)
+    app = sim.apparatus
+    assert app.x_plate_up_end - app.upper.x >= 0.15 - 1e-9

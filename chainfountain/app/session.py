@@ -24,6 +24,7 @@ import numpy as np
 
 from chainfountain.app import paths
 from chainfountain.app.controls import FieldSpec, get_value, set_value, spec_for
+from chainfountain.errors import UserError
 from chainfountain.level import io
 from chainfountain.level.io import Level, LevelError
 from chainfountain.sim.measure import steady_time
@@ -321,6 +322,13 @@ class Session:
         return self.paused
 
     def _step(self, n: int) -> None:
+        try:
+            self._step_n(n)
+        except UserError as exc:  # the run cannot go on (an apparatus table used up)
+            self.paused = True
+            self.say(f"{exc}; paused")
+
+    def _step_n(self, n: int) -> None:
         sim = self.sim
         tgt, prev = self._drag_target, self._drag_prev
         if tgt is not None and sim.dragging:

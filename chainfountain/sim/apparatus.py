@@ -57,6 +57,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pymunk
 
+from chainfountain.errors import UserError
 from chainfountain.sim.bodies import SCENERY_CATEGORY
 from chainfountain.sim.chain import CHAIN_CATEGORY, Chain, Link
 from chainfountain.sim.config import CartConfig, SimConfig
@@ -343,6 +344,12 @@ class GuideElement:
         return j
 
 
+class TableUsedUp(UserError):
+    """The pick-up roller has reached the upper channel: the run has outgrown the
+    upper table (raised by :meth:`Apparatus.after_step`; the app pauses on it, the
+    CLI prints it as one line)."""
+
+
 # ----------------------------------------------------------------------------- bodies
 @dataclass(eq=False)
 class RollerUnit:
@@ -472,8 +479,8 @@ class Apparatus:
         """The upper plate strand is held at about ``plate_links`` links
         (:meth:`_treadmill_upper`)."""
         travel_lo = travel = 0.5 * v0 * a.duration + 0.15
-        if self.treadmill:
-            travel = (int(a.plate_links) + 2) * L
+        if self.treadmill:  # at least 15 cm: the table check below keeps a 5-cm margin
+            travel = max((int(a.plate_links) + 2) * L, 0.15)
         x_R = self.x_plate_up_end - travel
         vR = 0.5 * v0
         R = r + rho
@@ -813,9 +820,15 @@ class Apparatus:
         L, n_keep = self.L, self.cfg.rest_links
         x_R = self.upper.x
         if x_R > self.x_plate_up_end - 0.05:
-            raise RuntimeError(
-                "the pick-up roller has reached the channel: the upper table is used up "
-                f"(raise apparatus.duration, now {self.cfg.duration:g} s)")
+            if self.treadmill:
+                raise TableUsedUp(
+                    f"t = {self._t:.2f} s: the pick-up roller has reached the channel although "
+                    "the treadmill should hold it (the upper strand has left its plate "
+                    "grooves); reset the level")
+            raise TableUsedUp(
+                f"t = {self._t:.2f} s: the pick-up roller has reached the channel: the upper "
+                f"table is used up (apparatus.duration = {self.cfg.duration:g} s sizes it for "
+                f"the start speed; raise it, or set apparatus.plate_links > 0 for a treadmill)")
         last = links[-1].body
         while last.position.x < x_R + n_keep * L:
             c = last.position
