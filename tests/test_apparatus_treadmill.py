@@ -17,6 +17,7 @@ import math
 from pathlib import Path
 
 import numpy as np
+import pymunk
 import pytest
 
 from chainfountain.level import io
@@ -52,7 +53,7 @@ def test_pickup_roller_stays_in_place(run) -> None:
     assert np.all(np.abs(xs - app.start_x[0]) <= L)
     # it has rolled about v/2 * t all the same: the treadmill moved it back
     assert app.moved_back > 0.4 * RUN * app.speed / L
-    assert app.travel(0) == pytest.approx(app.shifted[0] + (app.upper.x - app.start_x[0]))
+    assert app.travel(0) == pytest.approx(app.shifted + (app.upper.x - app.start_x[0]))
     assert app.travel(0) / RUN == pytest.approx(0.5 * app.speed, rel=0.05)
 
 
@@ -109,3 +110,23 @@ def test_tiny_links_keep_a_table() -> None:
     sim.advance(0.002)
     app = sim.apparatus
     assert app.x_plate_up_end - app.upper.x >= 0.15 - 1e-9
+
+
+def test_chain_insert_rejoins_the_neighbours() -> None:
+    from chainfountain.sim.chain import Chain
+    from chainfountain.sim.config import ChainConfig, SolverConfig
+
+    space = pymunk.Space()
+    chain = Chain(space, ChainConfig(link_length=0.02, bending_stiffness=0.001),
+                  SolverConfig(), shapes=True)
+    for k in range(4):
+        chain.append(chain.make_body((-0.02 * k, 0.0), 0.0))
+    n_c = len(space.constraints)
+    new = chain.make_body((-0.01, 0.0), 0.0)
+    chain.insert(1, new, with_shape=False)
+    assert chain.links[1] is new and chain.ids[1] == new.id and len(chain) == 5
+    assert chain.links[0].up_joint.b is new.body and new.up_joint.b is chain.links[2].body
+    assert len(space.constraints) == n_c + 2  # one joint and one spring more
+    assert new.shape not in space.shapes
+    with pytest.raises(IndexError):
+        chain.insert(0, chain.make_body((0.0, 0.0), 0.0))

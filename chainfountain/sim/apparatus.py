@@ -140,12 +140,12 @@ end link (:meth:`Apparatus._lump_tail`)."""
 """Speed (m/s) at which the outer limit of a link captured outside the 'open' guide's
 radius closes in to it."""
 _LO_START = 0.15
-# treadmill: a joint made in the tensioned plate strand starts with the tension of the
-# joint it replaces as an internal force pair, faded out over this many steps (the
-# solver's warm start then carries it; in 'fold' runs a cold joint in a plate strand
-# every 13 steps made the lower turn yield sooner)
-_PRELOAD_STEPS = 40
 """'fold': start distance (m) of the folding roller from the end channel's exit."""
+_PRELOAD_STEPS = 40
+"""Treadmill: a joint made in the tensioned plate strand starts with the tension of the
+joint it replaces as an internal force pair, faded out over this many steps (the
+solver's warm start then carries it; in 'fold' trials a cold joint in a plate strand
+every 13 steps made the lower turn yield sooner)."""
 _CLEAR = 0.0008
 """Clearance between a link capsule and each channel wall (m)."""
 _ONLY_CHAIN = pymunk.ShapeFilter(categories=SCENERY_CATEGORY, mask=CHAIN_CATEGORY)
@@ -638,9 +638,8 @@ class Apparatus:
         self.start_x = (self.upper.x, self.lower.x if self.lower is not None else 0.0)
         self.moved_back = 0
         """Treadmill: links added to the upper plate strand."""
-        self.shifted = [0.0, 0.0]
-        """Treadmill: distance (m) the upper / lower roller unit was moved back (the
-        lower one is not: see docs/apparatus.md, "Treadmill")."""
+        self.shifted = 0.0
+        """Treadmill: distance (m) the pick-up roller unit was moved back."""
         self._preload: list[list] = []
         """Treadmill: ``[down, up, force N, steps left]`` of joints made in the strand."""
         self._sync_plates()
@@ -873,11 +872,11 @@ class Apparatus:
     # ------------------------------------------------------------------ treadmill
     def travel(self, i: int) -> float:
         """Distance (m) roller ``i`` (0 upper, 1 lower) has rolled since the start,
-        the treadmill's moves back included."""
+        the treadmill's moves back included (upper roller only)."""
         u = (self.upper, self.lower)[i]
         if u is None:
             return 0.0
-        return abs(u.x - self.start_x[i] + self.shifted[i])
+        return abs(u.x - self.start_x[i] + (self.shifted if i == 0 else 0.0))
 
     def _shift_back(self, bodies: list[pymunk.Body], dx: float) -> None:
         """Move ``bodies`` by ``dx`` (m) in ``-x`` (velocities unchanged)."""
@@ -913,30 +912,16 @@ class Apparatus:
         dy = pa.y - pb.y
         dx = math.sqrt(max(L * L - dy * dy, 0.0)) - (pa.x - pb.x)
         self._shift_back([lk.body for lk in links[i + 1:]] + [up.roller, up.carriage], dx)
-        self.shifted[0] += dx
+        self.shifted += dx
         pb = pymunk.Vec2d(pb.x - dx, pb.y)
         ab = a_link.body
         F = a_link.up_joint.impulse / self.sim_cfg.solver.dt if a_link.up_joint else 0.0
         vel = 0.5 * (ab.velocity + b_link.body.velocity)
         new = chain.make_body((0.5 * (pa.x + pb.x), 0.5 * (pa.y + pb.y)),
                               math.atan2(pa.y - pb.y, pa.x - pb.x), velocity=tuple(vel))
-        for c in (a_link.up_joint, a_link.up_spring):
-            if c is not None:
-                self.space.remove(c)
-        a_link.up_joint = a_link.up_spring = None
-        self.space.add(new.body)
-        links.insert(i + 1, new)
-        chain.ids.insert(i + 1, new.id)
-        chain.version += 1
-        chain._connect(a_link, new)
-        chain._connect(new, b_link)
+        chain.insert(i + 1, new, with_shape=False)  # grooved: out of the broadphase
         self._preload += [[a_link, new, F, _PRELOAD_STEPS], [new, b_link, F, _PRELOAD_STEPS]]
-        j = pymunk.GrooveJoint(self.space.static_body, new.body,
-                               (up.x - 1.0, self.y_up), (self.x_plate_up_end + 0.2, self.y_up),
-                               (0.0, 0.0))
-        j.error_bias = self.sim_cfg.solver.joint_error_bias
-        self.space.add(j)
-        g.insert(m + 1, (new, j))
+        g.insert(m + 1, (new, self._groove_joint(new.body)))
         self._g_next += 1
         self.added += 1
         self.moved_back += 1
@@ -1171,13 +1156,17 @@ class Apparatus:
         return (self.upper.x + self.L < p.x < self.x_plate_up_end
                 and abs(p.y - self.y_up) < 0.5 * self.rho)
 
-    def _groove(self, link: Link) -> None:
-        body = link.body
+    def _groove_joint(self, body: pymunk.Body) -> pymunk.GrooveJoint:
+        """A frictionless groove on the upper plate line for ``body``'s centre (added)."""
         j = pymunk.GrooveJoint(self.space.static_body, body,
                                (self.upper.x - 1.0, self.y_up),
                                (self.x_plate_up_end + 0.2, self.y_up), (0.0, 0.0))
         j.error_bias = self.sim_cfg.solver.joint_error_bias
         self.space.add(j)
+        return j
+
+    def _groove(self, link: Link) -> None:
+        j = self._groove_joint(link.body)
         if link.shape is not None:  # nothing to touch on the plate: out of the broadphase
             self.space.remove(link.shape)
         self._grooves.append((link, j))

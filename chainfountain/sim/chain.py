@@ -135,6 +135,27 @@ class Chain:
         self.ids.append(link.id)
         self.version += 1
 
+    def insert(self, i: int, link: Link, *, with_shape: bool = True) -> None:
+        """Put ``link`` between links ``i - 1`` and ``i`` (``0 < i < len``): the joint
+        between them is replaced by one to each side of ``link``. The caller lays
+        ``link`` into the gap (``chainfountain.sim.apparatus``: the plate treadmill)."""
+        if not 0 < i < len(self.links):
+            raise IndexError(f"insert at {i}: needs a neighbour on each side")
+        down, up = self.links[i - 1], self.links[i]
+        for c in (down.up_joint, down.up_spring):
+            if c is not None:
+                self.space.remove(c)
+        down.up_joint = down.up_spring = None
+        if with_shape or link.shape is None:
+            self._add_link_objects(link)
+        else:
+            self.space.add(link.body)
+        self.links.insert(i, link)
+        self.ids.insert(i, link.id)
+        self._connect(down, link)
+        self._connect(link, up)
+        self.version += 1
+
     def append_unjoined(self, link: Link) -> None:
         """Add ``link`` at the upstream end without a joint (for kinematic guide links)."""
         self._add_link_objects(link)
