@@ -134,11 +134,20 @@ _PLAY = 0.001
 _GUIDE_BIAS = 0.0018
 """Joint error bias of the 'open' turn's slide joints (pymunk's default)."""
 _CLOSE_RATE = 0.2
+"""Speed (m/s) at which the outer limit of a link captured outside the 'open' guide's
+radius closes in to it."""
+_FOLD_CAPTURE = (0.06, math.radians(3.0))
+"""'fold' joint guide: capture band (m) and angular margin (rad) of the first turn.
+Wider than 'open''s: the fountain's landing point wanders by several centimetres
+(docs/apparatus.md, "Fold: the landing wanders"), and a link captured off the radius
+is held there (its limits close in at :data:`_FOLD_CLOSE_RATE`), so a wide band costs
+nothing while the chain lands on the radius."""
+_FOLD_CLOSE_RATE = 0.5
+"""Speed (m/s) at which the limits of a link captured off the 'fold' turn's radius
+close in to ``R -+ _PLAY`` (a 6-cm offset closes within the turn, about 0.13 s)."""
 _TAIL_KEEP = 30
 """'open': links kept in the lower plate grooves; the tail beyond is lumped into the
 end link (:meth:`Apparatus._lump_tail`)."""
-"""Speed (m/s) at which the outer limit of a link captured outside the 'open' guide's
-radius closes in to it."""
 _LO_START = 0.15
 """'fold': start distance (m) of the folding roller from the end channel's exit."""
 _PRELOAD_STEPS = 40
@@ -868,6 +877,7 @@ class Apparatus:
             self._update_lo_grooves()
         if self.fold_guided:
             self._update_fold_guide(popped)
+            self._project_arcs()
 
     # ------------------------------------------------------------------ treadmill
     def travel(self, i: int) -> float:
@@ -1093,12 +1103,12 @@ class Apparatus:
             p = links[self._cap_next].body.position
             d = math.hypot(p.x - cx, p.y - cy)
             th = math.atan2(p.y - cy, p.x - cx)
-            if not (el0.th0 - _CAPTURE[1] <= th <= max(lim, el0.th1)
-                    and abs(d - Rc) < _CAPTURE[0]):
+            if not (el0.th0 - _FOLD_CAPTURE[1] <= th <= max(lim, el0.th1)
+                    and abs(d - Rc) < _FOLD_CAPTURE[0]):
                 break
             self._hold(0, links[self._cap_next])
             self._cap_next += 1
-        close = _CLOSE_RATE * self.sim_cfg.solver.dt
+        close = _FOLD_CLOSE_RATE * self.sim_cfg.solver.dt
         space = self.space
         n_el = len(self.guide)
         for k in range(n_el - 1, -1, -1):  # downstream elements first
@@ -1125,6 +1135,35 @@ class Apparatus:
                 space.remove(j)
                 self._hold(k + 1, link)
 
+    def _project_arcs(self) -> None:
+        """'fold': put each link of a guide arc that has left its slide joint's limits
+        back onto the nearest limit and take away its velocity across it.
+
+        A frictionless wall does exactly this (it stops the motion into it); the
+        slide joint alone corrects a position error only slowly (error bias), while
+        the discrete step moves a link in a turn outward by ``(v dt)^2/(2 R)`` every
+        step, so the turn's links sat 1-2 mm beyond the limit. Measured on the fold
+        test: with the projection they stay on it to the step, and the turn no longer
+        drifts outward as the lower plate strand grows."""
+        for k, el in enumerate(self.guide):
+            if el.kind != "arc":
+                continue
+            cx, cy = el.a
+            for link, j in self._gq[k]:
+                b = link.body
+                p = b.position
+                dx, dy = p.x - cx, p.y - cy
+                d = math.hypot(dx, dy)
+                if j.min <= d <= j.max or d == 0.0:
+                    continue
+                nx, ny = dx / d, dy / d
+                lim, side = (j.max, 1.0) if d > j.max else (j.min, -1.0)
+                b.position = (cx + nx * lim, cy + ny * lim)
+                v = b.velocity
+                vr = v.x * nx + v.y * ny
+                if vr * side > 0.0:
+                    b.velocity = (v.x - vr * nx, v.y - vr * ny)
+
     def fold_guided_range(self, position: np.ndarray, x_lower: float) -> tuple[int, int]:
         """'fold' guide, from a recorded state: index ``i_p`` of the lower-plate link
         about 6 links before the folding roller (its horizontal joint force is the
@@ -1143,7 +1182,7 @@ class Apparatus:
         for e in self.guide[:-1]:
             on |= e.on(position, 0.004)
         e0 = self.guide[0]
-        on |= e0.on(position, _CAPTURE[0])
+        on |= e0.on(position, _FOLD_CAPTURE[0])
         on |= (np.abs(position[:, 1] - y) < 2.0 * self.rho) & (position[:, 0] > el.a[0] - 0.01)
         off = np.flatnonzero(~on[ip:])
         k = ip + int(off[0]) if len(off) else len(position)
