@@ -36,6 +36,16 @@ DEFAULT_DURATION = 8.0
 """Simulated seconds of a headless run when none is given."""
 
 
+def default_duration(level: Level) -> float:
+    """Simulated seconds of a headless run of ``level`` when none is given:
+    :data:`DEFAULT_DURATION`, or an apparatus level's own ``apparatus.duration`` when its
+    upper table is sized by it (no treadmill), so the run ends before the table does."""
+    sim = level.sim
+    if sim.kind == "apparatus" and sim.apparatus.plate_links == 0:
+        return float(sim.apparatus.duration)
+    return DEFAULT_DURATION
+
+
 def default_out_dir(level: Level) -> Path:
     """Where a headless run of ``level`` writes by default: ``./runs/<name>``."""
     from chainfountain.level.library import safe_name
@@ -231,15 +241,25 @@ def write_snapshot(path: Path, sim: Simulation, summary: dict[str, Any], title: 
         ax.plot(vx, vy, "o", mfc="none", color="#1f77b4", ms=9, mew=1.5,
                 label="measured vertex (window mean)")
     fy, fx0, fx1, mode = sim.floor_geometry()
-    ax.plot([fx0, fx1], [fy, fy], color="#8c564b", lw=3, label=f"{mode} floor")
-    (gx, gy), (ux, uy) = sim.guide_geometry()
-    ax.plot([gx - 0.15 * ux, gx], [gy - 0.15 * uy, gy], color="#2ca02c", lw=4, label="feed guide")
+    app = getattr(sim, "apparatus", None)
+    if mode != "none":
+        ax.plot([fx0, fx1], [fy, fy], color="#8c564b", lw=3, label=f"{mode} floor")
+    if app is None:
+        (gx, gy), (ux, uy) = sim.guide_geometry()
+        ax.plot([gx - 0.15 * ux, gx], [gy - 0.15 * uy, gy], color="#2ca02c", lw=4,
+                label="feed guide")
     ax.set_aspect("equal")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
     ax.grid(alpha=0.3)
-    xs = np.concatenate([pts[:, 0], [fx0, fx1]]) if ref is None else pts[:, 0]
-    ax.set_xlim(min(xs.min(), -0.2) - 0.1, max(xs.max(), 0.2) + 0.1)
+    if app is not None:
+        # the fountain and the guides, not the metres of table on either side
+        H = app.H
+        ax.set_xlim(-0.6, max(1.2, 2.4 * H))
+        ax.set_ylim(-H - 0.4, max(0.3, 0.6 * H))
+    else:
+        xs = np.concatenate([pts[:, 0], [fx0, fx1]]) if ref is None else pts[:, 0]
+        ax.set_xlim(min(xs.min(), -0.2) - 0.1, max(xs.max(), 0.2) + 0.1)
     ax.set_title(title, fontsize=10)
     ax.legend(loc="lower left", fontsize=8, framealpha=0.9)
     fig.tight_layout()
@@ -251,7 +271,7 @@ def write_snapshot(path: Path, sim: Simulation, summary: dict[str, Any], title: 
 def run_level(level: Level, out_dir: Path, duration: float | None = None, *,
               seed: int | None = None, progress: bool = True) -> Path:
     """Run ``level`` headless and write the outputs into ``out_dir``; returns summary.json."""
-    duration = DEFAULT_DURATION if duration is None else float(duration)
+    duration = default_duration(level) if duration is None else float(duration)
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     sim, rec, wall = simulate(level, duration, seed=seed, progress=progress)

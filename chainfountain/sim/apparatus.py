@@ -139,7 +139,7 @@ radius closes in to it."""
 _FOLD_CAPTURE = (0.06, math.radians(3.0))
 """'fold' joint guide: capture band (m) and angular margin (rad) of the first turn.
 Wider than 'open''s: the fountain's landing point wanders by several centimetres
-(docs/apparatus.md, "Fold: the landing wanders"), and a link captured off the radius
+(docs/apparatus.md, "Fold variant"), and a link captured off the radius
 is held there (its limits close in at :data:`_FOLD_CLOSE_RATE`), so a wide band costs
 nothing while the chain lands on the radius."""
 _FOLD_CLOSE_RATE = 0.5
@@ -231,7 +231,10 @@ def end_channel_bends(alphaE: float, rise: float, R: float,
     phi = -alphaE
 
     def straight(R: float) -> float:
-        return (rise + R * (math.cos(phi) - math.cos(up)) - R * (1 - math.cos(up))) / \
+        # the first bend (counter-clockwise, heading phi -> up) changes the height by
+        # R (cos(phi) - cos(up)) (it dips for a steep landing), the second (clockwise,
+        # up -> 0) by R (1 - cos(up)); the straight makes up the rest of the rise
+        return (rise - R * (math.cos(phi) - math.cos(up)) - R * (1 - math.cos(up))) / \
             math.sin(up)
 
     S = straight(R)
