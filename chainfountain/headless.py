@@ -106,7 +106,7 @@ def summarize(level: Level, sim: Simulation, rec: Recorder, duration: float,
     tb = s.extras.get("tension_bar")
     TE_bar = float(tb[-1]) if tb is not None and len(tb) else float("nan")
     speed_cv = s.speed_uniformity
-    app = getattr(sim, "apparatus", None)
+    app = sim.apparatus
     H = level.sim.apparatus.drop if app is not None else level.sim.feed.drop
     out: dict[str, Any] = {
         "level": level.meta.name,
@@ -241,7 +241,7 @@ def write_snapshot(path: Path, sim: Simulation, summary: dict[str, Any], title: 
         ax.plot(vx, vy, "o", mfc="none", color="#1f77b4", ms=9, mew=1.5,
                 label="measured vertex (window mean)")
     fy, fx0, fx1, mode = sim.floor_geometry()
-    app = getattr(sim, "apparatus", None)
+    app = sim.apparatus
     if mode != "none":
         ax.plot([fx0, fx1], [fy, fy], color="#8c564b", lw=3, label=f"{mode} floor")
     if app is None:

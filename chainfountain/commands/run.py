@@ -46,6 +46,6 @@ def run(args: argparse.Namespace) -> int:
     duration = args.duration or default_duration(level)
     print(f"running {level.meta.name} headless for {duration:g} simulated s ...",
           file=sys.stderr)
-    path = run_level(level, out, args.duration, seed=args.seed, progress=not args.quiet)
+    path = run_level(level, out, duration, seed=args.seed, progress=not args.quiet)
     print(describe_outputs(path))
     return 0

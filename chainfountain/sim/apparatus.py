@@ -880,7 +880,6 @@ class Apparatus:
             self._update_lo_grooves()
         if self.fold_guided:
             self._update_fold_guide(popped)
-            self._project_arcs()
 
     # ------------------------------------------------------------------ treadmill
     def travel(self, i: int) -> float:
@@ -1117,13 +1116,6 @@ class Apparatus:
         for k in range(n_el - 1, -1, -1):  # downstream elements first
             q = self._gq[k]
             el = self.guide[k]
-            if el.kind == "arc":
-                for link, j in q:
-                    if j.max > el.R + _PLAY or j.min < el.R - _PLAY:
-                        p = link.body.position
-                        d = math.hypot(p.x - el.a[0], p.y - el.a[1])
-                        j.max = max(el.R + _PLAY, min(j.max - close, d))
-                        j.min = min(el.R - _PLAY, max(j.min + close, d))
             if k == n_el - 1:  # the lower plate: hand links to the folding roller
                 x_rel = self.lower.x - 0.5 * self.L
                 while q and q[0][0].body.position.x > x_rel:
@@ -1137,10 +1129,16 @@ class Apparatus:
                 link, j = q.popleft()
                 space.remove(j)
                 self._hold(k + 1, link)
+            if el.kind == "arc":
+                self._keep_on_arc(el, q, close)
 
-    def _project_arcs(self) -> None:
-        """'fold': put each link of a guide arc that has left its slide joint's limits
-        back onto the nearest limit and take away its velocity across it.
+    @staticmethod
+    def _keep_on_arc(el: GuideElement, q: deque[tuple[Link, pymunk.SlideJoint]],
+                     close: float) -> None:
+        """'fold': for each link held on the arc ``el``, close its slide joint's limits in
+        by ``close`` (m) toward ``R -+ _PLAY`` (a link captured off the radius), then put
+        it back onto the nearest limit if it has left them and take away its velocity
+        across it.
 
         A frictionless wall does exactly this (it stops the motion into it); the
         slide joint alone corrects a position error only slowly (error bias), while
@@ -1148,24 +1146,25 @@ class Apparatus:
         step, so the turn's links sat 1-2 mm beyond the limit. Measured on the fold
         test: with the projection they stay on it to the step, and the turn no longer
         drifts outward as the lower plate strand grows."""
-        for k, el in enumerate(self.guide):
-            if el.kind != "arc":
+        cx, cy = el.a
+        lo, hi = el.R - _PLAY, el.R + _PLAY
+        for link, j in q:
+            b = link.body
+            p = b.position
+            dx, dy = p.x - cx, p.y - cy
+            d = math.hypot(dx, dy)
+            if j.max > hi or j.min < lo:
+                j.max = max(hi, min(j.max - close, d))
+                j.min = min(lo, max(j.min + close, d))
+            if j.min <= d <= j.max or d == 0.0:
                 continue
-            cx, cy = el.a
-            for link, j in self._gq[k]:
-                b = link.body
-                p = b.position
-                dx, dy = p.x - cx, p.y - cy
-                d = math.hypot(dx, dy)
-                if j.min <= d <= j.max or d == 0.0:
-                    continue
-                nx, ny = dx / d, dy / d
-                lim, side = (j.max, 1.0) if d > j.max else (j.min, -1.0)
-                b.position = (cx + nx * lim, cy + ny * lim)
-                v = b.velocity
-                vr = v.x * nx + v.y * ny
-                if vr * side > 0.0:
-                    b.velocity = (v.x - vr * nx, v.y - vr * ny)
+            nx, ny = dx / d, dy / d
+            lim, side = (j.max, 1.0) if d > j.max else (j.min, -1.0)
+            b.position = (cx + nx * lim, cy + ny * lim)
+            v = b.velocity
+            vr = v.x * nx + v.y * ny
+            if vr * side > 0.0:
+                b.velocity = (v.x - vr * nx, v.y - vr * ny)
 
     def fold_guided_range(self, position: np.ndarray, x_lower: float) -> tuple[int, int]:
         """'fold' guide, from a recorded state: index ``i_p`` of the lower-plate link
