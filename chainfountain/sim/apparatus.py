@@ -287,6 +287,21 @@ def _resample(path: np.ndarray, L: float) -> tuple[np.ndarray, np.ndarray]:
     return np.column_stack((np.interp(q, s, path[:, 0]), np.interp(q, s, path[:, 1]))), q
 
 
+class _ArcJoint(pymunk.SlideJoint):
+    """A slide joint that mirrors its limits in Python (:attr:`lim`): the fold guide
+    reads them for every held link every step, and each read of ``min``/``max`` is a
+    call into chipmunk."""
+
+    def __init__(self, a: pymunk.Body, b: pymunk.Body, anchor_a: tuple[float, float],
+                 anchor_b: tuple[float, float], min: float, max: float) -> None:
+        super().__init__(a, b, anchor_a, anchor_b, min, max)
+        self.lim = (min, max)
+
+    def set_limits(self, lo: float, hi: float) -> None:
+        self.min, self.max = lo, hi
+        self.lim = (lo, hi)
+
+
 @dataclass
 class GuideElement:
     """One piece of a frictionless joint guide ('fold' lower channel): a circular arc
@@ -341,7 +356,7 @@ class GuideElement:
         if self.kind == "arc":
             p = body.position
             d = math.hypot(p.x - self.a[0], p.y - self.a[1])
-            j: pymunk.Constraint = pymunk.SlideJoint(
+            j: pymunk.Constraint = _ArcJoint(
                 space.static_body, body, self.a, (0.0, 0.0), min(self.R - _PLAY, d),
                 max(self.R + _PLAY, d))
             j.error_bias = _GUIDE_BIAS
@@ -1133,7 +1148,7 @@ class Apparatus:
                 self._keep_on_arc(el, q, close)
 
     @staticmethod
-    def _keep_on_arc(el: GuideElement, q: deque[tuple[Link, pymunk.SlideJoint]],
+    def _keep_on_arc(el: GuideElement, q: deque[tuple[Link, _ArcJoint]],
                      close: float) -> None:
         """'fold': for each link held on the arc ``el``, close its slide joint's limits in
         by ``close`` (m) toward ``R -+ _PLAY`` (a link captured off the radius), then put
@@ -1153,13 +1168,15 @@ class Apparatus:
             p = b.position
             dx, dy = p.x - cx, p.y - cy
             d = math.hypot(dx, dy)
-            if j.max > hi or j.min < lo:
-                j.max = max(hi, min(j.max - close, d))
-                j.min = min(lo, max(j.min + close, d))
-            if j.min <= d <= j.max or d == 0.0:
+            j_min, j_max = j.lim
+            if j_max > hi or j_min < lo:
+                j_max = max(hi, min(j_max - close, d))
+                j_min = min(lo, max(j_min + close, d))
+                j.set_limits(j_min, j_max)
+            if j_min <= d <= j_max or d == 0.0:
                 continue
             nx, ny = dx / d, dy / d
-            lim, side = (j.max, 1.0) if d > j.max else (j.min, -1.0)
+            lim, side = (j_max, 1.0) if d > j_max else (j_min, -1.0)
             b.position = (cx + nx * lim, cy + ny * lim)
             v = b.velocity
             vr = v.x * nx + v.y * ny
