@@ -142,9 +142,13 @@ Wider than 'open''s: the fountain's landing point wanders by several centimetres
 (docs/apparatus.md, "Fold variant"), and a link captured off the radius
 is held there (its limits close in at :data:`_FOLD_CLOSE_RATE`), so a wide band costs
 nothing while the chain lands on the radius."""
-_FOLD_CLOSE_RATE = 0.5
+_FOLD_CLOSE_RATE = 5.0
 """Speed (m/s) at which the limits of a link captured off the 'fold' turn's radius
-close in to ``R -+ _PLAY`` (a 6-cm offset closes within the turn, about 0.13 s)."""
+close in to ``R -+ _PLAY``: a 6-cm offset closes in 12 ms, while the link moves
+about two link lengths, so the catch acts as a stiff funnel at the mouth. Measured
+(docs/apparatus.md, "Fifth session"): at 0.5 m/s the landing point's oscillation
+grew until the catch was lost at about 4.3 s (both treadmills on); at 2, 5 and
+20 m/s the run held to 8 s, at 5 m/s to about 13.5 s."""
 _TAIL_KEEP = 30
 """'open': links kept in the lower plate grooves; the tail beyond is lumped into the
 end link (:meth:`Apparatus._lump_tail`)."""
@@ -625,7 +629,8 @@ class Apparatus:
                     space.add(self.plate_lo)
                 parts.append(np.array([[xl + 0.2, self.y_lo]]))
             else:
-                x_lo = xl + _LO_START
+                x_lo = xl + (max(_LO_START, (a.plate_links + 2) * L) if self.treadmill
+                             else _LO_START)
                 ylt = self.y_lo - 3.0 * rho - 2.0 * r
                 self.y_table_lo = ylt
                 self.lower = _add_roller(space, x_lo, ylt, rho, r, a.roller_mass,
@@ -667,6 +672,10 @@ class Apparatus:
         """Treadmill: links added to the upper plate strand."""
         self.shifted = 0.0
         """Treadmill: distance (m) the pick-up roller unit was moved back."""
+        self.cut = 0
+        """'fold' treadmill: links taken out of the lower plate strand."""
+        self.shifted_lo = 0.0
+        """'fold' treadmill: distance (m) the folding roller unit was moved back."""
         self._preload: list[list] = []
         """Treadmill: ``[down, up, force N, steps left]`` of joints made in the strand."""
         self._sync_plates()
@@ -895,15 +904,17 @@ class Apparatus:
             self._update_lo_grooves()
         if self.fold_guided:
             self._update_fold_guide(popped)
+            if self.treadmill:
+                self._treadmill_lower()
 
     # ------------------------------------------------------------------ treadmill
     def travel(self, i: int) -> float:
         """Distance (m) roller ``i`` (0 upper, 1 lower) has rolled since the start,
-        the treadmill's moves back included (upper roller only)."""
+        the treadmills' moves back included."""
         u = (self.upper, self.lower)[i]
         if u is None:
             return 0.0
-        return abs(u.x - self.start_x[i] + (self.shifted if i == 0 else 0.0))
+        return abs(u.x - self.start_x[i] + (self.shifted, self.shifted_lo)[i])
 
     def _shift_back(self, bodies: list[pymunk.Body], dx: float) -> None:
         """Move ``bodies`` by ``dx`` (m) in ``-x`` (velocities unchanged)."""
@@ -952,6 +963,56 @@ class Apparatus:
         self._g_next += 1
         self.added += 1
         self.moved_back += 1
+
+    def _treadmill_lower(self) -> None:
+        """'fold': keep the lower plate strand from growing, the mirror of
+        :meth:`_treadmill_upper`. Once the folding roller has moved one link length past
+        its start, take two neighbouring links out of the middle of the grooved strand
+        and move everything downstream of them (strand, wrap, laid chain, roller and
+        carriage) back by the gap, so the roller stays within a link of its start.
+
+        Two, not one: the grooves hold the link centres on the line and leave the angles
+        free, and the strand settles into a regular zigzag (angles alternating by about
+        +-0.07 rad). Cutting one link leaves its neighbours' free ends 1.3 mm apart in
+        ``y``, which the joints close only slowly; cutting two keeps the zigzag's phase
+        and the ends meet. Of the pairs near the middle, the one whose ends meet best in
+        ``y`` is cut. The strand is straight, horizontal, frictionless and moves as one,
+        so the cut changes only its length."""
+        lo = self.lower
+        L = self.L
+        q = self._gq[-1]
+        if lo.x - self.start_x[1] < L or len(q) < 10:
+            return
+        chain = self.chain
+        links = chain.links
+        h = 0.5 * L
+        best = None
+        for m in range(len(q) // 2 - 3, len(q) // 2 + 3):
+            dn, up = q[m - 1][0], q[m + 2][0]
+            i = chain.ids.index(q[m][0].id)
+            if links[i - 1] is not dn or links[i + 1] is not q[m + 1][0] or \
+                    links[i + 2] is not up:
+                continue  # not contiguous (should not happen)
+            pd = dn.body.local_to_world((-h, 0.0))
+            pu = up.body.local_to_world((h, 0.0))
+            if best is None or abs(pd.y - pu.y) < best[0]:
+                best = (abs(pd.y - pu.y), m, i, pd.x - pu.x)
+        if best is None:
+            return
+        _, m, i, dx = best
+        c = links[i + 1]
+        F = c.up_joint.impulse / self.sim_cfg.solver.dt if c.up_joint else 0.0
+        self._shift_back([lk.body for lk in links[:i]] + [lo.roller, lo.carriage], dx)
+        self.shifted_lo += dx
+        for k in (m + 1, m):
+            self.space.remove(q[k][1])
+            del q[k]
+        chain.remove(i + 1)
+        chain.remove(i)
+        self._preload.append([links[i - 1], links[i], F, _PRELOAD_STEPS])
+        self._cap_next -= 2
+        self._g_next -= 2
+        self.cut += 2
 
     def lo_grooved(self, position: np.ndarray) -> int:
         """Number of leading links (chain order) on the lower plate line past the end
@@ -1125,7 +1186,6 @@ class Apparatus:
                 break
             self._hold(0, links[self._cap_next])
             self._cap_next += 1
-        close = _FOLD_CLOSE_RATE * self.sim_cfg.solver.dt
         space = self.space
         n_el = len(self.guide)
         for k in range(n_el - 1, -1, -1):  # downstream elements first
@@ -1144,44 +1204,46 @@ class Apparatus:
                 link, j = q.popleft()
                 space.remove(j)
                 self._hold(k + 1, link)
-            if el.kind == "arc":
-                self._keep_on_arc(el, q, close)
+        self._keep_on_arcs()
 
-    @staticmethod
-    def _keep_on_arc(el: GuideElement, q: deque[tuple[Link, _ArcJoint]],
-                     close: float) -> None:
-        """'fold': for each link held on the arc ``el``, close its slide joint's limits in
-        by ``close`` (m) toward ``R -+ _PLAY`` (a link captured off the radius), then put
-        it back onto the nearest limit if it has left them and take away its velocity
-        across it.
+    def _keep_on_arcs(self) -> None:
+        """'fold': for each link held on an arc of the guide, close its slide joint's
+        limits in toward ``R -+ _PLAY`` at :data:`_FOLD_CLOSE_RATE` (a link captured off
+        the radius), then put it back onto the nearest limit if it has left them and take
+        away its velocity across it.
 
         A frictionless wall does exactly this (it stops the motion into it); the
         slide joint alone corrects a position error only slowly (error bias), while
         the discrete step moves a link in a turn outward by ``(v dt)^2/(2 R)`` every
         step, so the turn's links sat 1-2 mm beyond the limit. Measured on the fold
         test: with the projection they stay on it to the step, and the turn no longer
-        drifts outward as the lower plate strand grows."""
-        cx, cy = el.a
-        lo, hi = el.R - _PLAY, el.R + _PLAY
-        for link, j in q:
-            b = link.body
-            p = b.position
-            dx, dy = p.x - cx, p.y - cy
-            d = math.hypot(dx, dy)
-            j_min, j_max = j.lim
-            if j_max > hi or j_min < lo:
-                j_max = max(hi, min(j_max - close, d))
-                j_min = min(lo, max(j_min + close, d))
-                j.set_limits(j_min, j_max)
-            if j_min <= d <= j_max or d == 0.0:
+        drifts outward as the lower plate strand grows. (A :mod:`pymunk.batch` version,
+        one read and one write of all bodies per step, was slower: it writes every body.)"""
+        close = _FOLD_CLOSE_RATE * self.sim_cfg.solver.dt
+        for el, q in zip(self.guide, self._gq, strict=True):
+            if el.kind != "arc":
                 continue
-            nx, ny = dx / d, dy / d
-            lim, side = (j_max, 1.0) if d > j_max else (j_min, -1.0)
-            b.position = (cx + nx * lim, cy + ny * lim)
-            v = b.velocity
-            vr = v.x * nx + v.y * ny
-            if vr * side > 0.0:
-                b.velocity = (v.x - vr * nx, v.y - vr * ny)
+            cx, cy = el.a
+            lo, hi = el.R - _PLAY, el.R + _PLAY
+            for link, j in q:
+                b = link.body
+                p = b.position
+                dx, dy = p.x - cx, p.y - cy
+                d = math.hypot(dx, dy)
+                j_min, j_max = j.lim
+                if j_max > hi or j_min < lo:
+                    j_max = max(hi, min(j_max - close, d))
+                    j_min = min(lo, max(j_min + close, d))
+                    j.set_limits(j_min, j_max)
+                if j_min <= d <= j_max or d == 0.0:
+                    continue
+                nx, ny = dx / d, dy / d
+                lim, side = (j_max, 1.0) if d > j_max else (j_min, -1.0)
+                b.position = (cx + nx * lim, cy + ny * lim)
+                v = b.velocity
+                vr = v.x * nx + v.y * ny
+                if vr * side > 0.0:
+                    b.velocity = (v.x - vr * nx, v.y - vr * ny)
 
     def fold_guided_range(self, position: np.ndarray, x_lower: float) -> tuple[int, int]:
         """'fold' guide, from a recorded state: index ``i_p`` of the lower-plate link

@@ -156,6 +156,27 @@ class Chain:
         self._connect(link, up)
         self.version += 1
 
+    def remove(self, i: int) -> Link:
+        """Take link ``i`` (``0 < i < len - 1``) out of the chain with its constraints and
+        pin its neighbours to each other: the mirror of :meth:`insert`. The caller first
+        closes the gap (``chainfountain.sim.apparatus``: the lower plate treadmill)."""
+        if not 0 < i < len(self.links) - 1:
+            raise IndexError(f"remove at {i}: needs a neighbour on each side")
+        down, link, up = self.links[i - 1], self.links[i], self.links[i + 1]
+        objs: list = [link.body]
+        for c in (down.up_joint, down.up_spring, link.up_joint, link.up_spring):
+            if c is not None:
+                objs.append(c)
+        if link.shape is not None and link.shape.space is not None:
+            objs.append(link.shape)
+        self.space.remove(*objs)
+        down.up_joint = down.up_spring = link.up_joint = link.up_spring = None
+        del self.links[i]
+        del self.ids[i]
+        self._connect(down, up)
+        self.version += 1
+        return link
+
     def append_unjoined(self, link: Link) -> None:
         """Add ``link`` at the upstream end without a joint (for kinematic guide links)."""
         self._add_link_objects(link)
