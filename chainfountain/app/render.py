@@ -177,7 +177,7 @@ def draw_scene(surf: pygame.Surface, cam: Camera, sim: Simulation, readout: Read
         pygame.draw.line(surf, FLOOR, a, b, 3)
         for x in range(a[0], b[0], 12):
             pygame.draw.line(surf, FLOOR, (x, a[1] + 1), (x - 8, a[1] + 9), 1)
-    else:
+    elif mode == "absorbing":  # "none": an apparatus with a catch, no floor to draw
         y = cam.point(0, fy)[1]
         band = pygame.Rect(rect.x, y, rect.w, max(4, rect.bottom - y))
         if band.top < rect.bottom:
