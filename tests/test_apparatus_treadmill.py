@@ -122,7 +122,8 @@ def test_tiny_links_keep_a_table() -> None:
     assert app.x_plate_up_end - app.upper.x >= 0.15 - 1e-9
 
 
-def test_chain_insert_rejoins_the_neighbours() -> None:
+def _four_links():
+    """A straight chain of four 2-cm links with springs and shapes, and its space."""
     from chainfountain.sim.chain import Chain
     from chainfountain.sim.config import ChainConfig, SolverConfig
 
@@ -131,6 +132,11 @@ def test_chain_insert_rejoins_the_neighbours() -> None:
                   SolverConfig(), shapes=True)
     for k in range(4):
         chain.append(chain.make_body((-0.02 * k, 0.0), 0.0))
+    return space, chain
+
+
+def test_chain_insert_rejoins_the_neighbours() -> None:
+    space, chain = _four_links()
     n_c = len(space.constraints)
     new = chain.make_body((-0.01, 0.0), 0.0)
     chain.insert(1, new, with_shape=False)
@@ -219,14 +225,7 @@ def test_fold_treadmill_keeps_the_speed_and_kH(fold_runs) -> None:
 
 
 def test_chain_remove_rejoins_the_neighbours() -> None:
-    from chainfountain.sim.chain import Chain
-    from chainfountain.sim.config import ChainConfig, SolverConfig
-
-    space = pymunk.Space()
-    chain = Chain(space, ChainConfig(link_length=0.02, bending_stiffness=0.001),
-                  SolverConfig(), shapes=True)
-    for k in range(4):
-        chain.append(chain.make_body((-0.02 * k, 0.0), 0.0))
+    space, chain = _four_links()
     n_c, n_b = len(space.constraints), len(space.bodies)
     gone = chain.links[1]
     assert chain.remove(1) is gone

@@ -148,7 +148,7 @@ close in to ``R -+ _PLAY``: a 6-cm offset closes in 12 ms, while the link moves
 about two link lengths, so the catch acts as a stiff funnel at the mouth. Measured
 (docs/apparatus.md, "Fifth session"): at 0.5 m/s the landing point's oscillation
 grew until the catch was lost at about 4.3 s (both treadmills on); at 2, 5 and
-20 m/s the run held to 8 s, at 5 m/s to about 13.5 s."""
+20 m/s the run held to 8 s, at 5 m/s to about 13 s."""
 _TAIL_KEEP = 30
 """'open': links kept in the lower plate grooves; the tail beyond is lumped into the
 end link (:meth:`Apparatus._lump_tail`)."""
@@ -297,9 +297,9 @@ class _ArcJoint(pymunk.SlideJoint):
     call into chipmunk."""
 
     def __init__(self, a: pymunk.Body, b: pymunk.Body, anchor_a: tuple[float, float],
-                 anchor_b: tuple[float, float], min: float, max: float) -> None:
-        super().__init__(a, b, anchor_a, anchor_b, min, max)
-        self.lim = (min, max)
+                 anchor_b: tuple[float, float], lo: float, hi: float) -> None:
+        super().__init__(a, b, anchor_a, anchor_b, lo, hi)
+        self.lim = (lo, hi)
 
     def set_limits(self, lo: float, hi: float) -> None:
         self.min, self.max = lo, hi
@@ -969,7 +969,7 @@ class Apparatus:
         :meth:`_treadmill_upper`. Once the folding roller has moved one link length past
         its start, take two neighbouring links out of the middle of the grooved strand
         and move everything downstream of them (strand, wrap, laid chain, roller and
-        carriage) back by the gap, so the roller stays within a link of its start.
+        carriage) back by the gap, so the roller stays within about a link of its start.
 
         Two, not one: the grooves hold the link centres on the line and leave the angles
         free, and the strand settles into a regular zigzag (angles alternating by about

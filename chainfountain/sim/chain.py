@@ -142,10 +142,7 @@ class Chain:
         if not 0 < i < len(self.links):
             raise IndexError(f"insert at {i}: needs a neighbour on each side")
         down, up = self.links[i - 1], self.links[i]
-        for c in (down.up_joint, down.up_spring):
-            if c is not None:
-                self.space.remove(c)
-        down.up_joint = down.up_spring = None
+        self._disconnect(down)
         if with_shape or link.shape is None:
             self._add_link_objects(link)
         else:
@@ -163,14 +160,8 @@ class Chain:
         if not 0 < i < len(self.links) - 1:
             raise IndexError(f"remove at {i}: needs a neighbour on each side")
         down, link, up = self.links[i - 1], self.links[i], self.links[i + 1]
-        objs: list = [link.body]
-        for c in (down.up_joint, down.up_spring, link.up_joint, link.up_spring):
-            if c is not None:
-                objs.append(c)
-        if link.shape is not None and link.shape.space is not None:
-            objs.append(link.shape)
-        self.space.remove(*objs)
-        down.up_joint = down.up_spring = link.up_joint = link.up_spring = None
+        self._disconnect(down)
+        self._remove_objects(link)
         del self.links[i]
         del self.ids[i]
         self._connect(down, up)
@@ -199,9 +190,16 @@ class Chain:
         self.version += 1
         return link
 
+    def _disconnect(self, down: Link) -> None:
+        """Remove the joint and spring from ``down`` to its upstream neighbour."""
+        for c in (down.up_joint, down.up_spring):
+            if c is not None:
+                self.space.remove(c)
+        down.up_joint = down.up_spring = None
+
     def _remove_objects(self, link: Link) -> None:
         objs: list = [link.body]
-        if link.shape is not None:
+        if link.shape is not None and link.shape.space is not None:  # grooved: out already
             objs.append(link.shape)
         if link.up_joint is not None:
             objs.append(link.up_joint)
