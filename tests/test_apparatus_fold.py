@@ -3,8 +3,8 @@
 What is asserted is what the simulation does (``docs/apparatus.md``, "Fold
 variant") with the `apparatus_fold` preset: the floor preset's chain (2 cm links,
 dt 0.5 ms, **20 iterations**),
-``xi2 = 0.5``, ``xi3 = 0.303`` (the lower plate 0.15 m above the fountain end; with
-the paper's special case ``xi3 = 1/2`` the folding roller falls behind), upper cart
+``xi2 = 0.5``, ``xi3 = 0.303`` (the lower plate 0.15 m above the fountain end; the
+paper's special case ``xi3 = 1/2`` is `apparatus_special`, with a 58 g lower cart), upper cart
 17.5 g and lower
 cart 41 g on 30 deg tracks (41 g is the measured balance; the rig laws' balance
 ``T_in = T_exit`` asks for 34 g, with which the chain slows). The lower channel is

@@ -1,0 +1,116 @@
+"""The paper's special case ``xi2 = xi3 = 1/2`` of the full arrangement.
+
+The `apparatus_special` preset: the `apparatus_fold` chain and solver (2 cm links,
+dt 0.5 ms, 20 iterations), the lower plate level with the upper one
+(``xi3 = 1/2``, a 0.25 m rise after landing), both plates as treadmills
+(``plate_links = 20``), upper cart 17.5 g and lower cart 58 g on 30 deg tracks.
+
+The paper's balance for this case is ``Tbar_uc = Tbar_lc``; this model's pick-up
+and put-down need the lower cart to push ``0.44 lambda v^2`` harder (58 g is the
+measured balance: 54 g and 66 g lose the catch, 62 g runs at 3.07 m/s). Sessions
+before this one tried only lower carts of 28-41 g and concluded that the special
+case does not fold; it does, with the heavier cart.
+
+Over 0.2-6.0 s (measured): speed 3.016 m/s, drift +0.15 %/s, rollers at
+0.4994 / 0.5009 of the chain speed, vertex +0.35 % off the catenary through the
+measured ends, ``Tbar_0`` 0.698, ``Tbar_E`` 0.221, the first turn holds 18-20
+links. ``Tbar_0 - Tbar_E`` is 0.477 against ``k H`` = 0.539 (strict xfail at the
+fold test's 0.06; the treadmills read ``Tbar_E`` about 0.03 high). The landing
+point swings as in `apparatus_fold`, so 0.5-s windows are off by up to 18 %.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from chainfountain.level import io
+from chainfountain.sim import Recorder, Simulation
+from chainfountain.sim.apparatus import report
+
+LEVEL = Path(__file__).resolve().parents[1] / "levels" / "apparatus_special.toml"
+CLEAN = (0.2, 6.0)
+WINDOWS = [(0.5 * i, 0.5 * i + 0.5) for i in range(1, 12)]
+
+
+@pytest.fixture(scope="module")
+def run():
+    cfg = io.load(LEVEL).sim
+    a = cfg.apparatus
+    assert (a.variant, a.xi2, a.xi3, a.plate_links, cfg.solver.iterations) == \
+        ("fold", 0.5, 0.5, 20, 20)
+    assert [c.mass for c in cfg.carts] == [0.0175, 0.058]
+    sim = Simulation(cfg)
+    rec = Recorder(sim, profiles=False)
+    held = []
+    while sim.time < CLEAN[1] - 1e-9:
+        sim.advance(0.1)
+        held.append(len(sim.apparatus._gq[0]))
+    rep = report(sim, rec, *CLEAN)
+    windows = [report(sim, rec, *w) for w in WINDOWS]
+    return sim, rep, held, windows
+
+
+def test_special_case_geometry(run) -> None:
+    sim, rep, _, _ = run
+    app = sim.apparatus
+    m = rep["measured"]
+    assert (m["xi2"], m["xi3"]) == (0.5, 0.5)
+    # xi2 = xi3: the folding roller's top is level with the pick-up roller's
+    assert app.y_lo == pytest.approx(app.y_up, abs=1e-9)
+    assert app.treadmill and app.cut > 100  # the lower plate ran as a treadmill
+
+
+def test_special_rollers_roll_at_half_the_chain_speed(run) -> None:
+    _, rep, _, _ = run
+    m = rep["measured"]
+    assert m["roller_ratio_up"] == pytest.approx(0.5, abs=0.01)  # measured 0.4994
+    assert m["roller_ratio_lo"] == pytest.approx(0.5, abs=0.01)  # measured 0.5009
+
+
+def test_special_speed_steady(run) -> None:
+    _, rep, _, _ = run
+    m = rep["measured"]
+    assert m["v"] == pytest.approx(3.0, rel=0.02)  # measured 3.016
+    assert abs(m["speed_drift_per_s"]) <= 0.01  # measured +0.15 %/s
+
+
+def test_special_guide_holds_the_turn(run) -> None:
+    _, _, held, _ = run
+    assert min(held) >= 15  # 18-20 links in the first turn, every 0.1 s
+
+
+def test_special_vertex_on_the_catenary_through_the_ends(run) -> None:
+    _, rep, _, _ = run
+    assert abs(rep["catenary"]["vertex_y_rel_error"]) <= 0.02  # measured +0.35 %
+
+
+def test_special_tensions_in_the_papers_ranges(run) -> None:
+    _, rep, _, _ = run
+    r = rep["paper_ranges"]
+    assert r["TE_in_range"] and r["T0_in_range"]  # measured 0.221, 0.698
+
+
+def test_special_carts_are_not_the_papers_balance(run) -> None:
+    _, rep, _, _ = run
+    m = rep["measured"]
+    # the paper's special case runs with equal scaled cart forces; the report's
+    # paper prediction says so, and the measured balance is 0.43 lambda v^2 away
+    assert rep["predicted_paper"]["Tbar_uc_steady"] == pytest.approx(m["Tbar_lc"], abs=1e-9)
+    assert m["Tbar_lc"] - m["Tbar_uc"] == pytest.approx(0.44, abs=0.03)
+
+
+@pytest.mark.xfail(strict=True, reason="Tbar_0 - Tbar_E measured 0.477 against k*H 0.539 "
+                   "(the treadmills read Tbar_E about 0.03 high); docs/apparatus.md")
+def test_special_fountain_carries_kH(run) -> None:
+    _, rep, _, _ = run
+    m = rep["measured"]
+    assert m["T0_bar"] - m["TE_bar"] == pytest.approx(m["kH"], abs=0.06)
+
+
+@pytest.mark.xfail(strict=True, reason="the landing point swings (period 2-3 s): 0.5-s "
+                   "windows are up to 18 % off the catenary; docs/apparatus.md")
+def test_special_vertex_on_the_catenary_in_every_half_second(run) -> None:
+    _, _, _, windows = run
+    assert all(abs(w["catenary"]["vertex_y_rel_error"]) <= 0.02 for w in windows)
