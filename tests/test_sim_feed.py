@@ -29,10 +29,24 @@ def run(request) -> tuple[Simulation, Summary]:
     return sim, rec.summary(window=WINDOW)
 
 
+# The paper's fountain D presets are near-critical (k/q = 0.017 / 0.019): over this
+# window their vertex is +1.3 % high and 3.3 / 4.1 % short of the predicted x (the
+# first-order creep of docs/convergence.md, "Near-critical fountains"), so they miss
+# these criteria; tests/test_fountain_d.py and test_design_levels.py hold them to the
+# design (3 %) and apparatus (2 %) criteria. A strict expected failure, by hand: the
+# fixture's other tests pass for them.
+NEAR_CRITICAL = {"fountain_d", "fountain_d_kmax"}
+
+
 @pytest.mark.slow
-def test_geometry_matches_catenary(run) -> None:
+def test_geometry_matches_catenary(run, request) -> None:
     sim, s = run
     e = s.errors(sim.reference)
+    ok = abs(e["vertex_y"]) < 0.01 and abs(e["vertex_x"]) < 0.03 and abs(e["landing_x"]) < 0.03
+    if request.node.callspec.id in NEAR_CRITICAL:
+        assert not ok, f"{request.node.callspec.id} now meets the criteria: {e}"
+        pytest.xfail(f"near-critical fountain D: vertex_y {e['vertex_y']:+.2%}, "
+                     f"vertex_x {e['vertex_x']:+.2%} (docs/convergence.md)")
     assert abs(e["vertex_y"]) < 0.01, e
     assert abs(e["vertex_x"]) < 0.03, e
     assert abs(e["landing_x"]) < 0.03, e
