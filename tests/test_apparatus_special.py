@@ -62,6 +62,23 @@ def test_special_case_geometry(run) -> None:
     assert app.treadmill and app.cut > 100  # the lower plate ran as a treadmill
 
 
+def test_special_flying_links_are_out_of_the_broadphase(run) -> None:
+    sim, _, _, _ = run
+    app = sim.apparatus
+    links = app.chain.links
+    x_land = app.end[0]
+    flying = [lk for lk in links if app.L < lk.body.position.x < x_land - 0.05
+              and lk.body.position.y > -0.4 * app.H]
+    y_laid = app.y_table_lo + app.rho  # chain lying on the lower table
+    laid = [lk for lk in links if app.x_plate_lo_start < lk.body.position.x
+            < app.lower.x - 3 * app.L and abs(lk.body.position.y - y_laid) < 0.005]
+    assert len(flying) > 20 and len(laid) > 5
+    # nothing to touch in flight: no shape in the space; laid chain (on the lower
+    # table, handed back by the folding roller) has its shape again
+    assert all(lk.shape.space is None for lk in flying)
+    assert all(lk.shape.space is not None for lk in laid)
+
+
 def test_special_rollers_roll_at_half_the_chain_speed(run) -> None:
     _, rep, _, _ = run
     m = rep["measured"]
