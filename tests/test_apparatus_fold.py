@@ -28,10 +28,9 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from apparatus_runs import run_fold
 
 from chainfountain.level import io
-from chainfountain.sim import Recorder, Simulation
-from chainfountain.sim.apparatus import report
 
 LEVEL = Path(__file__).resolve().parents[1] / "levels" / "apparatus_fold.toml"
 CLEAN = (0.2, 2.5)
@@ -46,15 +45,7 @@ def run():
     assert (a.variant, a.xi2, a.xi3, a.plate_links, cfg.solver.iterations) == \
         ("fold", 0.5, 0.303, 0, 20)
     assert [c.mass for c in cfg.carts] == [0.0175, 0.041]
-    sim = Simulation(cfg)
-    rec = Recorder(sim, profiles=False)
-    held = []
-    while sim.time < RUN - 1e-9:
-        sim.advance(0.1)
-        held.append(len(sim.apparatus._gq[0]))
-    rep = report(sim, rec, *CLEAN)
-    windows = [report(sim, rec, *w) for w in WINDOWS]
-    return sim, rep, held, windows
+    return run_fold(cfg, RUN, CLEAN, WINDOWS)
 
 
 def test_fold_builds_a_joint_guide(run) -> None:

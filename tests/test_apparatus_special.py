@@ -24,10 +24,9 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from apparatus_runs import run_fold
 
 from chainfountain.level import io
-from chainfountain.sim import Recorder, Simulation
-from chainfountain.sim.apparatus import report
 
 LEVEL = Path(__file__).resolve().parents[1] / "levels" / "apparatus_special.toml"
 CLEAN = (0.2, 6.0)
@@ -41,15 +40,7 @@ def run():
     assert (a.variant, a.xi2, a.xi3, a.plate_links, cfg.solver.iterations) == \
         ("fold", 0.5, 0.5, 20, 20)
     assert [c.mass for c in cfg.carts] == [0.0175, 0.058]
-    sim = Simulation(cfg)
-    rec = Recorder(sim, profiles=False)
-    held = []
-    while sim.time < CLEAN[1] - 1e-9:
-        sim.advance(0.1)
-        held.append(len(sim.apparatus._gq[0]))
-    rep = report(sim, rec, *CLEAN)
-    windows = [report(sim, rec, *w) for w in WINDOWS]
-    return sim, rep, held, windows
+    return run_fold(cfg, CLEAN[1], CLEAN, WINDOWS)
 
 
 def test_special_case_geometry(run) -> None:
