@@ -49,3 +49,19 @@ def test_heavy_cart_free_end(rep) -> None:
     assert 0.0 <= m["TE_bar"] < 0.05
     assert 0.5 < m["T0_bar"] < 1.0
     assert m["T0_bar"] - m["TE_bar"] == pytest.approx(m["kH"], abs=0.03)
+
+
+def test_selected_speed_without_a_fixed_point_is_nan() -> None:
+    """The rig law ``p(v)`` is linear in ``v`` and extrapolated far above its 2.6-2.9 m/s;
+    where the fixed point ``v**2 = num/p(v)`` does not exist (the iteration runs to
+    ``p <= 0``) the prediction is nan, not a crash (a 110 g cart at H = 2 m crashed
+    the report)."""
+    from chainfountain.sim.apparatus import CART_GAIN_2CM, selected_speed
+
+    lam, g = 0.05, 9.81
+    assert selected_speed(g, 2.0, 0.3, 0.110 * g * 0.5, lam, gain=CART_GAIN_2CM) != \
+        selected_speed(g, 2.0, 0.3, 0.110 * g * 0.5, lam, gain=CART_GAIN_2CM)  # nan
+    v = selected_speed(g, 2.0, 0.3, 0.1324 * g * 0.5, lam, gain=CART_GAIN_2CM)
+    assert v == pytest.approx(4.776, abs=0.002)  # fountain D's k_max speed (preset's cart)
+    assert selected_speed(g, 2.0, 0.3, 0.0, lam, p=0.0) != selected_speed(g, 2.0, 0.3, 0.0,
+                                                                           lam, p=0.0)

@@ -105,17 +105,25 @@ def selected_speed(g: float, H: float, xi2: float, F_uc: float, lam: float,
     ``Tbar_0 = p + G*Tbar_uc + xi2*k*H`` (paper, apparatus section, with the pick-up
     intercept ``p`` and cart gain ``G``; paper ``p = 1/2``, ``G = 1``), so
     ``v**2 = (g*H*(1 - xi2) - G*F_uc/lambda)/p``. With ``p=None`` the rig law
-    :func:`pickup_rig_2cm` ``+ dp`` is used (fixed point). nan if no positive root.
+    :func:`pickup_rig_2cm` ``+ dp`` is used (fixed point). nan if there is no positive
+    root, or if the rig law, extrapolated, gives no positive ``p`` or the fixed point
+    does not converge (far above the rig's 2.6-2.9 m/s).
     """
     num = g * H * (1.0 - xi2) - gain * F_uc / lam
     if num <= 0:
         return math.nan
     if p is not None:
-        return math.sqrt(num / p)
+        return math.sqrt(num / p) if p > 0 else math.nan
     v = math.sqrt(num / 0.3)
-    for _ in range(60):
-        v = math.sqrt(num / (pickup_rig_2cm(v) + dp))
-    return v
+    for _ in range(200):
+        pv = pickup_rig_2cm(v) + dp
+        if pv <= 0:
+            return math.nan
+        v_new = math.sqrt(num / pv)
+        if abs(v_new - v) <= 1e-12 * v_new:
+            return v_new
+        v = v_new
+    return math.nan
 
 
 _WALL_R = 0.002
