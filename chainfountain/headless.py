@@ -253,15 +253,16 @@ def write_snapshot(path: Path, sim: Simulation, summary: dict[str, Any], title: 
     ax.set_ylabel("y (m)")
     ax.grid(alpha=0.3)
     if app is not None:
-        # the fountain and the guides, not the metres of table on either side
+        # the fountain and the guides, not the metres of table on either side (a tall,
+        # narrow fountain such as the paper's D ends well before 2.4 H)
         H = app.H
-        ax.set_xlim(-0.6, max(1.2, 2.4 * H))
+        ax.set_xlim(-0.6, max(1.2, min(2.4 * H, app.end[0] + 1.0)))
         ax.set_ylim(-H - 0.4, max(0.3, 0.6 * H))
     else:
         xs = np.concatenate([pts[:, 0], [fx0, fx1]]) if ref is None else pts[:, 0]
         ax.set_xlim(min(xs.min(), -0.2) - 0.1, max(xs.max(), 0.2) + 0.1)
     ax.set_title(title, fontsize=10)
-    ax.legend(loc="lower left", fontsize=8, framealpha=0.9)
+    ax.legend(loc="best", fontsize=8, framealpha=0.9)
     fig.tight_layout()
     with atomic.atomic_path(path) as tmp:
         fig.savefig(tmp, format="png")
