@@ -58,9 +58,11 @@ import numpy as np
 import pymunk
 
 from chainfountain.errors import UserError
+from chainfountain.sim import fastbody
 from chainfountain.sim.bodies import SCENERY_CATEGORY
 from chainfountain.sim.chain import CHAIN_CATEGORY, Chain, Link
 from chainfountain.sim.config import CartConfig, SimConfig
+from chainfountain.sim.fastbody import pos
 
 PICKUP_BAR = 0.27
 """Measured pick-up force at alpha = 0 over ``lambda*v**2`` (``docs/apparatus.md``;
@@ -308,6 +310,8 @@ class _ArcJoint(pymunk.SlideJoint):
                  anchor_b: tuple[float, float], lo: float, hi: float) -> None:
         super().__init__(a, b, anchor_a, anchor_b, lo, hi)
         self.lim = (lo, hi)
+        self.handle = fastbody.handle(b)
+        """The held body's chipmunk handle (:mod:`chainfountain.sim.fastbody`)."""
 
     def set_limits(self, lo: float, hi: float) -> None:
         self.min, self.max = lo, hi
@@ -418,7 +422,7 @@ class RollerUnit:
 
     @property
     def x(self) -> float:
-        return float(self.roller.position.x)
+        return pos(self.roller).x
 
     @property
     def speed(self) -> float:
@@ -686,6 +690,9 @@ class Apparatus:
         """'fold' treadmill: distance (m) the folding roller unit was moved back."""
         self._preload: list[list] = []
         """Treadmill: ``[down, up, force N, steps left]`` of joints made in the strand."""
+        self._plate_ends = [float(self.plate_up.a.x), float(self.plate_lo.b.x)
+                            if self.plate_lo is not None else 0.0]
+        """x of the upper plate's start and the lower plate's end (m)."""
         self._sync_plates()
         self._lo_n = 0
         """'open' with ``plate = "groove"``: links ``0 .. _lo_n-1`` (the tail on the lower
@@ -828,7 +835,9 @@ class Apparatus:
         end pull ('open')."""
         for unit in (self.upper, self.lower):
             if unit is not None and unit.force:
-                unit.carriage.apply_force_at_local_point((unit.direction * unit.force, 0.0))
+                fastbody.apply_force_at_local_point(fastbody.handle(unit.carriage),
+                                                    (unit.direction * unit.force, 0.0),
+                                                    (0.0, 0.0))
         if self.end_pull:
             self.chain.links[0].body.apply_force_at_world_point(
                 (self.end_pull, 0.0), self.chain.links[0].body.position)
@@ -842,16 +851,18 @@ class Apparatus:
         warm start, which a new pymunk joint lacks."""
         h = 0.5 * self.L
         keep = []
+        handle, force = fastbody.handle, fastbody.apply_force_at_world_point
         for item in self._preload:
             down, up, F, n = item
             if down.up_joint is None or down.body.space is None or up.body.space is None:
                 continue
             f = F * n / _PRELOAD_STEPS
-            a = down.body.angle
+            hd = handle(down.body)
+            a = fastbody.get_angle(hd)
             fx, fy = f * math.cos(a), f * math.sin(a)
-            p = down.body.local_to_world((-h, 0.0))
-            down.body.apply_force_at_world_point((-fx, -fy), p)
-            up.body.apply_force_at_world_point((fx, fy), p)
+            p = fastbody.local_to_world(hd, (-h, 0.0))
+            force(hd, (-fx, -fy), p)
+            force(handle(up.body), (fx, fy), p)
             item[3] = n - 1
             if n > 1:
                 keep.append(item)
@@ -877,7 +888,7 @@ class Apparatus:
                 f"table is used up (apparatus.duration = {self.cfg.duration:g} s sizes it for "
                 f"the start speed; raise it, or set apparatus.plate_links > 0 for a treadmill)")
         last = links[-1].body
-        while last.position.x < x_R + n_keep * L:
+        while pos(last).x < x_R + n_keep * L:
             c = last.position
             new = chain.make_body((c.x + L, self.y_table_up + self.rho), math.pi)
             chain.append(new)
@@ -892,7 +903,7 @@ class Apparatus:
             # as chainfountain.sim.feed: remove the end link when its *centre* reaches the
             # floor, so the free end (Tbar_E = 0) is on average exactly at -H
             y_floor = -self.H
-            while len(links) > n_keep + 10 and links[0].body.position.y <= y_floor:
+            while len(links) > n_keep + 10 and pos(links[0].body).y <= y_floor:
                 chain.pop_front()
                 self.absorbed += 1
                 popped += 1
@@ -906,8 +917,8 @@ class Apparatus:
         elif self.lower is not None:
             x_lim = self.lower.x - 2.0 * self.r - n_keep * L
             y_rest = self.y_table_lo + 2.0 * self.rho
-            while len(links) > n_keep + 10 and links[0].body.position.x < x_lim and \
-                    links[0].body.position.y < y_rest:
+            while len(links) > n_keep + 10 and pos(links[0].body).x < x_lim and \
+                    pos(links[0].body).y < y_rest:
                 chain.pop_front()
                 self.absorbed += 1
                 popped += 1
@@ -931,9 +942,11 @@ class Apparatus:
 
     def _shift_back(self, bodies: list[pymunk.Body], dx: float) -> None:
         """Move ``bodies`` by ``dx`` (m) in ``-x`` (velocities unchanged)."""
+        get_p, set_p, handle = fastbody.get_position, fastbody.set_position, fastbody.handle
         for b in bodies:
-            p = b.position
-            b.position = (p.x - dx, p.y)
+            h = handle(b)
+            p = get_p(h)
+            set_p(h, (p.x - dx, p.y))
 
     def _treadmill_upper(self) -> None:
         """Keep the upper plate strand from shrinking: once the pick-up roller has moved
@@ -1195,7 +1208,7 @@ class Apparatus:
         space = self.space
         while 0 <= self._fly_next < len(links):
             link = links[self._fly_next]
-            if link.body.position.x <= x_out:
+            if pos(link.body).x <= x_out:
                 break
             if link.shape is not None and link.shape.space is not None:
                 space.remove(link.shape)
@@ -1212,7 +1225,7 @@ class Apparatus:
         Rc = el0.R
         lim = -0.5 * math.pi + 0.05
         while 0 <= self._cap_next < len(links):
-            p = links[self._cap_next].body.position
+            p = pos(links[self._cap_next].body)
             d = math.hypot(p.x - cx, p.y - cy)
             th = math.atan2(p.y - cy, p.x - cx)
             if not (el0.th0 - _FOLD_CAPTURE[1] <= th <= max(lim, el0.th1)
@@ -1227,14 +1240,17 @@ class Apparatus:
             el = self.guide[k]
             if k == n_el - 1:  # the lower plate: hand links to the folding roller
                 x_rel = self.lower.x - 0.5 * self.L
-                while q and q[0][0].body.position.x > x_rel:
+                while q and pos(q[0][0].body).x > x_rel:
                     link, j = q.popleft()
                     space.remove(j)
                     if link.shape is not None:
                         space.add(link.shape)
                     self.released += 1
                 continue
-            while q and el.passed(q[0][0].body.position.x, q[0][0].body.position.y):
+            while q:
+                p = pos(q[0][0].body)
+                if not el.passed(p.x, p.y):
+                    break
                 link, j = q.popleft()
                 space.remove(j)
                 self._hold(k + 1, link)
@@ -1254,14 +1270,16 @@ class Apparatus:
         drifts outward as the lower plate strand grows. (A :mod:`pymunk.batch` version,
         one read and one write of all bodies per step, was slower: it writes every body.)"""
         close = _FOLD_CLOSE_RATE * self.sim_cfg.solver.dt
+        get_p, set_p = fastbody.get_position, fastbody.set_position
+        get_v, set_v = fastbody.get_velocity, fastbody.set_velocity
         for el, q in zip(self.guide, self._gq, strict=True):
             if el.kind != "arc":
                 continue
             cx, cy = el.a
             lo, hi = el.R - _PLAY, el.R + _PLAY
-            for link, j in q:
-                b = link.body
-                p = b.position
+            for _, j in q:
+                h = j.handle
+                p = get_p(h)
                 dx, dy = p.x - cx, p.y - cy
                 d = math.hypot(dx, dy)
                 j_min, j_max = j.lim
@@ -1273,11 +1291,12 @@ class Apparatus:
                     continue
                 nx, ny = dx / d, dy / d
                 lim, side = (j_max, 1.0) if d > j_max else (j_min, -1.0)
-                b.position = (cx + nx * lim, cy + ny * lim)
-                v = b.velocity
-                vr = v.x * nx + v.y * ny
+                set_p(h, (cx + nx * lim, cy + ny * lim))
+                v = get_v(h)
+                vx, vy = v.x, v.y
+                vr = vx * nx + vy * ny
                 if vr * side > 0.0:
-                    b.velocity = (v.x - vr * nx, v.y - vr * ny)
+                    set_v(h, (vx - vr * nx, vy - vr * ny))
 
     def fold_guided_range(self, position: np.ndarray, x_lower: float) -> tuple[int, int]:
         """'fold' guide, from a recorded state: index ``i_p`` of the lower-plate link
@@ -1306,7 +1325,7 @@ class Apparatus:
     # ------------------------------------------------------------------ plate grooves
     def _on_plate(self, body: pymunk.Body) -> bool:
         """Is a link centre on the upper plate line, clear of the roller wrap?"""
-        p = body.position
+        p = pos(body)
         return (self.upper.x + self.L < p.x < self.x_plate_up_end
                 and abs(p.y - self.y_up) < 0.5 * self.rho)
 
@@ -1349,7 +1368,7 @@ class Apparatus:
         self._g_next -= popped
         g = self._grooves
         lim = self.x_plate_up_end + 0.02
-        while g and g[0][0].body.position.x > lim:
+        while g and pos(g[0][0].body).x > lim:
             link, j = g.popleft()
             self.space.remove(j)
             if link.shape is not None:
@@ -1359,21 +1378,24 @@ class Apparatus:
             self._g_next += 1
 
     def _sync_plates(self) -> None:
-        L, rho = self.L, self.rho
-        a, b = self.plate_up.a, self.plate_up.b
+        """Keep the plates' ends under the rollers (the moving ends are mirrored in
+        :attr:`_plate_ends`, so that the usual step reads only the rollers)."""
+        L = self.L
         x = self.upper.x + 0.5 * L
-        if abs(a.x - x) > 1e-4:
+        if abs(self._plate_ends[0] - x) > 1e-4:
+            a, b = self.plate_up.a, self.plate_up.b
             self.plate_up.unsafe_set_endpoints((x, a.y), b)
+            self._plate_ends[0] = x
             if self.plate_up.space is not None:
                 self.space.reindex_shape(self.plate_up)
         if self.lower is not None and self.plate_lo is not None:
-            a, b = self.plate_lo.a, self.plate_lo.b
             x = self.lower.x - 0.5 * L
-            if abs(b.x - x) > 1e-4:
+            if abs(self._plate_ends[1] - x) > 1e-4:
+                a, b = self.plate_lo.a, self.plate_lo.b
                 self.plate_lo.unsafe_set_endpoints(a, (x, b.y))
+                self._plate_ends[1] = x
                 if self.plate_lo.space is not None:
                     self.space.reindex_shape(self.plate_lo)
-        del rho
 
     # ------------------------------------------------------------------ theory
     def cart_bars(self, v: float, lam: float) -> tuple[float, float]:

@@ -1,0 +1,55 @@
+"""Direct chipmunk reads and writes of a body's position and velocity, for the
+per-step loops over held links (:meth:`chainfountain.sim.apparatus.Apparatus._keep_on_arcs`).
+
+pymunk 7's :attr:`pymunk.Body.position` builds a :class:`pymunk.Vec2d` on every
+read: 1.8 us per read or write of a position or velocity on this machine
+(``timeit``), against 0.4-0.7 us for the chipmunk call itself. A link projected
+back onto a guide arc needs four of them per step. These functions are the
+chipmunk calls pymunk itself makes, without the wrapper; they take the body's
+chipmunk handle (:func:`handle`), return structs with ``.x`` and ``.y``, and
+take ``(x, y)`` tuples. ``tests/test_fastbody.py`` checks them against pymunk's
+properties; the apparatus gives the same numbers to the last digit with them.
+Measured with callgrind on ``apparatus_special`` (t = 0.5-0.6 s): 2.60 million
+instructions per step before, 2.17 after (docs/apparatus.md, "Eighth session").
+
+:mod:`pymunk.batch` (one read and one write of all bodies) was measured as
+well and is slower here: numpy's per-call cost on a few dozen links is more
+than the loop's.
+
+They use pymunk's private ``pymunk._chipmunk_cffi`` and ``Body._body`` (stable
+through pymunk 7; ``pyproject.toml`` pins ``pymunk>=7,<8``), kept in this one
+module so that a pymunk change breaks one place and ``tests/test_fastbody.py``.
+"""
+
+from __future__ import annotations
+
+import pymunk
+from pymunk._chipmunk_cffi import lib
+
+get_position = lib.cpBodyGetPosition
+"""``get_position(h)``: the position (struct with ``.x``, ``.y``) of handle ``h``."""
+set_position = lib.cpBodySetPosition
+"""``set_position(h, (x, y))``."""
+get_velocity = lib.cpBodyGetVelocity
+"""``get_velocity(h)``: the velocity (struct with ``.x``, ``.y``) of handle ``h``."""
+set_velocity = lib.cpBodySetVelocity
+"""``set_velocity(h, (vx, vy))``."""
+get_angle = lib.cpBodyGetAngle
+"""``get_angle(h)``: the angle (rad) of handle ``h``."""
+local_to_world = lib.cpBodyLocalToWorld
+"""``local_to_world(h, (x, y))``: a body-local point in world coordinates (struct)."""
+apply_force_at_world_point = lib.cpBodyApplyForceAtWorldPoint
+"""``apply_force_at_world_point(h, (fx, fy), point)``; ``point`` a struct or tuple."""
+apply_force_at_local_point = lib.cpBodyApplyForceAtLocalPoint
+"""``apply_force_at_local_point(h, (fx, fy), (x, y))``."""
+
+
+def handle(body: pymunk.Body) -> object:
+    """The chipmunk handle of ``body`` (valid while the body lives)."""
+    return body._body
+
+
+def pos(body: pymunk.Body):  # noqa: ANN201 (a chipmunk struct)
+    """``body``'s position as a chipmunk struct (``.x``, ``.y``): the same numbers as
+    :attr:`pymunk.Body.position` without building a :class:`pymunk.Vec2d`."""
+    return get_position(body._body)

@@ -1,0 +1,53 @@
+"""chainfountain.sim.fastbody: the direct chipmunk calls give pymunk's own numbers."""
+
+from __future__ import annotations
+
+import math
+
+import pymunk
+import pytest
+
+from chainfountain.sim import fastbody
+
+
+@pytest.fixture
+def body() -> pymunk.Body:
+    space = pymunk.Space()
+    b = pymunk.Body(0.3, 0.01)
+    b.position = (0.25, -1.5)
+    b.velocity = (3.0, -0.5)
+    b.angle = 0.7
+    space.add(b)
+    b.space_ref = space  # keep the space alive with the body
+    return b
+
+
+def test_reads_match_pymunk(body: pymunk.Body) -> None:
+    h = fastbody.handle(body)
+    p, v = fastbody.get_position(h), fastbody.get_velocity(h)
+    assert (p.x, p.y) == tuple(body.position)
+    assert (fastbody.pos(body).x, fastbody.pos(body).y) == tuple(body.position)
+    assert (v.x, v.y) == tuple(body.velocity)
+    assert fastbody.get_angle(h) == body.angle
+    w = fastbody.local_to_world(h, (-0.01, 0.0))
+    assert (w.x, w.y) == tuple(body.local_to_world((-0.01, 0.0)))
+
+
+def test_writes_match_pymunk(body: pymunk.Body) -> None:
+    h = fastbody.handle(body)
+    fastbody.set_position(h, (1.0, 2.0))
+    fastbody.set_velocity(h, (-4.0, 0.5))
+    assert tuple(body.position) == (1.0, 2.0)
+    assert tuple(body.velocity) == (-4.0, 0.5)
+
+
+def test_forces_match_pymunk(body: pymunk.Body) -> None:
+    h = fastbody.handle(body)
+    fastbody.apply_force_at_world_point(h, (0.2, -0.1), fastbody.local_to_world(h, (0.01, 0.0)))
+    fastbody.apply_force_at_local_point(h, (0.05, 0.0), (0.0, 0.0))
+    f, t = tuple(body.force), body.torque
+    body.force, body.torque = (0.0, 0.0), 0.0
+    body.apply_force_at_world_point((0.2, -0.1), body.local_to_world((0.01, 0.0)))
+    body.apply_force_at_local_point((0.05, 0.0))
+    assert f == pytest.approx(tuple(body.force), abs=1e-15)
+    assert math.isclose(t, body.torque, abs_tol=1e-15)
