@@ -11,12 +11,13 @@ measured balance: 54 g and 66 g lose the catch, 62 g runs at 3.07 m/s). Sessions
 before this one tried only lower carts of 28-41 g and concluded that the special
 case does not fold; it does, with the heavier cart.
 
-Over 0.2-6.0 s (measured): speed 3.016 m/s, drift +0.15 %/s, rollers at
-0.4994 / 0.5009 of the chain speed, vertex +0.35 % off the catenary through the
-measured ends, ``Tbar_0`` 0.698, ``Tbar_E`` 0.221, the first turn holds 18-20
-links. ``Tbar_0 - Tbar_E`` is 0.477 against ``k H`` = 0.539 (strict xfail at the
-fold test's 0.06; the treadmills read ``Tbar_E`` about 0.03 high). The landing
-point swings as in `apparatus_fold`, so 0.5-s windows are off by up to 18 %.
+Over 0.2-6.0 s (measured, 8 resting links ahead of the pick-up roller): speed
+3.017 m/s, drift +0.09 %/s, rollers at 0.4991 / 0.5012 of the chain speed, vertex
++1.03 % off the catenary through the measured ends, ``Tbar_0`` 0.701, ``Tbar_E``
+0.199, the first turn holds 18-20 links. ``Tbar_0 - Tbar_E`` is 0.503 against
+``k H`` = 0.539, within the fold test's 0.06 (with 20 resting links ahead it was
+0.477, a strict xfail; the treadmills read ``Tbar_E`` about 0.03 high). The landing
+point swings as in `apparatus_fold`, so 0.5-s windows are off by up to 12.7 %.
 """
 
 from __future__ import annotations
@@ -37,8 +38,8 @@ WINDOWS = [(0.5 * i, 0.5 * i + 0.5) for i in range(1, 12)]
 def run():
     cfg = io.load(LEVEL).sim
     a = cfg.apparatus
-    assert (a.variant, a.xi2, a.xi3, a.plate_links, cfg.solver.iterations) == \
-        ("fold", 0.5, 0.5, 20, 20)
+    assert (a.variant, a.xi2, a.xi3, a.plate_links, a.pickup_rest_links,
+            cfg.solver.iterations) == ("fold", 0.5, 0.5, 20, 8, 20)
     assert [c.mass for c in cfg.carts] == [0.0175, 0.058]
     return run_fold(cfg, CLEAN[1], CLEAN, WINDOWS)
 
@@ -73,15 +74,15 @@ def test_special_flying_links_are_out_of_the_broadphase(run) -> None:
 def test_special_rollers_roll_at_half_the_chain_speed(run) -> None:
     _, rep, _, _ = run
     m = rep["measured"]
-    assert m["roller_ratio_up"] == pytest.approx(0.5, abs=0.01)  # measured 0.4994
-    assert m["roller_ratio_lo"] == pytest.approx(0.5, abs=0.01)  # measured 0.5009
+    assert m["roller_ratio_up"] == pytest.approx(0.5, abs=0.01)  # measured 0.4991
+    assert m["roller_ratio_lo"] == pytest.approx(0.5, abs=0.01)  # measured 0.5012
 
 
 def test_special_speed_steady(run) -> None:
     _, rep, _, _ = run
     m = rep["measured"]
-    assert m["v"] == pytest.approx(3.0, rel=0.02)  # measured 3.016
-    assert abs(m["speed_drift_per_s"]) <= 0.01  # measured +0.15 %/s
+    assert m["v"] == pytest.approx(3.0, rel=0.02)  # measured 3.017
+    assert abs(m["speed_drift_per_s"]) <= 0.01  # measured +0.09 %/s
 
 
 def test_special_guide_holds_the_turn(run) -> None:
@@ -91,13 +92,13 @@ def test_special_guide_holds_the_turn(run) -> None:
 
 def test_special_vertex_on_the_catenary_through_the_ends(run) -> None:
     _, rep, _, _ = run
-    assert abs(rep["catenary"]["vertex_y_rel_error"]) <= 0.02  # measured +0.35 %
+    assert abs(rep["catenary"]["vertex_y_rel_error"]) <= 0.02  # measured +1.03 %
 
 
 def test_special_tensions_in_the_papers_ranges(run) -> None:
     _, rep, _, _ = run
     r = rep["paper_ranges"]
-    assert r["TE_in_range"] and r["T0_in_range"]  # measured 0.221, 0.698
+    assert r["TE_in_range"] and r["T0_in_range"]  # measured 0.199, 0.701
 
 
 def test_special_carts_are_not_the_papers_balance(run) -> None:
@@ -109,16 +110,19 @@ def test_special_carts_are_not_the_papers_balance(run) -> None:
     assert m["Tbar_lc"] - m["Tbar_uc"] == pytest.approx(0.44, abs=0.03)
 
 
-@pytest.mark.xfail(strict=True, reason="Tbar_0 - Tbar_E measured 0.477 against k*H 0.539 "
-                   "(the treadmills read Tbar_E about 0.03 high); docs/apparatus.md")
 def test_special_fountain_carries_kH(run) -> None:
     _, rep, _, _ = run
     m = rep["measured"]
+    # steady state: Tbar_0 - Tbar_E = k*H (energy), the fold test's tolerance. Measured
+    # 0.503 against 0.539 (Tbar_E 0.199). The margin is thin: runs started 1e-6 and 2e-6
+    # faster or 1e-6 slower gave 0.481-0.509, and with 20 resting links ahead of the
+    # pick-up this preset gave 0.474-0.489 (a strict xfail then); the treadmills read
+    # Tbar_E about 0.03 high (docs/apparatus.md, "Eighth session")
     assert m["T0_bar"] - m["TE_bar"] == pytest.approx(m["kH"], abs=0.06)
 
 
 @pytest.mark.xfail(strict=True, reason="the landing point swings (period 2-3 s): 0.5-s "
-                   "windows are up to 18 % off the catenary; docs/apparatus.md")
+                   "windows are up to 12.7 % off the catenary; docs/apparatus.md")
 def test_special_vertex_on_the_catenary_in_every_half_second(run) -> None:
     _, _, _, windows = run
     assert all(abs(w["catenary"]["vertex_y_rel_error"]) <= 0.02 for w in windows)

@@ -198,6 +198,10 @@ def _check_apparatus(level: Level, where: str) -> None:
         _fail(where, "apparatus.plate_links",
               f"{a.plate_links!r} is too short a plate strand to cut or extend in the middle; "
               "allowed: 0 (off) or at least 4")
+    if 0 < a.pickup_rest_links < 5:
+        _fail(where, "apparatus.pickup_rest_links",
+              f"{a.pickup_rest_links!r} leaves the pick-up roller too little resting chain to "
+              "roll on; allowed: 0 (as apparatus.rest_links) or at least 5")
 
 
 def parse_level(data: dict[str, Any], where: str = "<level>") -> Level:

@@ -500,6 +500,8 @@ class Apparatus:
         self.alpha0 = float(a.launch_angle)
         self.launch_u = (math.cos(self.alpha0), math.sin(self.alpha0))
         self.variant = a.variant
+        self.n_ahead = int(a.pickup_rest_links or a.rest_links)
+        """Resting links kept in the solver ahead of the pick-up roller."""
         step = 0.5 * L
         eb = cfg.solver.joint_error_bias
         carts = list(cfg.carts)
@@ -552,7 +554,7 @@ class Apparatus:
         self.channel_up = ch_pts
         # ---- path (upstream -> downstream) with per-point speed tags
         yc = self.upper.yc
-        n_rest = cfg.apparatus.rest_links
+        n_rest = self.n_ahead
         rest_end = x_R + n_rest * L
         parts: list[np.ndarray] = [np.array([[rest_end, y_tab + rho], [x_R, y_tab + rho]])]
         th = np.linspace(1.5 * math.pi, 0.5 * math.pi, 60)[1:]
@@ -888,7 +890,7 @@ class Apparatus:
                 f"table is used up (apparatus.duration = {self.cfg.duration:g} s sizes it for "
                 f"the start speed; raise it, or set apparatus.plate_links > 0 for a treadmill)")
         last = links[-1].body
-        while pos(last).x < x_R + n_keep * L:
+        while pos(last).x < x_R + self.n_ahead * L:
             c = last.position
             new = chain.make_body((c.x + L, self.y_table_up + self.rho), math.pi)
             chain.append(new)
