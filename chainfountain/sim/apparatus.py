@@ -9,10 +9,11 @@ Path of the chain, upstream to downstream (chain order is the reverse: index 0
 is the downstream end, as for the feed):
 
 1. **Upper table** (rough, friction ``table_friction``), the chain resting on
-   it in ``-x`` direction toward the pick-up roller. Only ``rest_links`` links
-   ahead of the roller are in the solver; further links are added at rest at the
-   upstream end as the roller approaches (they carry no force: the tension of
-   the unfolding goes into the table through friction right at the roller).
+   it in ``-x`` direction toward the pick-up roller. Only ``pickup_rest_links``
+   (or ``rest_links``) links ahead of the roller are in the solver; further links
+   are added at rest at the upstream end as the roller approaches (they carry no
+   force: the tension of the unfolding goes into the table through friction right
+   at the roller).
 2. **Pick-up roller** (alpha = 0, as ``docs/apparatus.md`` recommends): a
    dynamic disc resting on the chain under its weight, on a carriage that
    slides on a horizontal groove (vertical play through a slot). The chain
@@ -1270,7 +1271,9 @@ class Apparatus:
         step, so the turn's links sat 1-2 mm beyond the limit. Measured on the fold
         test: with the projection they stay on it to the step, and the turn no longer
         drifts outward as the lower plate strand grows. (A :mod:`pymunk.batch` version,
-        one read and one write of all bodies per step, was slower: it writes every body.)"""
+        one read and one write of all bodies per step with the projection in numpy, was
+        slower: numpy's per-call cost on a few dozen links is more than this loop's;
+        docs/apparatus.md, "Eighth session".)"""
         close = _FOLD_CLOSE_RATE * self.sim_cfg.solver.dt
         get_p, set_p = fastbody.get_position, fastbody.set_position
         get_v, set_v = fastbody.get_velocity, fastbody.set_velocity
