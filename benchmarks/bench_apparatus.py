@@ -130,6 +130,12 @@ def main() -> None:
     ap.add_argument("--only", default="", help="only presets whose name contains this")
     ap.add_argument("--figure", type=Path, default=None, help="draw the speed-selection figure")
     args = ap.parse_args()
+    if args.repeat < 1:
+        ap.error(f"--repeat: {args.repeat} is not a number of runs; allowed: 1 or more")
+    names = [p.stem for p in sorted((ROOT / "levels").glob("apparatus_*.toml"))]
+    if not any(args.only in n for n in names):
+        ap.error(f"--only: {args.only!r} matches no apparatus preset; allowed: part of one of "
+                 f"{', '.join(names)}")
     if args.figure is not None:
         figure(args.figure)
     else:

@@ -920,8 +920,10 @@ class Apparatus:
         elif self.lower is not None:
             x_lim = self.lower.x - 2.0 * self.r - n_keep * L
             y_rest = self.y_table_lo + 2.0 * self.rho
-            while len(links) > n_keep + 10 and pos(links[0].body).x < x_lim and \
-                    pos(links[0].body).y < y_rest:
+            while len(links) > n_keep + 10:
+                p = pos(links[0].body)
+                if not (p.x < x_lim and p.y < y_rest):
+                    break
                 chain.pop_front()
                 self.absorbed += 1
                 popped += 1
