@@ -159,3 +159,13 @@ def test_used_up_apparatus_table_pauses_with_a_message() -> None:
     assert s.paused
     assert "upper table is used up" in s.messages[-1][1]
     assert s.sim.time < 1.0
+
+
+@pytest.mark.parametrize("variant, shown", [("fold", True), ("floor", False), ("open", False)])
+def test_xi3_control_only_where_the_variant_uses_it(variant, shown):
+    from chainfountain.sim.config import ApparatusConfig
+
+    cfg = SimConfig(kind="apparatus", apparatus=ApparatusConfig(variant=variant))
+    paths = [s.path for s in controls.control_fields(cfg)]
+    assert "apparatus.xi2" in paths
+    assert ("apparatus.xi3" in paths) is shown

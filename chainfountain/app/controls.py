@@ -272,17 +272,36 @@ def make_spec(path: str, tp: Any, meta: dict, current: float) -> FieldSpec:
     )
 
 
+ONLY_FOR_VARIANT: dict[str, tuple[str, ...]] = {
+    "apparatus.xi3": ("fold",),
+}
+"""Apparatus fields that only the named ``apparatus.variant`` values use: for any other
+variant a slider would change nothing (xi3 is the lower table's height, and only
+'fold' has a lower table)."""
+
+
+def unused_fields(config: Any) -> set[str]:
+    """Field paths that ``config`` has but does not use (see :data:`ONLY_FOR_VARIANT`)."""
+    if getattr(config, "kind", None) != "apparatus":
+        return set()
+    variant = config.apparatus.variant
+    return {p for p, variants in ONLY_FOR_VARIANT.items() if variant not in variants}
+
+
 def control_fields(config: Any, patterns: tuple[str, ...] = CONTROL_PATTERNS) -> list[FieldSpec]:
     """Specs for every field of ``config`` matching ``patterns``, in pattern order.
 
     Sections that belong to another level kind (``apparatus.*`` in a feed
-    level, ``feed.*`` in an apparatus level) get no controls.
+    level, ``feed.*`` in an apparatus level) get no controls, nor do fields the
+    level's apparatus variant ignores (:func:`unused_fields`).
     """
     from chainfountain.sim.config import KINDS
 
     kind = getattr(config, "kind", None)
     other = tuple(f"{k}." for k in KINDS if k != kind)
-    fields = [f for f in iter_numeric_fields(config) if not f[0].startswith(other)]
+    unused = unused_fields(config)
+    fields = [f for f in iter_numeric_fields(config)
+              if not f[0].startswith(other) and f[0] not in unused]
     out: list[FieldSpec] = []
     seen: set[str] = set()
     for pat in patterns:
