@@ -23,7 +23,7 @@ import numpy as np
 from chainfountain.headless import default_duration
 from chainfountain.level import io
 from chainfountain.sim import Recorder, Simulation
-from chainfountain.sim.apparatus import catenary_through, report
+from chainfountain.sim.apparatus_report import catenary_through, report
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -166,7 +166,7 @@ def summarize(level: Level, sim: Simulation, rec: Recorder, duration: float,
     else:
         out["theory"] = None
     if app is not None:
-        from chainfountain.sim.apparatus import report
+        from chainfountain.sim.apparatus_report import report
 
         rep = report(sim, rec, s.t0, s.t1)
         out["TE_bar"] = _f(rep["measured"]["TE_bar"])

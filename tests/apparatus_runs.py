@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from chainfountain.sim import Recorder, SimConfig, Simulation
-from chainfountain.sim.apparatus import report
+from chainfountain.sim.apparatus_report import report
 
 
 def run_fold(cfg: SimConfig, until: float, clean: tuple[float, float],

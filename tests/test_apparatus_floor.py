@@ -27,7 +27,7 @@ import pytest
 from chainfountain.headless import run_level
 from chainfountain.level import io
 from chainfountain.sim import Recorder, Simulation
-from chainfountain.sim.apparatus import report
+from chainfountain.sim.apparatus_report import report
 
 LEVEL = Path(__file__).resolve().parents[1] / "levels" / "apparatus_floor.toml"
 RUN = 6.0

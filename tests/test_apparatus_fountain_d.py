@@ -24,7 +24,8 @@ import pytest
 
 from chainfountain.level import io
 from chainfountain.sim import Recorder, Simulation
-from chainfountain.sim.apparatus import CART_GAIN_2CM, report, selected_speed
+from chainfountain.sim.apparatus import CART_GAIN_2CM, selected_speed
+from chainfountain.sim.apparatus_report import report
 from chainfountain.theory import Fountain
 
 LEVEL = Path(__file__).resolve().parents[1] / "levels" / "apparatus_fountain_d_kmax.toml"

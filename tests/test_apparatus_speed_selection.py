@@ -18,7 +18,7 @@ import pytest
 
 from chainfountain.level import io
 from chainfountain.sim import Recorder, Simulation
-from chainfountain.sim.apparatus import report
+from chainfountain.sim.apparatus_report import report
 
 LEVEL = Path(__file__).resolve().parents[1] / "levels" / "apparatus_floor_heavy.toml"
 RUN = 5.0

@@ -30,7 +30,8 @@ import pytest
 
 from chainfountain.level import io
 from chainfountain.sim import Recorder, Simulation
-from chainfountain.sim.apparatus import TableUsedUp, report
+from chainfountain.sim.apparatus import TableUsedUp
+from chainfountain.sim.apparatus_report import report
 
 LEVEL = Path(__file__).resolve().parents[1] / "levels" / "apparatus_floor.toml"
 FOLD = LEVEL.with_name("apparatus_fold.toml")

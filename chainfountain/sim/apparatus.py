@@ -53,7 +53,7 @@ from __future__ import annotations
 
 import math
 from collections import deque
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 import pymunk
@@ -64,6 +64,16 @@ from chainfountain.sim.bodies import SCENERY_CATEGORY
 from chainfountain.sim.chain import CHAIN_CATEGORY, Chain, Link
 from chainfountain.sim.config import CartConfig, SimConfig
 from chainfountain.sim.fastbody import pos
+from chainfountain.sim.guide import (
+    GUIDE_BIAS,
+    PLAY,
+    Channel,
+    GuideElement,
+    end_channel,
+    end_channel_bends,
+    resample,
+    upper_channel,
+)
 
 PICKUP_BAR = 0.27
 """Measured pick-up force at alpha = 0 over ``lambda*v**2`` (``docs/apparatus.md``;
@@ -140,10 +150,6 @@ end lies outside the tangent, on the catenary's convex side)."""
 _CAPTURE = (0.02, math.radians(3.0))
 """'open' joint guide: capture band (m) around the turn's radius and angular margin
 before the mouth (rad) within which a falling link is taken into the guide."""
-_PLAY = 0.001
-"""Outward play (m) of the 'open' joint guide beyond its radius."""
-_GUIDE_BIAS = 0.0018
-"""Joint error bias of the 'open' turn's slide joints (pymunk's default)."""
 _CLOSE_RATE = 0.2
 """Speed (m/s) at which the outer limit of a link captured outside the 'open' guide's
 radius closes in to it."""
@@ -155,7 +161,7 @@ is held there (its limits close in at :data:`_FOLD_CLOSE_RATE`), so a wide band 
 nothing while the chain lands on the radius."""
 _FOLD_CLOSE_RATE = 5.0
 """Speed (m/s) at which the limits of a link captured off the 'fold' turn's radius
-close in to ``R -+ _PLAY``: a 6-cm offset closes in 12 ms, while the link moves
+close in to ``R -+ PLAY``: a 6-cm offset closes in 12 ms, while the link moves
 about two link lengths, so the catch acts as a stiff funnel at the mouth. Measured
 (docs/apparatus.md, "Fifth session"): at 0.5 m/s the landing point's oscillation
 grew until the catch was lost at about 4.3 s (both treadmills on); at 2, 5 and
@@ -173,219 +179,6 @@ every 13 steps made the lower turn yield sooner)."""
 _CLEAR = 0.0008
 """Clearance between a link capsule and each channel wall (m)."""
 _ONLY_CHAIN = pymunk.ShapeFilter(categories=SCENERY_CATEGORY, mask=CHAIN_CATEGORY)
-
-
-# ----------------------------------------------------------------------------- geometry
-def _bend(x: float, y: float, phi0: float, phi1: float, R: float,
-          step: float) -> tuple[np.ndarray, float, float]:
-    """Centre-line points of a circular bend from heading ``phi0`` to ``phi1`` (rad)
-    starting at ``(x, y)``; counter-clockwise when ``phi1 > phi0``. Returns points
-    (without the start) and the end point."""
-    s = 1.0 if phi1 > phi0 else -1.0
-    # centre to the left (CCW) or right (CW) of the heading
-    cx, cy = x - s * R * math.sin(phi0), y + s * R * math.cos(phi0)
-    n = max(2, int(math.ceil(abs(phi1 - phi0) * R / step)))
-    ph = phi0 + (phi1 - phi0) * np.arange(1, n + 1) / n
-    px = cx + s * R * np.sin(ph)
-    py = cy - s * R * np.cos(ph)
-    return np.column_stack((px, py)), float(px[-1]), float(py[-1])
-
-
-def _line(x: float, y: float, phi: float, length: float,
-          step: float) -> tuple[np.ndarray, float, float]:
-    n = max(1, int(math.ceil(length / step)))
-    d = length * np.arange(1, n + 1) / n
-    px, py = x + d * math.cos(phi), y + d * math.sin(phi)
-    return np.column_stack((px, py)), float(px[-1]), float(py[-1])
-
-
-@dataclass
-class Channel:
-    """Centre line of a guide channel (polyline, chain direction) and its walls."""
-
-    points: np.ndarray
-    shapes: list = field(default_factory=list)
-
-    def walls(self, offset: float) -> tuple[np.ndarray, np.ndarray]:
-        """Left and right wall polylines at ``offset`` from the centre line."""
-        p = self.points
-        t = np.gradient(p, axis=0)
-        t /= np.linalg.norm(t, axis=1)[:, None]
-        nrm = np.column_stack((-t[:, 1], t[:, 0]))
-        return p + offset * nrm, p - offset * nrm
-
-
-def upper_channel(H: float, xi2: float, alpha0: float, R: float, lead: float,
-                  step: float) -> tuple[np.ndarray, float]:
-    """Centre line from the plate end to the start (0, 0): horizontal lead, bend up to
-    ``alpha0``, straight. Returns the points and the bend radius actually used."""
-    rise = xi2 * H
-    R = min(R, rise / (1.0 - math.cos(alpha0))) if rise > 0 else 0.0
-    S = (rise - R * (1.0 - math.cos(alpha0))) / math.sin(alpha0)
-    run = R * math.sin(alpha0) + S * math.cos(alpha0)
-    x0 = -run - lead
-    pts = [np.array([[x0, -rise]])]
-    p, x, y = _line(x0, -rise, 0.0, lead, step)
-    pts.append(p)
-    if R > 0:
-        p, x, y = _bend(x, y, 0.0, alpha0, R, step)
-        pts.append(p)
-    if S > 1e-9:
-        p, x, y = _line(x, y, alpha0, S, step)
-        pts.append(p)
-    out = np.vstack(pts)
-    out[-1] = (0.0, 0.0)
-    return out, R
-
-
-def end_channel_bends(alphaE: float, rise: float, R: float,
-                      up: float = math.radians(60.0)) -> tuple[float, float]:
-    """Bend radius and straight length of a rising end channel (:func:`end_channel`):
-    bend from the landing heading ``-alphaE`` up to ``up``, straight ``S``, bend back to
-    horizontal, total rise ``rise``; the radius shrinks (by 0.8) until ``S >= 0``."""
-    phi = -alphaE
-
-    def straight(R: float) -> float:
-        # the first bend (counter-clockwise, heading phi -> up) changes the height by
-        # R (cos(phi) - cos(up)) (it dips for a steep landing), the second (clockwise,
-        # up -> 0) by R (1 - cos(up)); the straight makes up the rest of the rise
-        return (rise - R * (math.cos(phi) - math.cos(up)) - R * (1 - math.cos(up))) / \
-            math.sin(up)
-
-    S = straight(R)
-    while S < 0 and R > 0.02:
-        R *= 0.8
-        S = straight(R)
-    if S < 0:
-        raise ValueError(f"end channel cannot rise only {rise:.3g} m")
-    return R, S
-
-
-def end_channel(xE: float, yE: float, alphaE: float, rise: float, R: float, lead: float,
-                step: float, *, up: float = math.radians(60.0),
-                mouth: float = 0.06) -> tuple[np.ndarray, int]:
-    """Centre line from a mouth on the landing tangent through the fountain end
-    ``(xE, yE)`` (heading ``-alphaE``), bending up and lifting the chain by ``rise``
-    to a horizontal exit. Returns the points and the index of the fountain end."""
-    phi = -alphaE
-    x0, y0 = xE - mouth * math.cos(phi), yE - mouth * math.sin(phi)
-    pts = [np.array([[x0, y0]])]
-    p, x, y = _line(x0, y0, phi, mouth, step)
-    pts.append(p)
-    i_end = sum(len(a) for a in pts) - 1
-    if rise <= 1e-9:
-        p, x, y = _bend(x, y, phi, 0.0, R, step)
-        pts.append(p)
-    else:
-        R, S = end_channel_bends(alphaE, rise, R, up)
-        p, x, y = _bend(x, y, phi, up, R, step)
-        pts.append(p)
-        if S > 1e-9:
-            p, x, y = _line(x, y, up, S, step)
-            pts.append(p)
-        p, x, y = _bend(x, y, up, 0.0, R, step)
-        pts.append(p)
-    p, x, y = _line(x, y, 0.0, lead, step)
-    pts.append(p)
-    return np.vstack(pts), i_end
-
-
-def _resample(path: np.ndarray, L: float) -> tuple[np.ndarray, np.ndarray]:
-    """Points at arc-length spacing ``L`` along a polyline and their arc lengths."""
-    seg = np.linalg.norm(np.diff(path, axis=0), axis=1)
-    keep = np.concatenate([[True], seg > 1e-12])
-    path = path[keep]
-    seg = np.linalg.norm(np.diff(path, axis=0), axis=1)
-    s = np.concatenate([[0.0], np.cumsum(seg)])
-    n = int(s[-1] // L)
-    q = np.arange(n + 1) * L
-    return np.column_stack((np.interp(q, s, path[:, 0]), np.interp(q, s, path[:, 1]))), q
-
-
-class _ArcJoint(pymunk.SlideJoint):
-    """A slide joint that mirrors its limits in Python (:attr:`lim`): the fold guide
-    reads them for every held link every step, and each read of ``min``/``max`` is a
-    call into chipmunk."""
-
-    def __init__(self, a: pymunk.Body, b: pymunk.Body, anchor_a: tuple[float, float],
-                 anchor_b: tuple[float, float], lo: float, hi: float) -> None:
-        super().__init__(a, b, anchor_a, anchor_b, lo, hi)
-        self.lim = (lo, hi)
-        self.handle = fastbody.handle(b)
-        """The held body's chipmunk handle (:mod:`chainfountain.sim.fastbody`)."""
-
-    def set_limits(self, lo: float, hi: float) -> None:
-        self.min, self.max = lo, hi
-        self.lim = (lo, hi)
-
-
-@dataclass
-class GuideElement:
-    """One piece of a frictionless joint guide ('fold' lower channel): a circular arc
-    (links held by a :class:`pymunk.SlideJoint` to its centre) or a straight line (a
-    :class:`pymunk.GrooveJoint`). The chain moves along it from ``start`` to ``end``."""
-
-    kind: str
-    """'arc' or 'line'."""
-    a: tuple[float, float]
-    """Arc: centre; line: start point."""
-    b: tuple[float, float]
-    """Line: end point (unused for an arc)."""
-    R: float = 0.0
-    """Arc radius (m)."""
-    th0: float = 0.0
-    th1: float = 0.0
-    """Arc: polar angle (rad, about the centre) of the start and end points."""
-
-    @property
-    def ccw(self) -> bool:
-        return self.th1 > self.th0
-
-    def passed(self, x: float, y: float) -> bool:
-        """Has a link centre at ``(x, y)`` gone past the element's end?"""
-        if self.kind == "arc":
-            th = math.atan2(y - self.a[1], x - self.a[0])
-            return th > self.th1 if self.ccw else th < self.th1
-        (ax, ay), (bx, by) = self.a, self.b
-        tx, ty = bx - ax, by - ay
-        return (x - ax) * tx + (y - ay) * ty > tx * tx + ty * ty
-
-    def on(self, P: np.ndarray, tol: float) -> np.ndarray:
-        """Which of the points ``P`` (n, 2) lie on the element within ``tol`` (m)."""
-        if self.kind == "arc":
-            d = np.hypot(P[:, 0] - self.a[0], P[:, 1] - self.a[1])
-            th = np.arctan2(P[:, 1] - self.a[1], P[:, 0] - self.a[0])
-            lo, hi = min(self.th0, self.th1), max(self.th0, self.th1)
-            return (np.abs(d - self.R) < tol) & (th >= lo - 0.05) & (th <= hi + 0.05)
-        (ax, ay), (bx, by) = self.a, self.b
-        t = np.array([bx - ax, by - ay])
-        ln = float(np.hypot(*t))
-        t /= ln
-        rel = P - np.array([ax, ay])
-        s = rel @ t
-        d = np.abs(rel @ np.array([-t[1], t[0]]))
-        return (d < tol) & (s >= -0.01) & (s <= ln + 0.01)
-
-    def joint(self, space: pymunk.Space, body: pymunk.Body, error_bias: float) -> \
-            pymunk.Constraint:
-        """A frictionless constraint holding the link centre on the element; an arc's
-        limits start where the link is (no position kick) and close in later."""
-        if self.kind == "arc":
-            p = body.position
-            d = math.hypot(p.x - self.a[0], p.y - self.a[1])
-            j: pymunk.Constraint = _ArcJoint(
-                space.static_body, body, self.a, (0.0, 0.0), min(self.R - _PLAY, d),
-                max(self.R + _PLAY, d))
-            j.error_bias = _GUIDE_BIAS
-        else:
-            (ax, ay), (bx, by) = self.a, self.b
-            ln = math.hypot(bx - ax, by - ay)
-            tx, ty = (bx - ax) / ln, (by - ay) / ln
-            j = pymunk.GrooveJoint(space.static_body, body, (ax - 0.05 * tx, ay - 0.05 * ty),
-                                   (bx + 0.05 * tx, by + 0.05 * ty), (0.0, 0.0))
-            j.error_bias = error_bias
-        space.add(j)
-        return j
 
 
 class TableUsedUp(UserError):
@@ -680,7 +473,7 @@ class Apparatus:
             idx = int(np.flatnonzero(np.isclose(path[:, 0], self.lower.x)
                                      & np.isclose(path[:, 1], self.y_lo))[0])
             s_lo_wrap = float(s_all[idx])
-        pts, s = _resample(path, L)
+        pts, s = resample(path, L)
         self._lay(pts, s, s_wrap0, s_wrap1, s_lo_wrap, v0, vR, R)
         self.start_x = (self.upper.x, self.lower.x if self.lower is not None else 0.0)
         self.moved_back = 0
@@ -1101,16 +894,16 @@ class Apparatus:
                 # the limit starts where the link is (no position kick: a stiff
                 # correction would feed energy into the chain) and closes in to R + play
                 j = pymunk.SlideJoint(space.static_body, link.body, (cx, cy), (0.0, 0.0),
-                                      Rc - _CAPTURE[0], max(Rc + _PLAY, d))
-                j.error_bias = _GUIDE_BIAS
+                                      Rc - _CAPTURE[0], max(Rc + PLAY, d))
+                j.error_bias = GUIDE_BIAS
                 space.add(j)
                 if link.shape is not None and link.shape.space is not None:
                     space.remove(link.shape)
                 self._arc.append((link, j))
             close = _CLOSE_RATE * self.sim_cfg.solver.dt
             for link, j in self._arc:
-                if j.max > Rc + _PLAY:
-                    j.max = max(Rc + _PLAY, min(j.max - close, math.hypot(
+                if j.max > Rc + PLAY:
+                    j.max = max(Rc + PLAY, min(j.max - close, math.hypot(
                         link.body.position.x - cx, link.body.position.y - cy)))
             while self._arc and self._arc[0][0].body.position.x > cx:
                 link, j = self._arc.popleft()
@@ -1263,7 +1056,7 @@ class Apparatus:
 
     def _keep_on_arcs(self) -> None:
         """'fold': for each link held on an arc of the guide, close its slide joint's
-        limits in toward ``R -+ _PLAY`` at :data:`_FOLD_CLOSE_RATE` (a link captured off
+        limits in toward ``R -+ PLAY`` at :data:`_FOLD_CLOSE_RATE` (a link captured off
         the radius), then put it back onto the nearest limit if it has left them and take
         away its velocity across it.
 
@@ -1283,7 +1076,7 @@ class Apparatus:
             if el.kind != "arc":
                 continue
             cx, cy = el.a
-            lo, hi = el.R - _PLAY, el.R + _PLAY
+            lo, hi = el.R - PLAY, el.R + PLAY
             for _, j in q:
                 h = j.handle
                 p = get_p(h)
@@ -1410,378 +1203,3 @@ class Apparatus:
         s = lam * v * v
         lo = self.lower.force if self.lower is not None else 0.0
         return self.upper.force / s, lo / s
-
-
-# ----------------------------------------------------------------------------- measuring
-@dataclass
-class ApparatusSample:
-    """One measurement of a running apparatus (tensions scaled by ``lambda*v**2``)."""
-
-    t: float
-    v: float
-    """Mean speed of the links in free flight (m/s)."""
-    v_roller_up: float
-    v_roller_lo: float
-    T0_bar: float
-    """Tension at the fountain start (guide exit)."""
-    TE_bar: float
-    """Tension at the fountain end (floor contact or end channel mouth)."""
-    T_up_bar: float
-    """Tension in the strand leaving the pick-up roller (on the upper plate)."""
-    T_lo_bar: float
-    """Tension in the strand arriving at the folding roller (nan without one)."""
-    uc_bar: float
-    lc_bar: float
-    vertex_x: float
-    vertex_y: float
-    end_x: float
-    end_y: float
-    n_flight: int
-    stretch: float
-    channel_force_x: float
-    """Net contact force of the end channel on the chain, x (N; 'fold', 'open')."""
-    channel_force_y: float
-
-
-def _guided_impulses(app: Apparatus, pre_vel: np.ndarray, post, dt: float,
-                     k: int, t: float, start: tuple[int, float] | None = None) -> np.ndarray:
-    """'open': 'contact' impulses for the first ``k`` links, which the lower guide joints
-    hold (their impulses are not among the contacts), such that the momentum balance
-    summed from the end gives, at joint ``k-1``, the tension of the guided chain.
-
-    The guide forces are normal to the path (frictionless grooves, slide joints to
-    the turn's centre), so each guided link's balance along its own axis ``u_i``
-    gives the tension recursively from the free end (shear neglected, end pull
-    included): ``T_i (e_i.u_i) = T_{i-1} (e_{i-1}.u_i) - m (dv_i/dt + g y).u_i
-    + F_pull x.u_i`` with ``e_j`` the joint direction as in ``signed_tension``.
-    The returned rows make the summed force at joint ``k-1`` equal ``-T_{k-1} e_{k-1}``.
-    ``start = (i, T_i)`` ('fold'): the recursion starts from a known tension at joint
-    ``i`` (on the lower plate, from the horizontal joint force) instead of the free end.
-    """
-    m, g = app.chain.mass, app.g
-    ang = post.angle
-    u = np.column_stack((np.cos(ang), np.sin(ang)))
-    n = len(ang)
-    kk = min(k, n - 1)
-    e = u[:kk] + u[1:kk + 1]
-    e /= np.linalg.norm(e, axis=1)[:, None]
-    acc = (post.velocity[:kk] - pre_vel[:kk]) / dt
-    acc[:, 1] += g
-    T = 0.0
-    m0 = m + app.tail_mass_at(t)  # the end link carries the lumped tail
-    i_first = 0
-    # the recursion in plain floats: numpy's per-call cost on 2-vectors made this loop
-    # 40 % of a sample's analysis (0.4 ms at 30 guided links)
-    ul, el, al = u[:kk].tolist(), e.tolist(), acc.tolist()
-    epx = epy = 0.0
-    if start is not None:
-        i_first, T = start[0] + 1, start[1]
-        epx, epy = el[start[0]]
-    for i in range(i_first, kk):
-        ux, uy = ul[i]
-        ax, ay = al[i]
-        rhs = T * (epx * ux + epy * uy) - (m0 if i == 0 else m) * (ax * ux + ay * uy)
-        if i == 0:
-            rhs += app.end_pull * ux
-        ex, ey = el[i]
-        T = rhs / (ex * ux + ey * uy)
-        epx, epy = ex, ey
-    raw = m * (post.velocity[:k] - pre_vel[:k])
-    raw[:, 1] += m * g * dt
-    target = np.zeros((k, 2))
-    if kk:
-        target[kk - 1] = -T * e[kk - 1] * dt
-    return raw - target
-
-
-def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.ndarray,
-            dt: float, lam: float,
-            roller: tuple[float, float, float, float]) -> tuple[ApparatusSample, dict]:
-    """Measure one sampled step: signed tension from the exact momentum balance summed
-    from the downstream end (:func:`chainfountain.sim.measure.joint_forces`, all contact
-    impulses of floor, channels, plates, rollers and tables subtracted), located on
-    the path. Returns the sample and per-joint profiles of the free flight."""
-    from chainfountain.sim.measure import ChainState, joint_forces, signed_tension, vertex_of
-
-    chain = app.chain
-    n = len(post.angle)
-    pre = ChainState(position=post.position, angle=post.angle, velocity=pre_vel,
-                     angular_velocity=post.angular_velocity)
-    k = app.lo_grooved(post.position) if app._lo_n or app._arc else 0
-    T_lo_fold = math.nan
-    if app.fold_guided:
-        # tension on the lower plate from the horizontal joint force (grooves add none),
-        # then along the guided links' axes up to the mouth
-        ip, k = app.fold_guided_range(post.position, roller[2])
-        if ip >= 2 and k > ip + 1:
-            F1 = joint_forces(pre, post, chain.mass, dt, app.g, n - 1, contacts)
-            T_lo_fold = float(-np.mean(F1[ip - 2:ip + 3, 0]))
-            contacts = contacts.copy()
-            contacts[:k] = _guided_impulses(app, pre_vel, post, dt, k, t,
-                                            start=(ip, float(-F1[ip, 0])))
-        else:
-            k = 0
-    elif app.end_pull or k:
-        contacts = contacts.copy()
-        if k:
-            contacts[:k] = _guided_impulses(app, pre_vel, post, dt, k, t)
-        else:  # external force on the end link, like a contact
-            contacts[0, 0] += app.end_pull * dt
-    F = joint_forces(pre, post, chain.mass, dt, app.g, n - 1, contacts)
-    ten, _ = signed_tension(F, post, n - 1)
-    L = app.L
-    u = np.column_stack((np.cos(post.angle), np.sin(post.angle)))
-    back = post.position - 0.5 * L * u
-    front = post.position + 0.5 * L * u
-    J = 0.5 * (back[:-1] + front[1:])  # joint j between link j and j+1
-    gaps = np.linalg.norm(back[:-1] - front[1:], axis=1)
-    d0 = np.hypot(J[:, 0], J[:, 1])
-    j0 = int(np.argmin(d0))
-    if app.fold_guided and k > 0:
-        jE = k - 1  # the last guided link: the mouth of the joint guide
-    elif app.end_mode == "absorbing":
-        jE = 0  # joint behind the end link: the free end (Tbar_E = 0) is one link ahead
-    elif app.variant == "floor":
-        below = np.flatnonzero(J[:j0, 1] < -app.H + app.rho)
-        jE = int(below[-1]) if len(below) else 0
-    else:
-        ex, ey = app.end
-        dE = np.hypot(J[:j0, 0] - ex, J[:j0, 1] - ey)
-        jE = int(np.argmin(dE)) if j0 > 0 else 0
-    links = np.arange(jE + 1, j0 + 1)
-    speed = np.hypot(post.velocity[links, 0], post.velocity[links, 1]) if len(links) \
-        else np.array([np.nan])
-    v = float(np.mean(speed))
-    scale = lam * v * v
-    # strand tensions a few links away from the roller tops
-    def at(x: float, y: float) -> float:
-        k = int(np.argmin(np.hypot(J[:, 0] - x, J[:, 1] - y)))
-        lo, hi = max(k - 2, 0), min(k + 3, len(ten))
-        return float(np.mean(ten[lo:hi])) / scale
-
-    xu, vu, xl, vl = roller
-    if app.plate_mode == "groove":
-        # the grooves' vertical impulses are not in ``contacts``: on the horizontal
-        # plate the tension is the horizontal joint force alone (grooves add none)
-        k = int(np.argmin(np.hypot(J[:, 0] - xu - 6 * L, J[:, 1] - app.y_up)))
-        T_up = float(np.mean(-F[max(k - 2, 0):min(k + 3, len(F)), 0])) / scale
-    else:
-        T_up = at(xu + 6 * L, app.y_up)
-    if app.fold_guided:
-        T_lo = T_lo_fold / scale
-    else:
-        T_lo = at(xl - 6 * L, app.y_lo) if app.lower is not None else math.nan
-    flight = J[jE:j0 + 1]
-    xv, yv = vertex_of(flight[::-1]) if len(flight) > 2 else (math.nan, math.nan)
-    uc, lc = app.cart_bars(v, lam)
-    end_contacts = (math.nan, math.nan)
-    if app.channel_lo is not None and jE > 0:
-        lo_x, hi_x = app.channel_lo[:, 0].min() - 0.01, app.channel_lo[:, 0].max()
-        pos = post.position[:jE + 1]
-        inside = (pos[:, 0] > lo_x) & (pos[:, 0] < hi_x) & (pos[:, 1] < app.y_lo + 0.01)
-        imp = contacts[:jE + 1][inside].sum(axis=0) / dt
-        end_contacts = (float(imp[0]), float(imp[1]))
-    s = ApparatusSample(
-        t=t, v=v, v_roller_up=vu, v_roller_lo=vl, T0_bar=float(ten[j0]) / scale,
-        TE_bar=float(ten[jE]) / scale, T_up_bar=T_up, T_lo_bar=T_lo, uc_bar=uc, lc_bar=lc,
-        vertex_x=xv, vertex_y=yv, end_x=float(J[jE, 0]), end_y=float(J[jE, 1]),
-        n_flight=len(links), stretch=float(gaps.sum() / (n * L)),
-        channel_force_x=end_contacts[0], channel_force_y=end_contacts[1])
-    prof = {"tension_bar": ten[jE:j0 + 1][::-1] / scale, "x": flight[::-1, 0].copy(),
-            "y": flight[::-1, 1].copy(), "speed": speed[::-1].copy()}
-    return s, prof
-
-
-# ----------------------------------------------------------------------------- report
-def catenary_through(alpha0: float, end: tuple[float, float]) -> float:
-    """``q`` of the inverted catenary leaving (0, 0) at ``alpha0`` through ``end``
-    (paper Eq. func_graph in the launch frame); nan if none."""
-    from scipy.optimize import brentq
-
-    ex, ey = end
-    c0 = math.cos(alpha0)
-
-    def miss(lq: float) -> float:
-        q = math.exp(lq)
-        h = (1.0 / c0 - 1.0) / q
-        xr = math.acosh(1.0 + q * h) / q
-        z = min(abs(q * (ex - xr)), 700.0)
-        return h + (1.0 - math.cosh(z)) / q - ey
-
-    try:
-        return math.exp(brentq(miss, math.log(1e-3), math.log(1e3)))
-    except ValueError:
-        return math.nan
-
-
-def report(sim, rec, t0: float, t1: float) -> dict:
-    """Measured and predicted quantities of an apparatus run over ``[t0, t1]``.
-
-    Tensions are scaled by ``lambda*v**2`` with the measured speed. Paper
-    ("Generating Steady-State Chain Fountains"), rollers ``p = d = 1/2``::
-
-        Tbar_0 = 1/2 + Tbar_uc + xi2*k*H,   Tbar_E = 1/2 + Tbar_lc - xi3*k*H,
-        steady: Tbar_uc = Tbar_lc + k*H*(1 - xi2 - xi3).
-
-    Measured mechanism laws (``docs/apparatus.md``, alpha = 0): pick-up
-    ``p`` = :data:`PICKUP_BAR`, put-down ``d`` = :data:`PUTDOWN_BAR`::
-
-        Tbar_0 = p + Tbar_uc + xi2*k*H,     Tbar_E = d + Tbar_lc - xi3*k*H,
-        steady: Tbar_uc = Tbar_lc + k*H*(1 - xi2 - xi3) + d - p.
-
-    The ``floor`` variant with ``end = "absorbing"`` has ``Tbar_E = 0``, so its
-    speed follows from ``p + Tbar_uc + xi2*k*H = k*H`` (:func:`selected_speed`),
-    reported under ``speed_selection`` for the paper's ``p = 1/2``, the 10-mm rig's
-    0.27 (cart gain 1) and the rig law for the presets' 2 cm links
-    (:data:`PICKUP_RIG_2CM`, :data:`CART_GAIN_2CM`).
-    """
-    app: Apparatus = sim.apparatus
-    S = [s for s in rec.apparatus_samples if t0 - 1e-9 <= s.t <= t1 + 1e-9]
-    if not S:
-        raise ValueError("no apparatus samples in the window")
-    cfg = sim.config
-    a = cfg.apparatus
-    lam, g, H = cfg.chain.linear_density, cfg.gravity, a.drop
-
-    def mean(name: str) -> float:
-        vals = np.array([getattr(s, name) for s in S], dtype=float)
-        return float(np.nanmean(vals)) if np.any(np.isfinite(vals)) else math.nan
-
-    t = np.array([s.t for s in S])
-    v_series = np.array([s.v for s in S])
-    v = float(np.mean(v_series))
-    slope = float(np.polyfit(t, v_series, 1)[0]) if len(S) > 2 else math.nan
-    k = g / v**2
-    kH = k * H
-    uc, lc = app.cart_bars(v, lam)
-    T0, TE = mean("T0_bar"), mean("TE_bar")
-    T_up, T_lo = mean("T_up_bar"), mean("T_lo_bar")
-    p_meas = T_up - uc
-    d_meas = T_lo - lc if app.lower is not None else math.nan
-    xi2, xi3 = a.xi2, a.xi3
-    fold = app.variant == "fold"
-    end = (mean("end_x"), mean("end_y"))
-    vx, vy = mean("vertex_x"), mean("vertex_y")
-    q_ends = catenary_through(app.alpha0, end)
-    h_ends = (1.0 / math.cos(app.alpha0) - 1.0) / q_ends if q_ends == q_ends else math.nan
-    q_forces = k / (math.cos(app.alpha0) * (1.0 - T0)) if T0 < 1 else math.nan
-    h_forces = (1.0 / math.cos(app.alpha0) - 1.0) / q_forces if q_forces == q_forces \
-        else math.nan
-    drop = -end[1]  # measured fountain drop (end height below the start)
-    xi = vy / drop if drop > 0 else math.nan
-    qH = q_ends * drop
-    T0_lo = qH / (1.0 + qH * (1.0 + xi))
-    T0_hi = 1.0 - k / q_ends
-    out: dict = {
-        "variant": app.variant,
-        "window": [float(t[0]), float(t[-1])],
-        "measured": {
-            "v": v, "k": k, "kH": kH, "xi2": xi2, "xi3": xi3 if fold else None,
-            "T0_bar": T0, "TE_bar": TE, "Tbar_uc": uc, "Tbar_lc": lc if fold else None,
-            "T_pickup_exit_bar": T_up, "T_putdown_entry_bar": T_lo if fold else None,
-            "pickup_p": p_meas, "putdown_d": d_meas if fold else None,
-            "roller_ratio_up": mean("v_roller_up") / v,
-            "roller_ratio_lo": mean("v_roller_lo") / v if app.lower is not None else None,
-            "speed_drift_per_s": slope / v,
-            "acceleration": slope,
-            "vertex": [vx, vy], "end": list(end),
-            "cart_force_uc_N": app.upper.force,
-            "cart_force_lc_N": app.lower.force if app.lower is not None else None,
-            "end_channel_force_N": [mean("channel_force_x"), mean("channel_force_y")]
-            if app.channel_lo is not None else None,
-        },
-        "catenary": {
-            "q_through_ends": q_ends, "vertex_y_through_ends": h_ends,
-            "vertex_y_rel_error": vy / h_ends - 1.0 if h_ends == h_ends else math.nan,
-            "q_from_k_T0": q_forces, "vertex_y_from_k_T0": h_forces,
-        },
-        "paper_ranges": {
-            "TE_bar": [0.0, 0.5], "TE_in_range": bool(0.0 - 0.02 <= TE < 0.5),
-            "T0_bar": [T0_lo, T0_hi], "T0_in_range": bool(T0_lo <= T0 < T0_hi),
-            "k_max": q_ends / (1.0 + q_ends * (vy + drop)),
-        },
-    }
-    paper = {"T0_bar": 0.5 + uc + xi2 * kH}
-    law = {"T0_bar": PICKUP_BAR + uc + xi2 * kH}
-    if fold:
-        paper["TE_bar"] = 0.5 + lc - xi3 * kH
-        law["TE_bar"] = PUTDOWN_BAR + lc - xi3 * kH
-        paper["Tbar_uc_steady"] = lc + kH * (1.0 - xi2 - xi3)
-        law["Tbar_uc_steady"] = lc + kH * (1.0 - xi2 - xi3) + PUTDOWN_BAR - PICKUP_BAR
-        law["Tbar_uc_steady_with_measured_p_d"] = lc + kH * (1.0 - xi2 - xi3) + d_meas - p_meas
-    else:
-        paper["TE_bar"] = law["TE_bar"] = 0.0 if app.variant == "floor" else None
-        F_uc = app.upper.force
-        # driving drop: to the floor ('floor'), to the guide's horizontal exit plus the
-        # end pull as an equivalent height ('open')
-        H_d, xi_d = (H, xi2) if app.variant == "floor" else \
-            (app.y_up - app.y_lo + app.end_pull / (lam * g), 0.0)
-        for dct, pp in ((paper, 0.5), (law, PICKUP_BAR)):
-            vs = selected_speed(g, H_d, xi_d, F_uc, lam, pp)
-            dct["v_steady"] = vs
-            dct["k_steady"] = g / vs**2 if vs == vs else math.nan
-        if app.variant == "floor":
-            G, dG, dp = CART_GAIN_2CM, CART_GAIN_2CM_ERR, PICKUP_RIG_2CM_ERR
-            v_rig = selected_speed(g, H, xi2, F_uc, lam, gain=G)
-            # standard uncertainty of v_rig from those of p and G (added in quadrature)
-            sv_p = abs(selected_speed(g, H, xi2, F_uc, lam, gain=G, dp=dp) - v_rig)
-            sv_g = abs(selected_speed(g, H, xi2, F_uc, lam, gain=G + dG) - v_rig)
-            sigma = math.hypot(sv_p, sv_g)
-            out["speed_selection"] = {
-                "end": app.end_mode,
-                "v_measured": v,
-                "v_paper_p_half": paper["v_steady"],
-                "v_p_0.27_gain_1": law["v_steady"],
-                "v_rig_2cm": v_rig, "p_rig_2cm": pickup_rig_2cm(v_rig), "gain_rig_2cm": G,
-                "v_rig_2cm_sigma": sigma,
-                "rel_error_rig_2cm": v / v_rig - 1.0 if v_rig == v_rig else math.nan,
-                "rel_error_paper": v / paper["v_steady"] - 1.0
-                if paper["v_steady"] == paper["v_steady"] else math.nan,
-                "p_from_balance": T0 - xi2 * kH - G * uc,
-                "formula": "v^2 = (g*H*(1 - xi2) - G*F_uc/lambda)/p",
-            }
-    if app.variant == "open":
-        # non-stationary: M(t) dv/dt = lambda*g*(y_up - y_lo) + F_pull - T_exit(v), the
-        # moving mass growing at lambda*v/2; mouth tension = weight hanging in the turn
-        drop = app.guide_radius * (1.0 - math.cos(app.alphaE)) if app.guided else math.nan
-        M = app.moving_mass(0.5)
-        drive = lam * g * (app.y_up - app.y_lo) + app.end_pull
-        T_ex = T_up * lam * v * v
-        G = CART_GAIN_2CM
-        T_rig = pickup_rig_2cm(v) * lam * v * v + G * app.upper.force
-        out["open"] = {
-            "TE_bar_predicted": (lam * g * drop + app.end_pull) / (lam * v * v),
-            "drive_N": drive, "exit_tension_N": T_ex, "exit_tension_rig_N": T_rig,
-            "moving_mass_kg_end": M, "moving_mass_rate_predicted": 0.5 * lam * v,
-            "acceleration_predicted_measured_exit": (drive - T_ex) / M,
-            "acceleration_predicted_rig": (drive - T_rig) / M,
-            "v_selected_rig": selected_speed(g, app.y_up - app.y_lo + app.end_pull / (lam * g),
-                                             0.0, app.upper.force, lam, gain=G),
-            "formula": "M(t) dv/dt = lambda g (y_up - y_lo) + F_pull - T_exit(v), "
-                       "dM/dt = lambda v/2",
-        }
-    if fold:
-        # whole moving chain (upper roller exit to folding roller entry) on its fixed
-        # frictionless path: M dv/dt = lambda g H (1 - xi2 - xi3) + T_in - T_exit
-        d_r, G_d = PUTDOWN_RIG_2CM
-        G = CART_GAIN_2CM
-        T_in = (d_r + G_d * lc) * lam * v * v
-        T_ex = (pickup_rig_2cm(v) + G * uc) * lam * v * v
-        drive = lam * g * H * (1.0 - xi2 - xi3)
-        M = app.moving_mass(0.5)
-        out["fold"] = {
-            "T_putdown_entry_rig_bar": d_r + G_d * lc,
-            "T_pickup_exit_rig_bar": pickup_rig_2cm(v) + G * uc,
-            "TE_bar_rig": d_r + G_d * lc - xi3 * kH,
-            "T0_bar_rig": pickup_rig_2cm(v) + G * uc + xi2 * kH,
-            "TE_bar_from_measured_entry": T_lo - xi3 * kH,
-            "moving_mass_kg": M,
-            "acceleration_predicted_rig": (drive + T_in - T_ex) / M,
-            "released_links": app.released,
-            "formula": "M dv/dt = lambda g H (1 - xi2 - xi3) + T_in - T_exit, "
-                       "T_in = (d + G_d Tbar_lc) lambda v^2, "
-                       "T_exit = (p(v) + G Tbar_uc) lambda v^2",
-        }
-    out["predicted_paper"] = paper
-    out["predicted_measured_laws"] = law
-    return out

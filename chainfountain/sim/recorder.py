@@ -147,13 +147,13 @@ class Recorder:
     @property
     def apparatus_samples(self) -> list:
         """Per-sample apparatus measurements
-        (:class:`chainfountain.sim.apparatus.ApparatusSample`; apparatus levels only)."""
+        (:class:`chainfountain.sim.apparatus_report.ApparatusSample`; apparatus levels only)."""
         self._process()
         return self._ap_samples
 
     def _analyse_apparatus(self, t: float, pre_vel: np.ndarray, post: ChainState,
                            contacts: np.ndarray, roller: tuple) -> None:
-        from chainfountain.sim.apparatus import analyse
+        from chainfountain.sim.apparatus_report import analyse
 
         sim = self.sim
         s, prof = analyse(sim.apparatus, t, pre_vel, post, contacts, sim.dt,
