@@ -47,6 +47,10 @@ Heights: ``y_up = -xi2*H`` (chain centre line on top of the upper roller),
 ``y_lo = -H + xi3*H`` (same for the lower roller): the paper's "beaker" and
 "bottom". Link radius ``rho``, roller radius ``r``: the table top lies
 ``3*rho + 2*r`` below the roller-top centre line.
+
+The channels' centre lines and the joint-guide pieces are in
+:mod:`chainfountain.sim.guide`; measuring a run (tensions along the path,
+``summary.json``'s ``apparatus`` object) is in :mod:`chainfountain.sim.apparatus_report`.
 """
 
 from __future__ import annotations
