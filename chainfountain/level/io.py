@@ -180,6 +180,21 @@ def _check_apparatus(level: Level, where: str) -> None:
     g = sim.gravity
     if g <= 0:
         _fail(where, "gravity", f"{g!r} is out of range; allowed: a number > 0 (m/s^2)")
+    if a.floor_depth > 0:
+        if a.variant != "floor" or a.end != "absorbing":
+            _fail(where, "apparatus.floor_depth",
+                  f"{a.floor_depth!r} m needs apparatus.variant = 'floor' with end = "
+                  f"'absorbing' (it is {a.variant!r} with end {a.end!r}); allowed: 0")
+        if a.end_tension != 0:
+            _fail(where, "apparatus.end_tension",
+                  f"{a.end_tension!r} conflicts with apparatus.floor_depth = {a.floor_depth:g} m, "
+                  "which sets Tbar_E = g*floor_depth/speed**2; allowed: 0 with a floor_depth")
+        v_need = math.sqrt(g * (a.drop + a.floor_depth))
+        if a.speed <= v_need:
+            _fail(where, "apparatus.speed",
+                  f"{a.speed!r} m/s cannot launch a fountain that reaches a free end "
+                  f"{a.drop + a.floor_depth:g} m lower (drop + floor_depth); allowed: a speed > "
+                  f"sqrt(g*(H + floor_depth)) = {v_need:.4g} m/s")
     v_need = math.sqrt(g * a.drop / (1.0 - a.end_tension))
     if a.speed <= v_need:
         _fail(where, "apparatus.speed",

@@ -305,13 +305,19 @@ class Apparatus:
         carts = list(cfg.carts)
         self.absorbed = 0
         self.added = 0
-        # predicted fountain (layout, aiming the end channel)
+        self.floor_depth = float(a.floor_depth) if self.variant == "floor" else 0.0
+        """Depth (m) of the absorbing floor below the fountain end ('floor' variant)."""
+        # predicted fountain (layout, aiming the end channel); a floor ``d`` below the
+        # end adds the hanging strand's weight: Tbar_E = g*d/v**2
+        TE_lay = float(a.end_tension) + self.g * self.floor_depth / v0**2
         self.fountain = Fountain.from_launch(v=v0, alpha0=self.alpha0, H=H,
-                                             TE_bar=float(a.end_tension), g=self.g)
+                                             TE_bar=TE_lay, g=self.g)
         f = self.fountain
         x_rise = math.acosh(1.0 + f.q * f.h) / f.q
         self.vertex_pred = (x_rise, f.h)
         self.end = (x_rise + math.acosh(1.0 + f.q * (f.h + H)) / f.q, -H)
+        self.x_floor = x_rise + math.acosh(1.0 + f.q * (f.h + H + self.floor_depth)) / f.q
+        """x where the catenary, continued below the end, meets the floor ('floor')."""
         # ---- upper part
         self.y_up = -a.xi2 * H
         y_tab = self.y_up - 3.0 * rho - 2.0 * r
@@ -363,7 +369,7 @@ class Apparatus:
         s_wrap1 = s_wrap0 + math.pi * R
         # fountain
         ex, ey = self.end
-        xs = np.linspace(0.0, ex, 400)[1:]
+        xs = np.linspace(0.0, ex if self.floor_depth == 0 else self.x_floor, 400)[1:]
         parts.append(np.column_stack((xs, f.h + f.y_of_x(xs - x_rise))))
         self.floor: pymunk.Segment | None = None
         self.floor_span = (ex - 0.1, ex + 0.1)
@@ -385,7 +391,7 @@ class Apparatus:
         self.end_mode = a.end if self.variant == "floor" else "channel"
         if self.end_mode == "absorbing":
             w = a.floor_width
-            self.floor_span = (ex - 0.3 * w, ex + 0.7 * w)
+            self.floor_span = (self.x_floor - 0.3 * w, self.x_floor + 0.7 * w)
         elif self.variant == "floor":
             w = a.floor_width
             self.floor_span = (ex - 0.3 * w, ex + 0.7 * w)
@@ -564,7 +570,8 @@ class Apparatus:
 
     @property
     def floor_y(self) -> float:
-        return -self.H
+        """Height of the floor (m): the fountain end, or ``floor_depth`` below it."""
+        return -self.H - self.floor_depth
 
     @property
     def speed(self) -> float:
@@ -702,7 +709,7 @@ class Apparatus:
         if self.end_mode == "absorbing":
             # as chainfountain.sim.feed: remove the end link when its *centre* reaches the
             # floor, so the free end (Tbar_E = 0) is on average exactly at -H
-            y_floor = -self.H
+            y_floor = self.floor_y
             while len(links) > n_keep + 10 and pos(links[0].body).y <= y_floor:
                 chain.pop_front()
                 self.absorbed += 1

@@ -153,6 +153,11 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
     j0 = int(np.argmin(d0))
     if app.fold_guided and k > 0:
         jE = k - 1  # the last guided link: the mouth of the joint guide
+    elif app.end_mode == "absorbing" and app.floor_depth > 0:
+        # the fountain end is where the falling chain crosses y = -H (the floor lies
+        # floor_depth lower): the first joint at or above that height
+        below = np.flatnonzero(J[:j0, 1] < -app.H)
+        jE = int(below[-1]) + 1 if len(below) else 0
     elif app.end_mode == "absorbing":
         jE = 0  # joint behind the end link: the free end (Tbar_E = 0) is one link ahead
     elif app.variant == "floor":
@@ -195,10 +200,18 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
         inside = (pos[:, 0] > lo_x) & (pos[:, 0] < hi_x) & (pos[:, 1] < app.y_lo + 0.01)
         imp = contacts[:jE + 1][inside].sum(axis=0) / dt
         end_contacts = (float(imp[0]), float(imp[1]))
+    TE, end_x, end_y = float(ten[jE]), float(J[jE, 0]), float(J[jE, 1])
+    if app.floor_depth > 0 and 0 < jE <= j0:
+        # interpolate between the joints on either side of y = -H
+        ya, yb = float(J[jE - 1, 1]), end_y
+        w = (-app.H - ya) / (yb - ya) if yb > ya else 1.0
+        TE = float(ten[jE - 1]) + w * (TE - float(ten[jE - 1]))
+        end_x = float(J[jE - 1, 0]) + w * (end_x - float(J[jE - 1, 0]))
+        end_y = -app.H
     s = ApparatusSample(
         t=t, v=v, v_roller_up=vu, v_roller_lo=vl, T0_bar=float(ten[j0]) / scale,
-        TE_bar=float(ten[jE]) / scale, T_up_bar=T_up, T_lo_bar=T_lo, uc_bar=uc, lc_bar=lc,
-        vertex_x=xv, vertex_y=yv, end_x=float(J[jE, 0]), end_y=float(J[jE, 1]),
+        TE_bar=TE / scale, T_up_bar=T_up, T_lo_bar=T_lo, uc_bar=uc, lc_bar=lc,
+        vertex_x=xv, vertex_y=yv, end_x=end_x, end_y=end_y,
         n_flight=len(links), stretch=float(gaps.sum() / (n * L)),
         channel_force_x=end_contacts[0], channel_force_y=end_contacts[1])
     prof = {"tension_bar": ten[jE:j0 + 1][::-1] / scale, "x": flight[::-1, 0].copy(),
@@ -244,9 +257,11 @@ def report(sim, rec, t0: float, t1: float) -> dict:
         steady: Tbar_uc = Tbar_lc + k*H*(1 - xi2 - xi3) + d - p.
 
     The ``floor`` variant with ``end = "absorbing"`` has ``Tbar_E = 0``, so its
-    speed follows from ``p + Tbar_uc + xi2*k*H = k*H`` (:func:`selected_speed`),
-    reported under ``speed_selection`` for the paper's ``p = 1/2``, the 10-mm rig's
-    0.27 (cart gain 1) and the rig law for the presets' 2 cm links
+    speed follows from ``p + Tbar_uc + xi2*k*H = k*H`` (:func:`selected_speed`); with
+    the floor ``floor_depth`` below the fountain end, ``Tbar_E = k*floor_depth``
+    and the right-hand side is ``k*(H + floor_depth)``. The speed is reported under
+    ``speed_selection`` for the paper's ``p = 1/2``, the 10-mm rig's 0.27 (cart gain
+    1) and the rig law for the presets' 2 cm links
     (:data:`PICKUP_RIG_2CM`, :data:`CART_GAIN_2CM`).
     """
     app: Apparatus = sim.apparatus
@@ -324,11 +339,13 @@ def report(sim, rec, t0: float, t1: float) -> dict:
         law["Tbar_uc_steady"] = lc + kH * (1.0 - xi2 - xi3) + PUTDOWN_BAR - PICKUP_BAR
         law["Tbar_uc_steady_with_measured_p_d"] = lc + kH * (1.0 - xi2 - xi3) + d_meas - p_meas
     else:
-        paper["TE_bar"] = law["TE_bar"] = 0.0 if app.variant == "floor" else None
+        # a floor d below the fountain end: the hanging strand's weight, Tbar_E = k*d
+        d_fl = app.floor_depth
+        paper["TE_bar"] = law["TE_bar"] = k * d_fl if app.variant == "floor" else None
         F_uc = app.upper.force
-        # driving drop: to the floor ('floor'), to the guide's horizontal exit plus the
-        # end pull as an equivalent height ('open')
-        H_d, xi_d = (H, xi2) if app.variant == "floor" else \
+        # driving drop: to the floor ('floor'; H + d), to the guide's horizontal exit plus
+        # the end pull as an equivalent height ('open')
+        H_d, xi_d = (H + d_fl, xi2 * H / (H + d_fl)) if app.variant == "floor" else \
             (app.y_up - app.y_lo + app.end_pull / (lam * g), 0.0)
         for dct, pp in ((paper, 0.5), (law, PICKUP_BAR)):
             vs = selected_speed(g, H_d, xi_d, F_uc, lam, pp)
@@ -336,13 +353,13 @@ def report(sim, rec, t0: float, t1: float) -> dict:
             dct["k_steady"] = g / vs**2 if vs == vs else math.nan
         if app.variant == "floor":
             G, dG, dp = CART_GAIN_2CM, CART_GAIN_2CM_ERR, PICKUP_RIG_2CM_ERR
-            v_rig = selected_speed(g, H, xi2, F_uc, lam, gain=G)
+            v_rig = selected_speed(g, H_d, xi_d, F_uc, lam, gain=G)
             # standard uncertainty of v_rig from those of p and G (added in quadrature)
-            sv_p = abs(selected_speed(g, H, xi2, F_uc, lam, gain=G, dp=dp) - v_rig)
-            sv_g = abs(selected_speed(g, H, xi2, F_uc, lam, gain=G + dG) - v_rig)
+            sv_p = abs(selected_speed(g, H_d, xi_d, F_uc, lam, gain=G, dp=dp) - v_rig)
+            sv_g = abs(selected_speed(g, H_d, xi_d, F_uc, lam, gain=G + dG) - v_rig)
             sigma = math.hypot(sv_p, sv_g)
             out["speed_selection"] = {
-                "end": app.end_mode,
+                "end": app.end_mode, "floor_depth_m": d_fl,
                 "v_measured": v,
                 "v_paper_p_half": paper["v_steady"],
                 "v_p_0.27_gain_1": law["v_steady"],
@@ -352,7 +369,7 @@ def report(sim, rec, t0: float, t1: float) -> dict:
                 "rel_error_paper": v / paper["v_steady"] - 1.0
                 if paper["v_steady"] == paper["v_steady"] else math.nan,
                 "p_from_balance": T0 - xi2 * kH - G * uc,
-                "formula": "v^2 = (g*H*(1 - xi2) - G*F_uc/lambda)/p",
+                "formula": "v^2 = (g*(H + floor_depth - xi2*H) - G*F_uc/lambda)/p",
             }
     if app.variant == "open":
         # non-stationary: M(t) dv/dt = lambda*g*(y_up - y_lo) + F_pull - T_exit(v), the

@@ -214,8 +214,11 @@ class ApparatusConfig:
     - ``"floor"`` (idealized beaker, real floor): the chain ends at the fountain
       end height; with ``end = "absorbing"`` (default) links vanish there (free
       end, ``Tbar_E = 0``) and the speed selects itself,
-      ``v**2 = (g*H*(1 - xi2) - F_uc/lambda)/p``; ``end = "solid"`` is a static
-      floor the chain piles on (it pushes back in the simulation);
+      ``v**2 = (g*H*(1 - xi2) - F_uc/lambda)/p``; with ``floor_depth = d`` the
+      absorbing floor lies ``d`` below the fountain end, whose tension is then
+      ``lambda*g*d`` (``Tbar_E = g*d/v**2``), and ``H`` becomes ``H + d`` in the
+      speed's drive; ``end = "solid"`` is a static floor the chain piles on (it
+      pushes back in the simulation);
     - ``"fold"`` (full arrangement): an end channel catches the chain at the
       fountain end, turns it and lifts it ``xi3*H`` onto a plate; a second
       roller folds it back to rest on a lower table;
@@ -284,6 +287,13 @@ class ApparatusConfig:
         "its centre reaches the floor height (free end, Tbar_E = 0, the paper's real floor "
         "where chain elements just stop); 'solid': a static floor the chain piles on",
         choices=("absorbing", "solid"),
+    )
+    floor_depth: float = param(
+        0.0, unit="m", doc="'floor' with end = 'absorbing' only: the absorbing floor lies this "
+        "far below the fountain end (drop below the start). The hanging strand's weight gives "
+        "the fountain end the tension lambda*g*floor_depth, Tbar_E = g*floor_depth/v**2 (the "
+        "paper's floor reaction set by a height, Fig. 'pulley_experiment_cutting'); 0: the "
+        "floor is at the fountain end (Tbar_E = 0)", min=0.0, max=100.0,
     )
     plate: str = param(
         "groove", unit="", doc="Upper plate (roller to channel): 'groove' holds each link centre "

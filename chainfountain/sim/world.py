@@ -322,7 +322,7 @@ class Simulation:
         app = self.apparatus
         if app is not None:
             if app.end_mode == "absorbing":
-                return -app.H, app.floor_span[0], app.floor_span[1], "absorbing"
+                return app.floor_y, app.floor_span[0], app.floor_span[1], "absorbing"
             if app.floor is not None:
                 a, b = app.floor.a, app.floor.b
                 return -app.H, float(a.x), float(b.x), "solid"
