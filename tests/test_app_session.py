@@ -169,3 +169,20 @@ def test_xi3_control_only_where_the_variant_uses_it(variant, shown):
     paths = [s.path for s in controls.control_fields(cfg)]
     assert "apparatus.xi2" in paths
     assert ("apparatus.xi3" in paths) is shown
+    # only 'floor' has a floor to lower below the fountain end
+    assert ("apparatus.floor_depth" in paths) is (variant == "floor")
+
+
+def test_floor_depth_control_rebuilds_and_refuses() -> None:
+    from pathlib import Path
+
+    lvl = io.load(Path(__file__).resolve().parents[1] / "levels" / "apparatus_floor.toml")
+    s = Session(lvl)
+    H = s.sim.apparatus.H
+    r = s.set_field("apparatus.floor_depth", 0.1)
+    assert r.ok and not r.live and "rebuilt" in r.message
+    assert s.sim.apparatus.floor_y == pytest.approx(-H - 0.1)
+    # deeper than the launch speed can reach (v0 <= sqrt(g*(H + d))): refused, kept
+    r = s.set_field("apparatus.floor_depth", 5.0)
+    assert not r.ok and "refused" in r.message and "apparatus.speed" in r.message
+    assert s.value("apparatus.floor_depth") == 0.1

@@ -27,6 +27,7 @@ CONTROL_PATTERNS: tuple[str, ...] = (
     r"feed\.end_tension",
     r"(.*\.)?xi2",
     r"(.*\.)?xi3",
+    r"apparatus\.floor_depth",
     r"carts\[\d+\]\.mass",
     r"carts\[\d+\]\.incline",
     r"(.*\.)?launch_speed",
@@ -46,6 +47,7 @@ LABELS: dict[str, str] = {
     "apparatus.speed": "start speed v0",
     "apparatus.launch_angle": "launch angle alpha0",
     "apparatus.drop": "drop H",
+    "apparatus.floor_depth": "floor below end d",
     "chain.bending_stiffness": "bending stiffness c",
     "chain.bending_damping": "bending damping d",
     "chain.link_length": "link length",
@@ -274,10 +276,11 @@ def make_spec(path: str, tp: Any, meta: dict, current: float) -> FieldSpec:
 
 ONLY_FOR_VARIANT: dict[str, tuple[str, ...]] = {
     "apparatus.xi3": ("fold",),
+    "apparatus.floor_depth": ("floor",),
 }
 """Apparatus fields that only the named ``apparatus.variant`` values use: for any other
 variant a slider would change nothing (xi3 is the lower table's height, and only
-'fold' has a lower table)."""
+'fold' has a lower table; only 'floor' has a floor)."""
 
 
 def unused_fields(config: Any) -> set[str]:

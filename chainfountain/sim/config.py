@@ -293,7 +293,7 @@ class ApparatusConfig:
         "far below the fountain end (drop below the start). The hanging strand's weight gives "
         "the fountain end the tension lambda*g*floor_depth, Tbar_E = g*floor_depth/v**2 (the "
         "paper's floor reaction set by a height, Fig. 'pulley_experiment_cutting'); 0: the "
-        "floor is at the fountain end (Tbar_E = 0)", min=0.0, max=100.0,
+        "floor is at the fountain end (Tbar_E = 0)", min=0.0, max=10.0,
     )
     plate: str = param(
         "groove", unit="", doc="Upper plate (roller to channel): 'groove' holds each link centre "
