@@ -244,6 +244,11 @@ def write_snapshot(path: Path, sim: Simulation, summary: dict[str, Any], title: 
     app = sim.apparatus
     if mode != "none":
         ax.plot([fx0, fx1], [fy, fy], color="#8c564b", lw=3, label=f"{mode} floor")
+    if app is not None and app.floor_depth > 0:
+        ex = app.end[0]
+        ax.plot([ex - 0.3, ex + 0.3], [-app.H, -app.H], ":", color="#7f7f7f", lw=1.5,
+                label=f"fountain end height (Tbar_E read here; floor {app.floor_depth:.3g} m "
+                "lower)")
     if app is None:
         (gx, gy), (ux, uy) = sim.guide_geometry()
         ax.plot([gx - 0.15 * ux, gx], [gy - 0.15 * uy, gy], color="#2ca02c", lw=4,
@@ -257,7 +262,7 @@ def write_snapshot(path: Path, sim: Simulation, summary: dict[str, Any], title: 
         # narrow fountain such as the paper's D ends well before 2.4 H)
         H = app.H
         ax.set_xlim(-0.6, max(1.2, min(2.4 * H, app.end[0] + 1.0)))
-        ax.set_ylim(-H - 0.4, max(0.3, 0.6 * H))
+        ax.set_ylim(min(-H - 0.4, app.floor_y - 0.1), max(0.3, 0.6 * H))
     else:
         xs = np.concatenate([pts[:, 0], [fx0, fx1]]) if ref is None else pts[:, 0]
         ax.set_xlim(min(xs.min(), -0.2) - 0.1, max(xs.max(), 0.2) + 0.1)
