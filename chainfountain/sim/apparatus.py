@@ -369,7 +369,7 @@ class Apparatus:
         s_wrap1 = s_wrap0 + math.pi * R
         # fountain
         ex, ey = self.end
-        xs = np.linspace(0.0, ex if self.floor_depth == 0 else self.x_floor, 400)[1:]
+        xs = np.linspace(0.0, self.x_floor, 400)[1:]  # x_floor = ex without a floor_depth
         parts.append(np.column_stack((xs, f.h + f.y_of_x(xs - x_rise))))
         self.floor: pymunk.Segment | None = None
         self.floor_span = (ex - 0.1, ex + 0.1)
@@ -708,7 +708,7 @@ class Apparatus:
             self._treadmill_upper()
         if self.end_mode == "absorbing":
             # as chainfountain.sim.feed: remove the end link when its *centre* reaches the
-            # floor, so the free end (Tbar_E = 0) is on average exactly at -H
+            # floor, so the free end (Tbar_E = 0) is on average exactly at the floor
             y_floor = self.floor_y
             while len(links) > n_keep + 10 and pos(links[0].body).y <= y_floor:
                 chain.pop_front()
