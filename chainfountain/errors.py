@@ -7,3 +7,10 @@ class UserError(Exception):
     The message names the field, the value and what is allowed. The CLI prints
     it as one line and exits with status 2.
     """
+
+
+class RunEnded(UserError):
+    """The simulated machine cannot go on (an apparatus table used up, the fold
+    collapsed). Not bad input: ``chainfountain run`` writes its outputs for the part
+    that was simulated, marks ``summary.json`` ``ended_early`` and exits with status 3;
+    the window pauses and shows the message."""

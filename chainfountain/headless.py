@@ -25,6 +25,7 @@ from typing import Any
 import numpy as np
 
 from chainfountain import atomic
+from chainfountain.errors import RunEnded
 from chainfountain.level.io import Level
 from chainfountain.sim.recorder import Recorder
 from chainfountain.sim.world import Simulation
@@ -34,6 +35,8 @@ MAX_PROFILES = 2000
 """Per-link profiles kept in memory by a headless run (thinned evenly beyond; 40 s at 50 Hz)."""
 DEFAULT_DURATION = 8.0
 """Simulated seconds of a headless run when none is given."""
+LOG_PROGRESS_EVERY = 30.0
+"""Wall seconds between progress lines when stderr is not a terminal (a log file)."""
 
 
 def default_duration(level: Level) -> float:
@@ -53,17 +56,52 @@ def default_out_dir(level: Level) -> Path:
     return Path("runs") / safe_name(level.meta.name)
 
 
-def _progress(total: float, enabled: bool):
+class _LogProgress:
+    """Progress for a log file (stderr not a terminal): one line at most every
+    :data:`LOG_PROGRESS_EVERY` wall seconds, so a long run in a batch job is not silent."""
+
+    def __init__(self, total: float, label: str) -> None:
+        self.total, self.label = total, label
+        self.n = 0.0
+        self.t0 = self.last = time.perf_counter()
+
+    def update(self, dn: float) -> None:
+        self.n += dn
+        now = time.perf_counter()
+        if now - self.last < LOG_PROGRESS_EVERY:
+            return
+        self.last = now
+        el = now - self.t0
+        left = el * (self.total - self.n) / self.n if self.n > 0 else math.nan
+        print(f"  {self.label}: {self.n:.2f}/{self.total:.2f} sim s "
+              f"({100 * self.n / self.total:.0f} %), {el:.0f} s elapsed, about {left:.0f} s left",
+              file=sys.stderr, flush=True)
+
+    def __enter__(self) -> _LogProgress:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        return None
+
+
+def _progress(total: float, enabled: bool, label: str = "run"):
+    """A tqdm bar on a terminal, :class:`_LogProgress` lines otherwise, nothing if disabled."""
     from tqdm import tqdm
 
-    return tqdm(total=round(total, 3), unit="sim s", disable=None if enabled else True,
+    if enabled and not sys.stderr.isatty():
+        return _LogProgress(total, label)
+    return tqdm(total=round(total, 3), unit="sim s", disable=not enabled,
                 bar_format="{l_bar}{bar}| {n:.2f}/{total:.2f} sim s [{elapsed}<{remaining}]",
                 file=sys.stderr, leave=False)
 
 
 def simulate(level: Level, duration: float, *, seed: int | None = None,
-             progress: bool = True) -> tuple[Simulation, Recorder, float]:
-    """Build and run a level for ``duration`` simulated seconds; returns sim, recorder, wall s."""
+             progress: bool = True) -> tuple[Simulation, Recorder, float, str | None]:
+    """Build and run a level for ``duration`` simulated seconds.
+
+    Returns sim, recorder, wall seconds and why the run ended early (the message of a
+    :class:`~chainfountain.errors.RunEnded`: a table used up, the fold collapsed), or
+    None if it ran for the whole ``duration``."""
     sim_cfg = level.sim
     if seed is not None:
         sim_cfg = dataclasses.replace(
@@ -73,19 +111,23 @@ def simulate(level: Level, duration: float, *, seed: int | None = None,
     n_steps = int(round(duration / sim.dt))
     chunk = max(1, int(round(0.05 / sim.dt)))
     t0 = time.perf_counter()
-    with _progress(duration, progress) as bar:
+    ended: str | None = None
+    with _progress(duration, progress, level.meta.name) as bar:
         done = 0
         step = sim.step
-        while done < n_steps:
-            m = min(chunk, n_steps - done)
-            for _ in range(m):
-                step()
-            done += m
-            bar.update(m * sim.dt)
-            if done % (20 * chunk) < chunk:  # analyse as we go: raw states are large
-                rec.samples  # noqa: B018 - property access processes the raw samples
+        try:
+            while done < n_steps:
+                m = min(chunk, n_steps - done)
+                for _ in range(m):
+                    step()
+                done += m
+                bar.update(m * sim.dt)
+                if done % (20 * chunk) < chunk:  # analyse as we go: raw states are large
+                    rec.samples  # noqa: B018 - property access processes the raw samples
+        except RunEnded as exc:
+            ended = str(exc)
     wall = time.perf_counter() - t0
-    return sim, rec, wall
+    return sim, rec, wall, ended
 
 
 def _f(x: Any) -> Any:
@@ -112,6 +154,7 @@ def summarize(level: Level, sim: Simulation, rec: Recorder, duration: float,
         "level": level.meta.name,
         "kind": level.sim.kind,
         "duration_s": _f(sim.time),
+        "requested_duration_s": _f(duration),
         "steps": sim.steps,
         "links": sim.n_links,
         "links_free": sim.n_free,
@@ -280,13 +323,15 @@ def run_level(level: Level, out_dir: Path, duration: float | None = None, *,
     duration = default_duration(level) if duration is None else float(duration)
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
-    sim, rec, wall = simulate(level, duration, seed=seed, progress=progress)
+    sim, rec, wall, ended = simulate(level, duration, seed=seed, progress=progress)
     summary = summarize(level, sim, rec, duration, wall)
+    summary["ended_early"] = None if ended is None else {"t_s": _f(sim.time), "reason": ended}
     lam = level.sim.chain.linear_density
     _write_tensions(out_dir / "tensions.csv", rec, lam)
     _write_speed(out_dir / "speed.csv", rec)
     title = (f"{level.meta.name}: t = {sim.time:.2f} s, v = {summary['speed_mean'] or 0:.3f} m/s"
-             + ("" if summary["steady"] else " (not steady)"))
+             + ("" if summary["steady"] else " (not steady)")
+             + ("" if ended is None else " - ended early"))
     write_snapshot(out_dir / "snapshot.png", sim, summary, title)
     path = out_dir / "summary.json"
     atomic.write_text(path, json.dumps(summary, indent=2) + "\n")
@@ -311,6 +356,10 @@ def describe_outputs(summary_path: Path) -> str:
         f"  {s['links']} links, {s['steps']} steps, real-time factor "
         f"{s['realtime_factor']:.2f}, {steady}",
     ]
+    ended = s.get("ended_early")
+    if ended:
+        lines.append(f"  ENDED EARLY (of {s['requested_duration_s']:g} s asked for): "
+                     f"{ended['reason']}")
     if th:
         lines.append(
             f"  vertex height {s['h']:.4f} m (theory {th['h']:.4f}, {pct(err.get('h'))}), "

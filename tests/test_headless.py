@@ -83,3 +83,34 @@ def test_default_duration_of_a_table_sized_apparatus_is_its_own() -> None:
     assert default_duration(fold) == fold.sim.apparatus.duration  # the table is sized for it
     floor = level_io.load(levels / "apparatus_floor.toml")  # treadmill: any length
     assert default_duration(floor) == DEFAULT_DURATION
+
+
+def test_run_that_ends_early_writes_its_part_and_exits_3(tmp_path):
+    """A collapsing fold (the paper's limit case, apparatus_limit) ends the run early:
+    the outputs cover the part simulated, summary.json says why, and `run` exits with 3."""
+    r = _cli("run", "apparatus_limit", "--out", str(tmp_path), "--quiet")
+    assert r.returncode == 3, r.stderr
+    s = json.loads((tmp_path / "summary.json").read_text())
+    ended = s["ended_early"]
+    assert ended is not None and 0.5 < ended["t_s"] < s["requested_duration_s"] == 2.0
+    assert "folding roller rolls backwards" in ended["reason"]
+    assert s["duration_s"] == ended["t_s"]
+    assert "ENDED EARLY" in r.stdout and "Traceback" not in r.stderr
+    assert (tmp_path / "snapshot.png").exists() and (tmp_path / "speed.csv").exists()
+
+
+def test_full_run_is_not_marked_ended_early(tmp_path, quick_level):
+    s = json.loads(run_level(quick_level, tmp_path, 0.1, progress=False).read_text())
+    assert s["ended_early"] is None and s["requested_duration_s"] == pytest.approx(0.1)
+
+
+def test_progress_lines_when_not_a_terminal(tmp_path, quick_level, capsys, monkeypatch):
+    """stderr is no terminal under pytest: progress comes as plain lines (a log file)."""
+    import chainfountain.headless as headless
+
+    monkeypatch.setattr(headless, "LOG_PROGRESS_EVERY", 0.0)
+    run_level(quick_level, tmp_path, 0.2, progress=True)
+    lines = [ln for ln in capsys.readouterr().err.splitlines() if "sim s" in ln]
+    assert lines and lines[-1].strip().startswith("quick: 0.20/0.20 sim s (100 %)")
+    run_level(quick_level, tmp_path, 0.2, progress=False)
+    assert "sim s" not in capsys.readouterr().err

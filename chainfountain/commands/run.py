@@ -3,10 +3,16 @@
 from __future__ import annotations
 
 import argparse
+import json
 import sys
 from pathlib import Path
 
 from chainfountain.commands.args import integer, number
+
+ENDED_EARLY = 3
+"""Exit status of a run that ended before its duration (an apparatus table used up, the
+fold collapsed): its outputs are written for the part simulated and marked
+``ended_early`` in summary.json."""
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -14,7 +20,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "run",
         help="run a level headless and write summary.json, CSVs and a snapshot",
         description="Run LEVEL (a .toml path or a level name from levels/) without a window. "
-        "Writes summary.json, tensions.csv, speed.csv and snapshot.png into --out.",
+        "Writes summary.json, tensions.csv, speed.csv and snapshot.png into --out. Exit "
+        "status 0; 2 for bad input; 3 if the run ended early (an apparatus table used up, "
+        "the fold collapsed): the outputs then cover the part simulated.",
         allow_abbrev=False,
     )
     p.add_argument("level", metavar="LEVEL", help="level file or name (e.g. paper_tall)")
@@ -48,4 +56,6 @@ def run(args: argparse.Namespace) -> int:
           file=sys.stderr)
     path = run_level(level, out, duration, seed=args.seed, progress=not args.quiet)
     print(describe_outputs(path))
+    if json.loads(path.read_text()).get("ended_early"):
+        return ENDED_EARLY
     return 0

@@ -62,7 +62,7 @@ from dataclasses import dataclass
 import numpy as np
 import pymunk
 
-from chainfountain.errors import UserError
+from chainfountain.errors import RunEnded
 from chainfountain.sim import fastbody
 from chainfountain.sim.bodies import SCENERY_CATEGORY
 from chainfountain.sim.chain import CHAIN_CATEGORY, Chain, Link
@@ -175,6 +175,11 @@ _TAIL_KEEP = 30
 end link (:meth:`Apparatus._lump_tail`)."""
 _LO_START = 0.15
 """'fold': start distance (m) of the folding roller from the end channel's exit."""
+_COLLAPSE_TIME = 0.05
+"""'fold': the run ends (:class:`FoldCollapsed`) once the folding roller has rolled
+backwards for this long (s). In the shipped fold presets it never does (it rolls
+forward at about ``v/2`` throughout); without a forward push it falls behind at once
+and rolls back within about 1 s (``apparatus_limit``, docs/apparatus.md)."""
 _PRELOAD_STEPS = 40
 """Treadmill: a joint made in the tensioned plate strand starts with the tension of the
 joint it replaces as an internal force pair, faded out over this many steps (the
@@ -185,10 +190,16 @@ _CLEAR = 0.0008
 _ONLY_CHAIN = pymunk.ShapeFilter(categories=SCENERY_CATEGORY, mask=CHAIN_CATEGORY)
 
 
-class TableUsedUp(UserError):
+class TableUsedUp(RunEnded):
     """The pick-up roller has reached the upper channel: the run has outgrown the
     upper table (raised by :meth:`Apparatus.after_step`; the app pauses on it, the
-    CLI prints it as one line)."""
+    CLI writes what was simulated and says so)."""
+
+
+class FoldCollapsed(RunEnded):
+    """'fold': the folding roller has rolled backwards for :data:`_COLLAPSE_TIME`: the
+    put-down has failed, the chain piles up in the lower guide and the fountain falls
+    out of its catch (raised by :meth:`Apparatus.after_step`)."""
 
 
 # ----------------------------------------------------------------------------- bodies
@@ -508,6 +519,8 @@ class Apparatus:
         """'open': mass (kg) of the tail links lumped into the end link (see _lump_tail)."""
         self._lump_hist: list[tuple[float, float]] = []
         self._t = 0.0
+        self._back_t = 0.0
+        """How long (s) the folding roller has been rolling backwards without a break."""
         self._arc: deque[tuple[Link, pymunk.SlideJoint]] = deque()
         """'open' guide: links ``_lo_n .. _lo_n + len(_arc) - 1`` held on the turn."""
         self._gq: list[deque[tuple[Link, pymunk.Constraint]]] = [deque() for _ in self.guide]
@@ -739,6 +752,30 @@ class Apparatus:
             self._update_fold_guide(popped)
             if self.treadmill:
                 self._treadmill_lower()
+        if self.lower is not None:
+            self._check_fold()
+
+    def _check_fold(self) -> None:
+        """Raise :class:`FoldCollapsed` once the folding roller has rolled backwards for
+        :data:`_COLLAPSE_TIME` (a chain that keeps running into a stopped fold only piles
+        up; nothing after that is the apparatus any more)."""
+        v_R = self.lower.speed
+        if v_R >= 0.0:
+            self._back_t = 0.0
+            return
+        self._back_t += self.sim_cfg.solver.dt
+        if self._back_t < _COLLAPSE_TIME:
+            return
+        push = self.lower.force
+        lam, v = self.sim_cfg.chain.linear_density, self.speed
+        pushed = (f"a push of {push / (lam * v * v):.2f} lambda*v^2" if push
+                  else "no lower cart (Tbar_lc = 0)")
+        raise FoldCollapsed(
+            f"t = {self._t:.2f} s: the folding roller rolls backwards (v_R = {v_R:.2f} m/s, "
+            f"steady is about +{0.5 * v:.2f}) with {pushed}: the put-down has failed and the "
+            "chain piles up in the lower guide. This model's put-down needs a forward push "
+            "of about 0.3 lambda*v^2 or more (docs/apparatus.md, 'Put-down rig'); raise the "
+            "lower cart")
 
     # ------------------------------------------------------------------ treadmill
     def travel(self, i: int) -> float:
