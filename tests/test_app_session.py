@@ -186,3 +186,17 @@ def test_floor_depth_control_rebuilds_and_refuses() -> None:
     r = s.set_field("apparatus.floor_depth", 5.0)
     assert not r.ok and "refused" in r.message and "apparatus.speed" in r.message
     assert s.value("apparatus.floor_depth") == 0.1
+
+
+def test_collapsed_fold_pauses_and_keeps_the_reason() -> None:
+    """apparatus_limit (no lower cart): the folding roller rolls back at about 1 s; the
+    session pauses and keeps why until the scene is rebuilt."""
+    from pathlib import Path
+
+    lvl = io.load(Path(__file__).resolve().parents[1] / "levels" / "apparatus_limit.toml")
+    s = Session(lvl)
+    s.advance(2.0)  # no exception escapes
+    assert s.paused and 0.5 < s.sim.time < 2.0
+    assert s.stopped is not None and "folding roller rolls backwards" in s.stopped
+    s.reset()
+    assert s.stopped is None and s.sim.time == 0.0

@@ -52,6 +52,21 @@ def font(size: int) -> pygame.font.Font:
 _FONTS: dict[int, pygame.font.Font] = {}
 
 
+def wrap(f: pygame.font.Font, text: str, width: int) -> list[str]:
+    """``text`` split at spaces into lines no wider than ``width`` pixels in font ``f``
+    (a single word wider than that gets a line of its own)."""
+    lines: list[str] = []
+    cur = ""
+    for word in text.split():
+        trial = f"{cur} {word}" if cur else word
+        if cur and f.size(trial)[0] > width:
+            lines.append(cur)
+            cur = word
+        else:
+            cur = trial
+    return lines + [cur] if cur else lines
+
+
 def nice_step(span: float, target: int = 5) -> float:
     """A 1-2-5 step that cuts ``span`` into about ``target`` parts."""
     if not math.isfinite(span) or span <= 0:

@@ -146,6 +146,9 @@ class Session:
         self.behind = False
         """True when the last frames could not keep up with the requested speed."""
         self.messages: list[tuple[float, str]] = []
+        self.stopped: str | None = None
+        """Why the run cannot go on (a table used up, the fold collapsed): shown while
+        paused until the scene is rebuilt."""
         self.dirty = False
         """The setup differs from the last loaded or saved file."""
         self.history = History()
@@ -170,6 +173,7 @@ class Session:
         self._acc = 0.0
         self._drag_target = self._drag_prev = None
         self._readout_key = ()
+        self.stopped = None
 
     @property
     def name(self) -> str:
@@ -324,8 +328,9 @@ class Session:
     def _step(self, n: int) -> None:
         try:
             self._step_n(n)
-        except UserError as exc:  # the run cannot go on (an apparatus table used up)
+        except UserError as exc:  # the run cannot go on (a table used up, the fold collapsed)
             self.paused = True
+            self.stopped = str(exc)
             self.say(f"{exc}; paused")
 
     def _step_n(self, n: int) -> None:

@@ -644,15 +644,17 @@ class App:
             surf = f.render(txt, True, col)
             scr.blit(surf, (xx, 48))
             xx += surf.get_width() + 14
-        # status messages (newest last), shown for 6 s
+        # status messages (newest last), shown for 6 s, wrapped to the view's width; why
+        # the run stopped stays while paused
         now = s.clock()
-        msgs = [m for t, m in s.messages if now - t < 6.0][-3:]
-        y = rect.bottom - 44 - 18 * len(msgs)
         small = render.font(17)
-        for m in msgs:
+        msgs = [m for t, m in s.messages if now - t < 6.0][-3:]
+        if s.stopped and s.paused and not any(m.startswith(s.stopped) for m in msgs):
+            msgs = [f"{s.stopped}; paused"] + msgs[-2:]
+        rows = [ln for m in msgs for ln in render.wrap(small, m, rect.w - 20)][-6:]
+        y = rect.bottom - 44 - 18 * len(rows)
+        for m in rows:
             img = small.render(m, True, render.TEXT)
-            if img.get_width() > rect.w - 20:
-                img = img.subsurface((0, 0, rect.w - 20, img.get_height()))
             bg = pygame.Surface((img.get_width() + 8, img.get_height() + 2), pygame.SRCALPHA)
             bg.fill((0, 0, 0, 150))
             scr.blit(bg, (rect.x + 6, y - 1))

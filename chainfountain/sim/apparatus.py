@@ -774,8 +774,9 @@ class Apparatus:
             f"t = {self._t:.2f} s: the folding roller rolls backwards (v_R = {v_R:.2f} m/s, "
             f"steady is about +{0.5 * v:.2f}) with {pushed}: the put-down has failed and the "
             "chain piles up in the lower guide. This model's put-down needs a forward push "
-            "of about 0.3 lambda*v^2 or more (docs/apparatus.md, 'Put-down rig'); raise the "
-            "lower cart")
+            "of about 0.3 lambda*v^2 or more (docs/apparatus.md, 'Put-down rig'); "
+            + ("raise the lower cart mass" if push else
+               "give the level a second [[carts]] entry (the lower cart)"))
 
     # ------------------------------------------------------------------ treadmill
     def travel(self, i: int) -> float:
