@@ -51,6 +51,10 @@ def _decel(mass: float) -> tuple[float, float, float, float]:
     return float(np.polyfit(t, v, 1)[0]), M, app.upper.force - F0, app.upper.carriage.mass
 
 
+pytestmark = pytest.mark.xdist_group("apparatus_carts")
+"""The module-scoped run is computed once, on one worker (``--dist loadgroup``)."""
+
+
 @pytest.fixture(scope="module")
 def ratio() -> float:
     a0, _, _, _ = _decel(io.load(LEVEL).sim.carts[0].mass)

@@ -34,6 +34,10 @@ RUN = 6.0
 STEADY = (3.0, RUN)
 
 
+pytestmark = pytest.mark.xdist_group("apparatus_floor")
+"""The module-scoped run is computed once, on one worker (``--dist loadgroup``)."""
+
+
 @pytest.fixture(scope="module")
 def run():
     lvl = io.load(LEVEL)

@@ -38,6 +38,10 @@ RUN = 3.0
 WINDOWS = [(0.5 * i, 0.5 * i + 0.5) for i in range(1, 6)]
 
 
+pytestmark = pytest.mark.xdist_group("apparatus_fold")
+"""The module-scoped run is computed once, on one worker (``--dist loadgroup``)."""
+
+
 @pytest.fixture(scope="module")
 def run():
     cfg = io.load(LEVEL).sim

@@ -36,6 +36,10 @@ FLOOR_SPEED = 2.929
 """Measured speed of ``apparatus_floor`` (same chain, cart and drop; docs/apparatus.md)."""
 
 
+pytestmark = pytest.mark.xdist_group("apparatus_open")
+"""The module-scoped run is computed once, on one worker (``--dist loadgroup``)."""
+
+
 @pytest.fixture(scope="module")
 def run():
     cfg = io.load(LEVEL).sim

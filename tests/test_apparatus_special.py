@@ -38,6 +38,10 @@ CLEAN = (0.2, 6.0)
 WINDOWS = [(0.5 * i, 0.5 * i + 0.5) for i in range(1, 12)]
 
 
+pytestmark = pytest.mark.xdist_group("apparatus_special")
+"""The module-scoped run is computed once, on one worker (``--dist loadgroup``)."""
+
+
 @pytest.fixture(scope="module")
 def run():
     cfg = io.load(LEVEL).sim

@@ -24,6 +24,10 @@ LEVEL = Path(__file__).resolve().parents[1] / "levels" / "apparatus_floor_heavy.
 RUN = 5.0
 
 
+pytestmark = pytest.mark.xdist_group("apparatus_speed_selection")
+"""The module-scoped run is computed once, on one worker (``--dist loadgroup``)."""
+
+
 @pytest.fixture(scope="module")
 def rep():
     sim = Simulation(io.load(LEVEL).sim)

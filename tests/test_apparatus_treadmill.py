@@ -39,6 +39,10 @@ RUN = 1.5
 FOLD_RUN = 2.5
 
 
+pytestmark = pytest.mark.xdist_group("apparatus_treadmill")
+"""The module-scoped run is computed once, on one worker (``--dist loadgroup``)."""
+
+
 @pytest.fixture(scope="module")
 def run():
     sim = Simulation(io.load(LEVEL).sim)
