@@ -235,7 +235,8 @@ class RollerUnit:
 
     @property
     def speed(self) -> float:
-        return float(self.carriage.velocity.x)
+        """Carriage velocity along ``x`` (m/s; read every step by the fold's collapse check)."""
+        return float(fastbody.get_velocity(fastbody.handle(self.carriage)).x)
 
 
 def _add_roller(space: pymunk.Space, x: float, y_table: float, rho: float, r: float,
