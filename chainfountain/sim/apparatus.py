@@ -754,9 +754,9 @@ class Apparatus:
             if self.treadmill:
                 self._treadmill_lower()
         if self.lower is not None:
-            self._check_fold()
+            self._check_fold(dt)
 
-    def _check_fold(self) -> None:
+    def _check_fold(self, dt: float) -> None:
         """Raise :class:`FoldCollapsed` once the folding roller has rolled backwards for
         :data:`_COLLAPSE_TIME` (a chain that keeps running into a stopped fold only piles
         up; nothing after that is the apparatus any more)."""
@@ -764,7 +764,7 @@ class Apparatus:
         if v_R >= 0.0:
             self._back_t = 0.0
             return
-        self._back_t += self.sim_cfg.solver.dt
+        self._back_t += dt
         if self._back_t < _COLLAPSE_TIME:
             return
         push = self.lower.force
