@@ -180,6 +180,12 @@ _COLLAPSE_TIME = 0.05
 backwards for this long (s). In the shipped fold presets it never does (it rolls
 forward at about ``v/2`` throughout); without a forward push it falls behind at once
 and rolls back within about 1 s (``apparatus_limit``, docs/apparatus.md)."""
+_FOLD_DT_MIN = 3.5e-4
+"""'fold': smallest solver step (s) at which this model's fold was measured to hold.
+The fold is not converged in the step: ``apparatus_fold`` and ``apparatus_special``
+hold for 3 s at dt 0.35-0.5 ms, lose their folding roller at about 2.1 s at 0.25 ms
+and within 0.2 s at 0.1 ms (docs/apparatus.md, "Twelfth session"); the put-down rig
+alone is converged down to 0.03 ms."""
 _PRELOAD_STEPS = 40
 """Treadmill: a joint made in the tensioned plate strand starts with the tension of the
 joint it replaces as an internal force pair, faded out over this many steps (the
@@ -771,11 +777,18 @@ class Apparatus:
         lam, v = self.sim_cfg.chain.linear_density, self.speed
         pushed = (f"a push of {push / (lam * v * v):.2f} lambda*v^2" if push
                   else "no lower cart (Tbar_lc = 0)")
+        head = (f"t = {self._t:.2f} s: the folding roller rolls backwards (v_R = {v_R:.2f} "
+                f"m/s, steady is about +{0.5 * v:.2f}) with {pushed}: the put-down has failed "
+                "and the chain piles up in the lower guide. ")
+        dt = self.sim_cfg.solver.dt
+        if dt < _FOLD_DT_MIN:
+            raise FoldCollapsed(
+                head + f"solver.dt = {dt:g} s is below {_FOLD_DT_MIN:g} s, and this model's "
+                "fold only holds at dt 0.35-0.5 ms (it is not converged in the step; "
+                "docs/apparatus.md, 'Twelfth session'): set solver.dt = 0.0005")
         raise FoldCollapsed(
-            f"t = {self._t:.2f} s: the folding roller rolls backwards (v_R = {v_R:.2f} m/s, "
-            f"steady is about +{0.5 * v:.2f}) with {pushed}: the put-down has failed and the "
-            "chain piles up in the lower guide. This model's put-down needs a forward push "
-            "of about 0.3 lambda*v^2 or more (docs/apparatus.md, 'Put-down rig'); "
+            head + "This model's put-down needs a forward push of about 0.3 lambda*v^2 or "
+            "more (docs/apparatus.md, 'Put-down rig'); "
             + ("raise the lower cart mass" if push else
                "give the level a second [[carts]] entry (the lower cart)"))
 
