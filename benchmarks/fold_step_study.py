@@ -25,6 +25,8 @@ from chainfountain.errors import RunEnded
 from chainfountain.level import io
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import report
+from chainfountain.sim.config import ChainConfig, SolverConfig
+from chainfountain.sim.pickup import RigConfig, run_rig
 
 ROOT = Path(__file__).resolve().parents[1]
 FOLD_PRESETS = ("apparatus_fold", "apparatus_special")
@@ -53,16 +55,12 @@ def run_preset(name: str, dt: float, seconds: float) -> str:
             f"{100 * c['vertex_y_rel_error']:+.1f} % | {ended} | {wall:.0f} |")
 
 
-def run_rig(dt: float) -> str:
-    from chainfountain.sim.config import ChainConfig, SolverConfig
-    from chainfountain.sim.pickup import RigConfig
-    from chainfountain.sim.pickup import run_rig as rig
-
+def rig_row(dt: float) -> str:
     lam, v, f = 0.05, 3.0, 0.4
     ch = ChainConfig(link_length=0.02, linear_density=lam, friction=0.6, link_radius=0.002)
     sol = SolverConfig(dt=dt, iterations=10, joint_error_bias=1e-10, collision_slop=1e-4)
     cfg = RigConfig(mode="putdown", speed=v, cart_force=f * lam * v * v, chain=ch, solver=sol)
-    r = rig(cfg, duration=1.5, settle=0.5)
+    r = run_rig(cfg, duration=1.5, settle=0.5)
     return f"| {dt * 1e3:g} | {r.speed:.3f} | {r.roller_ratio:.3f} | {r.force_bar:.3f} |"
 
 
@@ -78,7 +76,7 @@ def main(argv: list[str] | None = None) -> int:
         print("| dt ms | chain m/s | v_R/v | entry Tbar |")
         print("|---|---|---|---|")
         for dt in args.dt:
-            print(run_rig(dt * 1e-3), flush=True)
+            print(rig_row(dt * 1e-3), flush=True)
         return 0
     print(f"Window {WINDOW_START:g} s to the end of a {args.seconds:g}-s run.\n")
     print("| preset | dt ms | iterations | v m/s | drift %/s | lower v_R/v | Tbar_0 | "

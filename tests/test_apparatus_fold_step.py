@@ -24,12 +24,13 @@ from chainfountain.level import io
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus import FoldCollapsed
 from chainfountain.sim.apparatus_report import report
+from chainfountain.sim.config import SimConfig
 
 LEVEL = Path(__file__).resolve().parents[1] / "levels" / "apparatus_special.toml"
 pytestmark = pytest.mark.xdist_group("apparatus_fold_step")
 
 
-def _special(dt: float):
+def _special(dt: float) -> SimConfig:
     cfg = io.load(LEVEL).sim
     return dataclasses.replace(cfg, solver=dataclasses.replace(cfg.solver, dt=dt))
 
