@@ -84,3 +84,45 @@ def test_rig_refuses_to_run_out_of_chain() -> None:
     with pytest.raises(RuntimeError, match="resting chain is used up"):
         for _ in range(4000):
             rig.step()
+
+
+def test_grooved_feed_holds_the_strand_until_the_roller() -> None:
+    """Put-down with the apparatus's feed (thirteenth session): strand links run on the
+    groove line (``clearance`` above the roller-top centre line) without shapes, and each
+    leaves its groove, shape back, once it is ``release`` links from the roller's top."""
+    from chainfountain.sim.config import ChainConfig, SolverConfig
+    from chainfountain.sim.pickup import RollerRig
+
+    ch = ChainConfig(link_length=0.02, linear_density=0.05, friction=0.6, link_radius=0.002)
+    cfg = RigConfig(mode="putdown", speed=3.0, cart_force=0.4 * 0.05 * 9.0, chain=ch,
+                    solver=SolverConfig(dt=5e-4, iterations=10, joint_error_bias=1e-10,
+                                        collision_slop=1e-4),
+                    feed="groove", clearance=0.002)
+    rig = RollerRig(cfg)
+    released = 0
+    first = rig._fed[0][0] if rig._fed else None
+    for _ in range(400):  # 0.2 s: about 15 links pass the release point
+        rig.step()
+        if first is not None and all(lk is not first for lk, _ in rig._fed):
+            released += 1
+            first = rig._fed[0][0] if rig._fed else None
+    assert released >= 10 and len(rig._fed) >= 3
+    y_line = 3 * rig.rho + 2 * cfg.radius + cfg.clearance
+    x_top = rig.roller.position.x
+    for link, _ in rig._fed:
+        assert link.body.position.y == pytest.approx(y_line, abs=1e-4)
+        assert link.body.position.x - x_top > cfg.release * rig.L
+        assert link.shape.space is None
+    grooved = {id(lk) for lk, _ in rig._fed}
+    free = [lk for lk in rig.chain.links[:rig.n_free] if id(lk) not in grooved]
+    assert all(lk.shape.space is not None for lk in free)
+    assert abs(float(rig.carriage.velocity.x)) == pytest.approx(1.5, rel=0.05)
+
+
+@pytest.mark.parametrize("bad", [dict(feed="rail"), dict(feed="groove", mode="pickup"),
+                                 dict(feed="groove", mode="putdown", angle=0.5)])
+def test_grooved_feed_refuses_other_geometries(bad: dict) -> None:
+    from chainfountain.sim.pickup import RollerRig
+
+    with pytest.raises(ValueError, match="feed"):
+        RollerRig(RigConfig(**bad))

@@ -38,13 +38,14 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections import deque
 from dataclasses import dataclass, field
 
 import numpy as np
 import pymunk
 
 from chainfountain.sim.bodies import SCENERY_CATEGORY
-from chainfountain.sim.chain import Chain
+from chainfountain.sim.chain import Chain, Link
 from chainfountain.sim.config import ChainConfig, SolverConfig
 from chainfountain.sim.measure import ChainReader, joint_forces, signed_tension
 
@@ -76,6 +77,17 @@ class RigConfig:
         link_length=0.01, linear_density=0.05, friction=1.0, link_radius=0.002))
     solver: SolverConfig = field(default_factory=SolverConfig)
     port_links: int = 3
+    feed: str = "free"
+    """Put-down only, ``angle = 0``: 'free' (the strand flies freely from the port to the
+    roller) or 'groove' (as in the apparatus's lower plate: each strand link's centre runs
+    in a frictionless groove joint on a horizontal line until it is ``release`` link
+    lengths from the roller's top, and has no collision shape while grooved)."""
+    release: float = 0.5
+    """'groove' feed: a link leaves its groove once its centre is this many link lengths
+    (ahead of the roller, along the chain's motion) from the roller's top."""
+    clearance: float = 0.0
+    """'groove' feed: height (m) of the groove line above the chain centre line on the
+    roller's top (the apparatus: 0)."""
 
 
 def _no_gravity(body: pymunk.Body, gravity: tuple[float, float], damping: float,
@@ -96,6 +108,10 @@ class RollerRig:
     def __init__(self, cfg: RigConfig) -> None:
         if cfg.mode not in ("pickup", "putdown"):
             raise ValueError(f"mode {cfg.mode!r}: allowed 'pickup' or 'putdown'")
+        if cfg.feed not in ("free", "groove"):
+            raise ValueError(f"feed {cfg.feed!r}: allowed 'free' or 'groove'")
+        if cfg.feed == "groove" and (cfg.mode != "putdown" or cfg.angle != 0.0):
+            raise ValueError("feed 'groove' needs mode 'putdown' and angle 0")
         self.cfg = cfg
         space = pymunk.Space()
         space.gravity = (0.0, -cfg.gravity)
@@ -133,6 +149,12 @@ class RollerRig:
         space.add(self.carriage, groove, self.roller, slot, circ)
         self.e = (math.cos(cfg.angle), math.sin(cfg.angle))
         self._lay_chain()
+        self._fed: deque[tuple[Link, pymunk.GrooveJoint]] = deque()
+        if cfg.feed == "groove":
+            y_mid = 2.0 * self.rho + cfg.radius  # the strand, not the chain on the table
+            for link in self.chain.links[:self.n_free]:
+                if link.body.position.y > y_mid and self._feeds(link):
+                    self._groove(link)
         self.reader = ChainReader(space, self.chain)
         self.time = 0.0
         self.steps = 0
@@ -167,6 +189,8 @@ class RollerRig:
             th = th0 - (th0 - th1) * i / n_arc
             pts.append((R * math.cos(th), yc + R * math.sin(th)))
         px, py = pts[-1]
+        if cfg.feed == "groove":  # the strand and the port run on the groove line
+            py += cfg.clearance
         ex, ey = self.e
         n_str = int(round(cfg.strand / L)) + cfg.port_links + 2
         for i in range(1, n_str + 1):
@@ -216,6 +240,32 @@ class RollerRig:
         w = self.sign * self.cfg.speed - u * ex
         return (u + w * ex, w * ey)
 
+    # ------------------------------------------------------------------ grooved feed
+    def _feeds(self, link: Link) -> bool:
+        """'groove' feed: is ``link`` (dynamic, in the strand) still held by the grooves?"""
+        return link.body.position.x - self.roller.position.x > self.cfg.release * self.L
+
+    def _groove(self, link: Link) -> None:
+        """Hold ``link``'s centre on the feed line (a frictionless groove joint), out of the
+        collision broadphase: the apparatus's lower plate (``Apparatus._hold``)."""
+        y = 3.0 * self.rho + 2.0 * self.cfg.radius + self.cfg.clearance
+        j = pymunk.GrooveJoint(self.space.static_body, link.body, (-20.0, y), (20.0, y),
+                               (0.0, 0.0))
+        j.error_bias = self.cfg.solver.joint_error_bias
+        self.space.add(j)
+        if link.shape is not None and link.shape.space is not None:
+            self.space.remove(link.shape)
+        self._fed.append((link, j))
+
+    def _update_feed(self) -> None:
+        """Release the grooved links that have reached the roller (shape back in the space)."""
+        fed = self._fed
+        while fed and not self._feeds(fed[0][0]):
+            link, j = fed.popleft()
+            self.space.remove(j)
+            if link.shape is not None:
+                self.space.add(link.shape)
+
     # ------------------------------------------------------------------ stepping
     @property
     def n_free(self) -> int:
@@ -246,6 +296,8 @@ class RollerRig:
     def _bookkeeping(self) -> None:
         self._update_port()
         self._update_strand()
+        if self.cfg.feed == "groove":
+            self._update_feed()
 
     def _update_strand(self) -> None:
         """Links beyond the exit point fly without gravity (the paper's mechanism is
@@ -309,6 +361,8 @@ class RollerRig:
                 self.n_port -= 1
                 if self.n_port > 0:
                     chain.join(i_front)
+                if self.cfg.feed == "groove":
+                    self._groove(front)
                 last = links[-1]
                 c = last.body.position
                 new = chain.make_body((c.x + L * ex, c.y + L * ey), self.cfg.angle + math.pi,
