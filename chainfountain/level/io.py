@@ -217,6 +217,10 @@ def _check_apparatus(level: Level, where: str) -> None:
         _fail(where, "apparatus.pickup_rest_links",
               f"{a.pickup_rest_links!r} leaves the pick-up roller too little resting chain to "
               "roll on; allowed: 0 (as apparatus.rest_links) or at least 5")
+    if a.fold_clearance and (a.variant != "fold" or a.plate != "groove"):
+        _fail(where, "apparatus.fold_clearance",
+              f"{a.fold_clearance!r} m only applies to variant = 'fold' with plate = 'groove' "
+              f"(here variant {a.variant!r}, plate {a.plate!r}); allowed: 0")
 
 
 def parse_level(data: dict[str, Any], where: str = "<level>") -> Level:

@@ -180,12 +180,16 @@ _COLLAPSE_TIME = 0.05
 backwards for this long (s). In the shipped fold presets it never does (it rolls
 forward at about ``v/2`` throughout); without a forward push it falls behind at once
 and rolls back within about 1 s (``apparatus_limit``, docs/apparatus.md)."""
+_FOLD_RELEASE = 0.5
+"""'fold' with grooves: a lower-plate link leaves its groove (and gets its collision shape
+back) once its centre is this many link lengths before the folding roller's top."""
 _FOLD_DT_MIN = 3.5e-4
 """'fold': smallest solver step (s) at which this model's fold was measured to hold.
 The fold is not converged in the step: ``apparatus_fold`` and ``apparatus_special``
 hold for 3 s at dt 0.35-0.5 ms, lose their folding roller at about 2.1 s at 0.25 ms
 and within 0.2 s at 0.1 ms (docs/apparatus.md, "Twelfth session"); the put-down rig
-alone is converged down to 0.03 ms."""
+alone is converged down to 0.03 ms. With ``fold_clearance = 0`` only: the cause is the
+folding roller locking between the plate grooves and the table ("Thirteenth session")."""
 _PRELOAD_STEPS = 40
 """Treadmill: a joint made in the tensioned plate strand starts with the tension of the
 joint it replaces as an internal force pair, faded out over this many steps (the
@@ -468,6 +472,8 @@ class Apparatus:
                 x_lo = xl + (max(_LO_START, (a.plate_links + 2) * L) if self.treadmill
                              else _LO_START)
                 ylt = self.y_lo - 3.0 * rho - 2.0 * r
+                if a.plate == "groove":
+                    ylt -= a.fold_clearance
                 self.y_table_lo = ylt
                 self.lower = _add_roller(space, x_lo, ylt, rho, r, a.roller_mass,
                                          a.carriage_mass, carts[1] if len(carts) > 1 else None,
@@ -781,11 +787,13 @@ class Apparatus:
                 f"m/s, steady is about +{0.5 * v:.2f}) with {pushed}: the put-down has failed "
                 "and the chain piles up in the lower guide. ")
         dt = self.sim_cfg.solver.dt
-        if dt < _FOLD_DT_MIN:
+        if dt < _FOLD_DT_MIN and not self.cfg.fold_clearance:
             raise FoldCollapsed(
-                head + f"solver.dt = {dt:g} s is below {_FOLD_DT_MIN:g} s, and this model's "
-                "fold only holds at dt 0.35-0.5 ms (it is not converged in the step; "
-                "docs/apparatus.md, 'Twelfth session'): set solver.dt = 0.0005")
+                head + f"solver.dt = {dt:g} s is below {_FOLD_DT_MIN:g} s, where the folding "
+                "roller locks between the lower plate's grooves and the table (with "
+                "apparatus.fold_clearance = 0 the fold only holds at dt 0.35-0.5 ms; "
+                "docs/apparatus.md, 'Thirteenth session'): set apparatus.fold_clearance = "
+                "0.002 (with a lighter lower cart) or solver.dt = 0.0005")
         raise FoldCollapsed(
             head + "This model's put-down needs a forward push of about 0.3 lambda*v^2 or "
             "more (docs/apparatus.md, 'Put-down rig'); "
@@ -1028,7 +1036,7 @@ class Apparatus:
         """Put the links laid along the lower channel and plate into their elements."""
         links = self.chain.links
         P = np.array([[lk.body.position.x, lk.body.position.y] for lk in links])
-        x_rel = self.lower.x - 0.5 * self.L
+        x_rel = self.lower.x - _FOLD_RELEASE * self.L
         last = -1
         order = list(range(len(self.guide) - 1, -1, -1))  # plate first (downstream)
         cur = 0
@@ -1100,7 +1108,7 @@ class Apparatus:
             q = self._gq[k]
             el = self.guide[k]
             if k == n_el - 1:  # the lower plate: hand links to the folding roller
-                x_rel = self.lower.x - 0.5 * self.L
+                x_rel = self.lower.x - _FOLD_RELEASE * self.L
                 while q and pos(q[0][0].body).x > x_rel:
                     link, j = q.popleft()
                     space.remove(j)

@@ -330,6 +330,16 @@ class ApparatusConfig:
         "travel at v/2 and the tables are sized by duration",
         min=0, max=1000,
     )
+    fold_clearance: float = param(
+        0.0, unit="m", doc="'fold' with plate = 'groove' only: gap between the lower plate's "
+        "groove line and the chain centre line on the folding roller's top (the lower table "
+        "sits this much lower). 0 (the presets' build): the roller is clamped between the "
+        "rigid groove line and the chain on the table, and at solver steps below 0.35 ms "
+        "the clamp locks and the fold collapses. 0.002: the fold holds at 0.1-0.5 ms for "
+        "3 s, and the lower cart must be lighter (apparatus_special: 44-48 g instead of "
+        "58 g; docs/apparatus.md, 'Thirteenth session')",
+        min=0.0, max=0.005,
+    )
 
 
 @dataclass
