@@ -3,14 +3,22 @@
     .venv/bin/python benchmarks/fold_step_study.py                  # ~1.5 min
     .venv/bin/python benchmarks/fold_step_study.py --only special --dt 0.5 0.25
     .venv/bin/python benchmarks/fold_step_study.py --rig            # put-down rig, ~30 s
+    .venv/bin/python benchmarks/fold_step_study.py --only special --clearance 0.002 \
+        --lower-cart 0.046                                          # the clamp removed
+    .venv/bin/python benchmarks/fold_step_study.py --rig --feed groove --push 0.632
 
 Runs each 'fold' preset (real geometry or treadmills, as shipped) for ``--seconds`` at
 each step of ``--dt`` (ms; the iterations as in the preset) and prints a Markdown row per
 run from :func:`chainfountain.sim.apparatus_report.report` over 0.5 s to the end: speed,
 drift, the folding roller's ``v_R/v``, ``Tbar_0``, ``Tbar_E``, the vertex against the
-catenary through the measured ends, and when the run ended (``FoldCollapsed``).
-``--rig`` runs the put-down rig alone (2 cm links, 3 m/s, push 0.4 ``lambda v^2``) at
-the same steps. docs/apparatus.md, "Twelfth session".
+catenary through the measured ends, when the run ended (``FoldCollapsed``), and the
+clamp: the mean vertical contact force (N) between the folding roller and the chain links
+above its centre over the first 0.15 s (the roller weighs 0.2 N; a locked roller sees
+tens of N). ``--clearance`` sets ``apparatus.fold_clearance`` (m), ``--lower-cart`` the
+lower cart's mass (kg). ``--rig`` runs the put-down rig alone (2 cm links, 3 m/s, push
+``--push`` ``lambda v^2``; ``--feed groove``: the strand held on a groove line as on the
+apparatus's lower plate, ``--clearance`` above the roller's top) at the same steps.
+docs/apparatus.md, "Twelfth session" and "Thirteenth session".
 """
 
 from __future__ import annotations
@@ -31,37 +39,70 @@ from chainfountain.sim.pickup import RigConfig, run_rig
 ROOT = Path(__file__).resolve().parents[1]
 FOLD_PRESETS = ("apparatus_fold", "apparatus_special")
 WINDOW_START = 0.5
+CLAMP_WINDOW = 0.15
 
 
-def run_preset(name: str, dt: float, seconds: float) -> str:
+def _clamp_force(sim: Simulation, seconds: float) -> float:
+    """Advance ``seconds`` and return the mean vertical contact force (N) that chain links
+    above the folding roller's centre exert on it."""
+    roller = sim.apparatus.lower.roller
+    total = [0.0]
+
+    def add(arb) -> None:
+        a, b = arb.shapes
+        other = b if a.body is roller else a
+        if other.body.position.y > roller.position.y:
+            total[0] += abs(arb.total_impulse.y)
+
+    t_end = sim.time + seconds
+    while sim.time < t_end - 1e-9:
+        sim.step()
+        roller.each_arbiter(add)
+    return total[0] / seconds
+
+
+def run_preset(name: str, dt: float, seconds: float, clearance: float | None = None,
+               lower_cart: float | None = None) -> str:
     cfg = io.load(ROOT / "levels" / f"{name}.toml").sim
-    cfg = dataclasses.replace(cfg, solver=dataclasses.replace(cfg.solver, dt=dt))
+    a = cfg.apparatus
+    if clearance is not None:
+        a = dataclasses.replace(a, fold_clearance=clearance)
+    carts = list(cfg.carts)
+    if lower_cart is not None:
+        carts[1] = dataclasses.replace(carts[1], mass=lower_cart)
+    cfg = dataclasses.replace(cfg, solver=dataclasses.replace(cfg.solver, dt=dt), apparatus=a,
+                              carts=carts)
     sim = Simulation(cfg)
     rec = Recorder(sim, profiles=False)
     t0 = time.perf_counter()
-    end, ended = seconds, "held"
+    end, ended, clamp = seconds, "held", float("nan")
     try:
-        sim.advance(seconds)
+        clamp = _clamp_force(sim, CLAMP_WINDOW)
+        sim.advance(seconds - sim.time)
     except RunEnded:
         end, ended = sim.time, f"ended {sim.time:.2f} s"
     wall = time.perf_counter() - t0
-    head = f"| {name} | {dt * 1e3:g} | {cfg.solver.iterations} |"
+    head = (f"| {name} | {1e3 * a.fold_clearance:g} | {1e3 * carts[1].mass:g} | "
+            f"{dt * 1e3:g} | {cfg.solver.iterations} |")
+    tail = f"{clamp:.2f} | {ended} | {wall:.0f} |"
     if end < WINDOW_START + 0.2:
-        return f"{head} | | | | | | {ended} | {wall:.0f} |"
+        return f"{head} | | | | | | {tail}"
     r = report(sim, rec, WINDOW_START, end)
     m, c = r["measured"], r["catenary"]
     return (f"{head} {m['v']:.3f} | {100 * m['speed_drift_per_s']:+.2f} | "
             f"{m['roller_ratio_lo']:.3f} | {m['T0_bar']:.3f} | {m['TE_bar']:.3f} | "
-            f"{100 * c['vertex_y_rel_error']:+.1f} % | {ended} | {wall:.0f} |")
+            f"{100 * c['vertex_y_rel_error']:+.1f} % | {tail}")
 
 
-def rig_row(dt: float) -> str:
-    lam, v, f = 0.05, 3.0, 0.4
+def rig_row(dt: float, push: float = 0.4, feed: str = "free", clearance: float = 0.0) -> str:
+    lam, v = 0.05, 3.0
     ch = ChainConfig(link_length=0.02, linear_density=lam, friction=0.6, link_radius=0.002)
     sol = SolverConfig(dt=dt, iterations=10, joint_error_bias=1e-10, collision_slop=1e-4)
-    cfg = RigConfig(mode="putdown", speed=v, cart_force=f * lam * v * v, chain=ch, solver=sol)
+    cfg = RigConfig(mode="putdown", speed=v, cart_force=push * lam * v * v, chain=ch,
+                    solver=sol, feed=feed, clearance=clearance)
     r = run_rig(cfg, duration=1.5, settle=0.5)
-    return f"| {dt * 1e3:g} | {r.speed:.3f} | {r.roller_ratio:.3f} | {r.force_bar:.3f} |"
+    return (f"| {feed} | {1e3 * clearance:g} | {push:g} | {dt * 1e3:g} | {r.speed:.3f} | "
+            f"{r.roller_ratio:.3f} | {r.force_bar:.3f} |")
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -71,22 +112,28 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--seconds", type=float, default=3.0)
     ap.add_argument("--only", default="", help="run presets whose name contains this")
     ap.add_argument("--rig", action="store_true", help="the put-down rig alone")
+    ap.add_argument("--clearance", type=float, default=None,
+                    help="apparatus.fold_clearance in m (rig: groove line above the top)")
+    ap.add_argument("--lower-cart", type=float, default=None, help="lower cart mass in kg")
+    ap.add_argument("--feed", choices=("free", "groove"), default="free", help="rig feed")
+    ap.add_argument("--push", type=float, default=0.4, help="rig cart push / (lambda v^2)")
     args = ap.parse_args(argv)
     if args.rig:
-        print("| dt ms | chain m/s | v_R/v | entry Tbar |")
-        print("|---|---|---|---|")
+        print("| feed | clearance mm | push | dt ms | chain m/s | v_R/v | entry Tbar |")
+        print("|---|---|---|---|---|---|---|")
         for dt in args.dt:
-            print(rig_row(dt * 1e-3), flush=True)
+            print(rig_row(dt * 1e-3, args.push, args.feed, args.clearance or 0.0), flush=True)
         return 0
     print(f"Window {WINDOW_START:g} s to the end of a {args.seconds:g}-s run.\n")
-    print("| preset | dt ms | iterations | v m/s | drift %/s | lower v_R/v | Tbar_0 | "
-          "Tbar_E | vertex | run | wall s |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    print("| preset | clearance mm | lower cart g | dt ms | iterations | v m/s | drift %/s | "
+          "lower v_R/v | Tbar_0 | Tbar_E | vertex | clamp N | run | wall s |")
+    print("|---" * 14 + "|")
     for name in FOLD_PRESETS:
         if args.only not in name:
             continue
         for dt in args.dt:
-            print(run_preset(name, dt * 1e-3, args.seconds), flush=True)
+            print(run_preset(name, dt * 1e-3, args.seconds, args.clearance, args.lower_cart),
+                  flush=True)
     return 0
 
 
