@@ -336,8 +336,9 @@ class ApparatusConfig:
         "sits this much lower). 0 (the presets' build): the roller is clamped between the "
         "rigid groove line and the chain on the table, and at solver steps below 0.35 ms "
         "the clamp locks and the fold collapses. 0.002: the fold holds at 0.1-0.5 ms for "
-        "3 s, and the lower cart must be lighter (apparatus_special: 44-48 g instead of "
-        "58 g; docs/apparatus.md, 'Thirteenth session')",
+        "3 s (not yet converged in the step over 6 s), and the lower cart must be lighter "
+        "(apparatus_special: 44-48 g instead of 58 g; docs/apparatus.md, 'Thirteenth "
+        "session')",
         min=0.0, max=0.005,
     )
 
