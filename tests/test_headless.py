@@ -73,6 +73,16 @@ def test_cli_run_and_bad_flags(tmp_path, quick_level):
     assert r.returncode == 2 and "no such file" in r.stderr and "Traceback" not in r.stderr
 
 
+def test_cli_seed_on_an_apparatus_level_is_refused(tmp_path):
+    """An apparatus lays its own chain: ``--seed`` would change nothing, so it is refused
+    (one line, status 2, nothing written) instead of silently ignored."""
+    r = _cli("run", "apparatus_special", "--seed", "3", "--out", str(tmp_path / "o"))
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1
+    assert "--seed: 3 has no effect" in r.stderr and "apparatus.speed" in r.stderr
+    assert not (tmp_path / "o").exists()
+
+
 def test_default_duration_of_a_table_sized_apparatus_is_its_own() -> None:
     from chainfountain.headless import DEFAULT_DURATION, default_duration
     from chainfountain.level import io as level_io

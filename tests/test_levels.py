@@ -116,3 +116,28 @@ def test_level_name_resolves_even_if_a_folder_has_that_name(tmp_path, monkeypatc
     assert library.resolve("classroom") == library.shipped_dir() / "classroom.toml"
     with pytest.raises(io.LevelError, match="known levels"):
         library.resolve("no_such_level")
+
+
+APPARATUS_BAD = [  # (key, new line, field, shown, allowed) in a copy of apparatus_special
+    ("seed", "seed = 3", "initial.seed", "3", "allowed: 0"),
+    ("jitter", "jitter = 0.01", "initial.jitter", "0.01", "allowed: 0.001"),
+    ("mode", 'mode = "stub"', "initial.mode", "'stub'", "allowed: 'catenary'"),
+    ("variant", 'variant = "open"', "apparatus.fold_clearance", "0.002", "allowed: 0"),
+    ("fold_clearance", "fold_clearance = 0.02", "apparatus.fold_clearance", "0.02", "[0, 0.005]"),
+]
+
+
+@pytest.mark.parametrize("key, new, field, shown, allowed", APPARATUS_BAD,
+                         ids=[b[2] + ":" + b[1] for b in APPARATUS_BAD])
+def test_apparatus_bad_files_one_clear_line(tmp_path, key, new, field, shown, allowed):
+    """The apparatus lays its own chain, so ``[initial]`` settings would be silently
+    ignored there: they are refused instead; ``fold_clearance`` only where it applies."""
+    text = (ROOT / "levels" / "apparatus_special.toml").read_text()
+    if key in ("variant", "fold_clearance"):  # the preset leaves it at its default, 0
+        text = _replace_key(text, "plate_links", "plate_links = 20\nfold_clearance = 0.002")
+    bad = tmp_path / "bad.toml"
+    bad.write_text(_replace_key(text, key, new))
+    with pytest.raises(io.LevelError) as exc:
+        io.load(bad)
+    msg = str(exc.value)
+    assert f"{field}: {shown}" in msg and allowed in msg and "\n" not in msg

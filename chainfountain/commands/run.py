@@ -8,6 +8,7 @@ import sys
 from pathlib import Path
 
 from chainfountain.commands.args import integer, number
+from chainfountain.errors import UserError
 
 ENDED_EARLY = 3
 """Exit status of a run that ended before its duration (an apparatus table used up, the
@@ -35,7 +36,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--out", type=Path, default=None,
                    help="output folder (default runs/<level name>)")
     p.add_argument("--seed", type=integer("a seed", min=0), default=None,
-                   help="override the level's random seed")
+                   help="override the level's random seed (kind 'feed' levels only)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=run)
 
@@ -50,6 +51,12 @@ def run(args: argparse.Namespace) -> int:
     from chainfountain.level import io, library
 
     level = io.load(library.resolve(args.level))
+    if args.seed is not None and level.sim.kind != "feed":
+        raise UserError(
+            f"argument --seed: {args.seed} has no effect on {level.meta.name!r} (kind "
+            f"{level.sim.kind!r}: the apparatus lays its chain along its own path; to start a "
+            "perturbed run, change apparatus.speed slightly); allowed: only with kind 'feed' "
+            "levels")
     out = args.out or default_out_dir(level)
     duration = args.duration or default_duration(level)
     print(f"running {level.meta.name} headless for {duration:g} simulated s ...",

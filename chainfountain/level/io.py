@@ -217,6 +217,14 @@ def _check_apparatus(level: Level, where: str) -> None:
         _fail(where, "apparatus.pickup_rest_links",
               f"{a.pickup_rest_links!r} leaves the pick-up roller too little resting chain to "
               "roll on; allowed: 0 (as apparatus.rest_links) or at least 5")
+    default_initial = type(sim.initial)()
+    for f in dataclasses.fields(sim.initial):
+        value, default = getattr(sim.initial, f.name), getattr(default_initial, f.name)
+        if value != default:
+            _fail(where, f"initial.{f.name}",
+                  f"{value!r} has no effect in an 'apparatus' level: the apparatus lays its "
+                  "chain along its own path, moving at apparatus.speed (to start a perturbed "
+                  f"run, change apparatus.speed slightly); allowed: {default!r}")
     if a.fold_clearance and (a.variant != "fold" or a.plate != "groove"):
         _fail(where, "apparatus.fold_clearance",
               f"{a.fold_clearance!r} m only applies to variant = 'fold' with plate = 'groove' "

@@ -131,7 +131,8 @@ class SolverConfig:
 
 @dataclass
 class InitialConfig:
-    """How the chain starts."""
+    """How the chain starts (kind 'feed'). An 'apparatus' level lays its chain along its
+    own path, moving at ``apparatus.speed``, and accepts only these defaults."""
 
     mode: str = param(
         "catenary", unit="", doc="'catenary': laid along the predicted fountain moving at v; "
