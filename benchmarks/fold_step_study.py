@@ -5,19 +5,24 @@
     .venv/bin/python benchmarks/fold_step_study.py --rig            # put-down rig, ~30 s
     .venv/bin/python benchmarks/fold_step_study.py --only special --clearance 0.002 \
         --lower-cart 0.046                                          # the clamp removed
+    .venv/bin/python benchmarks/fold_step_study.py --only special --seconds 6 --dt 0.5 \
+        --speeds 2.94 2.97 3.0 3.03 3.06                            # perturbed starts
     .venv/bin/python benchmarks/fold_step_study.py --rig --feed groove --push 0.632
 
 Runs each 'fold' preset (real geometry or treadmills, as shipped) for ``--seconds`` at
-each step of ``--dt`` (ms; the iterations as in the preset) and prints a Markdown row per
-run from :func:`chainfountain.sim.apparatus_report.report` over 0.5 s to the end: speed,
-drift, the folding roller's ``v_R/v``, ``Tbar_0``, ``Tbar_E``, the vertex against the
-catenary through the measured ends, when the run ended (``FoldCollapsed``), and the
-clamp: the mean vertical contact force (N) between the folding roller and the chain links
-above its centre over the first 0.15 s (the roller weighs 0.2 N; a locked roller sees
-tens of N). ``--clearance`` sets ``apparatus.fold_clearance`` (m), ``--lower-cart`` the
-lower cart's mass (kg). ``--rig`` runs the put-down rig alone (2 cm links, 3 m/s, push
-``--push`` ``lambda v^2``; ``--feed groove``: the strand held on a groove line as on the
-apparatus's lower plate, ``--clearance`` above the roller's top) at the same steps.
+each step of ``--dt`` (ms; the iterations as in the preset) and prints a Markdown row
+per run from :func:`chainfountain.sim.apparatus_report.report` over 0.5 s to the end:
+speed, drift, the folding roller's ``v_R/v``, ``Tbar_0``, ``Tbar_E``, the vertex against
+the catenary through the measured ends, when the run ended (``FoldCollapsed``), and the
+clamp: the mean vertical contact force (N) between the folding roller and the chain
+links above its centre over the first 0.15 s (the roller weighs 0.2 N; a locked roller
+sees tens of N). ``--speeds`` runs each step from several start speeds
+(``apparatus.speed``; the fold is chaotic, so one run does not say whether a setting
+holds), and the last line counts the runs that held cleanly. ``--clearance`` sets
+``apparatus.fold_clearance`` (m), ``--lower-cart`` the lower cart's mass (kg). ``--rig``
+runs the put-down rig alone (2 cm links, 3 m/s, push ``--push`` ``lambda v^2``; ``--feed
+groove``: the strand held on a groove line as on the apparatus's lower plate,
+``--clearance`` above the roller's top) at the same steps.
 docs/apparatus.md, "Twelfth session" and "Thirteenth session".
 """
 
@@ -61,12 +66,24 @@ def _clamp_force(sim: Simulation, seconds: float) -> float:
     return total[0] / seconds
 
 
+def clean(row: str) -> bool:
+    """Whether a :func:`run_preset` row held cleanly: not ended, the folding roller at
+    ``v_R/v = 0.5 +- 0.02`` and the speed drift within 1 %/s (the issue's steadiness)."""
+    cells = [c.strip() for c in row.strip("|").split("|")]
+    if cells[-2] != "held" or not cells[6]:
+        return False
+    drift, ratio = float(cells[7]), float(cells[8])
+    return abs(ratio - 0.5) <= 0.02 and abs(drift) <= 1.0
+
+
 def run_preset(name: str, dt: float, seconds: float, clearance: float | None = None,
-               lower_cart: float | None = None) -> str:
+               lower_cart: float | None = None, speed: float | None = None) -> str:
     cfg = io.load(ROOT / "levels" / f"{name}.toml").sim
     a = cfg.apparatus
     if clearance is not None:
         a = dataclasses.replace(a, fold_clearance=clearance)
+    if speed is not None:
+        a = dataclasses.replace(a, speed=speed)
     carts = list(cfg.carts)
     if lower_cart is not None:
         carts[1] = dataclasses.replace(carts[1], mass=lower_cart)
@@ -83,14 +100,15 @@ def run_preset(name: str, dt: float, seconds: float, clearance: float | None = N
         end, ended = sim.time, f"ended {sim.time:.2f} s"
     wall = time.perf_counter() - t0
     head = (f"| {name} | {1e3 * a.fold_clearance:g} | {1e3 * carts[1].mass:g} | "
-            f"{dt * 1e3:g} | {cfg.solver.iterations} |")
+            f"{a.speed:g} | {dt * 1e3:g} | {cfg.solver.iterations} |")
     tail = f"{clamp:.2f} | {ended} | {wall:.0f} |"
     if end < WINDOW_START + 0.2:
-        return f"{head} | | | | | | {tail}"
+        return f"{head} | | | | | | | {tail}"
     r = report(sim, rec, WINDOW_START, end)
     m, c = r["measured"], r["catenary"]
     return (f"{head} {m['v']:.3f} | {100 * m['speed_drift_per_s']:+.2f} | "
             f"{m['roller_ratio_lo']:.3f} | {m['T0_bar']:.3f} | {m['TE_bar']:.3f} | "
+            f"{m['T0_bar'] - m['TE_bar'] - m['kH']:+.3f} | "
             f"{100 * c['vertex_y_rel_error']:+.1f} % | {tail}")
 
 
@@ -115,6 +133,9 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--clearance", type=float, default=None,
                     help="apparatus.fold_clearance in m (rig: groove line above the top)")
     ap.add_argument("--lower-cart", type=float, default=None, help="lower cart mass in kg")
+    ap.add_argument("--speeds", type=float, nargs="+", default=[None],
+                    help="start speeds apparatus.speed in m/s (perturbed starts of the "
+                    "same level; default: the preset's)")
     ap.add_argument("--feed", choices=("free", "groove"), default="free", help="rig feed")
     ap.add_argument("--push", type=float, default=0.4, help="rig cart push / (lambda v^2)")
     args = ap.parse_args(argv)
@@ -125,15 +146,21 @@ def main(argv: list[str] | None = None) -> int:
             print(rig_row(dt * 1e-3, args.push, args.feed, args.clearance or 0.0), flush=True)
         return 0
     print(f"Window {WINDOW_START:g} s to the end of a {args.seconds:g}-s run.\n")
-    print("| preset | clearance mm | lower cart g | dt ms | iterations | v m/s | drift %/s | "
-          "lower v_R/v | Tbar_0 | Tbar_E | vertex | clamp N | run | wall s |")
-    print("|---" * 14 + "|")
+    print("| preset | clearance mm | lower cart g | v0 m/s | dt ms | iterations | v m/s | "
+          "drift %/s | lower v_R/v | Tbar_0 | Tbar_E | Tbar_0 - Tbar_E - kH | vertex | "
+          "clamp N | run | wall s |")
+    print("|---" * 16 + "|")
+    rows = []
     for name in FOLD_PRESETS:
         if args.only not in name:
             continue
         for dt in args.dt:
-            print(run_preset(name, dt * 1e-3, args.seconds, args.clearance, args.lower_cart),
-                  flush=True)
+            for v0 in args.speeds:
+                rows.append(run_preset(name, dt * 1e-3, args.seconds, args.clearance,
+                                       args.lower_cart, v0))
+                print(rows[-1], flush=True)
+    print(f"\nHeld cleanly (not ended, lower v_R/v within 0.02 of 0.5, |drift| <= 1 %/s): "
+          f"{sum(clean(r) for r in rows)} of {len(rows)} runs.")
     return 0
 
 
