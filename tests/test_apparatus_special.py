@@ -126,7 +126,11 @@ def test_special_fountain_carries_kH(run) -> None:
     # faster or 1e-6 slower gave 0.475-0.512 (0.481-0.509 at 20 iterations), and with
     # 20 resting links ahead of the pick-up this preset gave 0.474-0.489 (a strict xfail
     # then); the treadmills read Tbar_E about 0.03 high (docs/apparatus.md, "Eighth
-    # session", "Ninth session")
+    # session", "Ninth session"). Fourteenth session: started 1-2 % faster or slower
+    # (2.94-3.06 m/s), Tbar_0 - Tbar_E - k H over 0.5-6 s is -0.157, -0.083, (3.0 m/s:
+    # -0.030), +0.018, +0.027: two of the five starts miss this tolerance, so it holds
+    # for this run, not for the preset (fold_step_study.py --speeds; docs/apparatus.md,
+    # "Fourteenth session")
     assert m["T0_bar"] - m["TE_bar"] == pytest.approx(m["kH"], abs=0.06)
 
 
