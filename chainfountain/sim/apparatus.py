@@ -786,7 +786,6 @@ class Apparatus:
         head = (f"t = {self._t:.2f} s: the folding roller rolls backwards (v_R = {v_R:.2f} "
                 f"m/s, steady is about +{0.5 * v:.2f}) with {pushed}: the put-down has failed "
                 "and the chain piles up in the lower guide. ")
-        dt = self.sim_cfg.solver.dt
         if dt < _FOLD_DT_MIN and not self.cfg.fold_clearance:
             raise FoldCollapsed(
                 head + f"solver.dt = {dt:g} s is below {_FOLD_DT_MIN:g} s, where the folding "
