@@ -190,6 +190,17 @@ hold for 3 s at dt 0.35-0.5 ms, lose their folding roller at about 2.1 s at 0.25
 and within 0.2 s at 0.1 ms (docs/apparatus.md, "Twelfth session"); the put-down rig
 alone is converged down to 0.03 ms. With ``fold_clearance = 0`` only: the cause is the
 folding roller locking between the plate grooves and the table ("Thirteenth session")."""
+_HELD = 0.1
+"""'fold': the folding roller counts as holding the chain while ``|v_R/v - 1/2|`` is at
+most this (the collapse message tells a fold that never held from one that held and was
+then lost)."""
+_SWING_EVERY, _SWING_SAMPLES = 0.05, 100
+"""'fold': sampling interval (s) and count of the speed history the collapse message
+reads the speed swing from (the last 5 s in which the fold held)."""
+_LATE_COLLAPSE = 2.0
+"""'fold': a collapse after the folding roller has held the chain this long (s) is
+reported as the landing swing's, not as a missing push (docs/apparatus.md, "Fifteenth
+session")."""
 _PRELOAD_STEPS = 40
 """Treadmill: a joint made in the tensioned plate strand starts with the tension of the
 joint it replaces as an internal force pair, faded out over this many steps (the
@@ -534,6 +545,12 @@ class Apparatus:
         self._t = 0.0
         self._back_t = 0.0
         """How long (s) the folding roller has been rolling backwards without a break."""
+        self._held_t = 0.0
+        """How long (s) the folding roller has rolled at ``v/2`` (within :data:`_HELD`)."""
+        self._held_v: deque[float] = deque(maxlen=_SWING_SAMPLES)
+        """Chain speed (m/s) every :data:`_SWING_EVERY` s while the fold held: the speed
+        swing the collapse message reports."""
+        self._swing_next = 0.0
         self._arc: deque[tuple[Link, pymunk.SlideJoint]] = deque()
         """'open' guide: links ``_lo_n .. _lo_n + len(_arc) - 1`` held on the turn."""
         self._gq: list[deque[tuple[Link, pymunk.Constraint]]] = [deque() for _ in self.guide]
@@ -775,10 +792,19 @@ class Apparatus:
         v_R = self.lower.speed
         if v_R >= 0.0:
             self._back_t = 0.0
+            v = self.speed
+            if v > 0.0 and abs(v_R / v - 0.5) <= _HELD:
+                self._held_t += dt
+                if self._t >= self._swing_next:
+                    self._held_v.append(v)
+                    self._swing_next = self._t + _SWING_EVERY
             return
         self._back_t += dt
         if self._back_t < _COLLAPSE_TIME:
             return
+        clamped = dt < _FOLD_DT_MIN and not self.cfg.fold_clearance
+        if self._held_t >= _LATE_COLLAPSE and not clamped:
+            raise FoldCollapsed(self._late_collapse_message(v_R))
         push = self.lower.force
         lam, v = self.sim_cfg.chain.linear_density, self.speed
         pushed = (f"a push of {push / (lam * v * v):.2f} lambda*v^2" if push
@@ -786,7 +812,7 @@ class Apparatus:
         head = (f"t = {self._t:.2f} s: the folding roller rolls backwards (v_R = {v_R:.2f} "
                 f"m/s, steady is about +{0.5 * v:.2f}) with {pushed}: the put-down has failed "
                 "and the chain piles up in the lower guide. ")
-        if dt < _FOLD_DT_MIN and not self.cfg.fold_clearance:
+        if clamped:
             raise FoldCollapsed(
                 head + f"solver.dt = {dt:g} s is below {_FOLD_DT_MIN:g} s, where the folding "
                 "roller locks between the lower plate's grooves and the table (with "
@@ -798,6 +824,27 @@ class Apparatus:
             "more (docs/apparatus.md, 'Put-down rig'); "
             + ("raise the lower cart mass" if push else
                "give the level a second [[carts]] entry (the lower cart)"))
+
+    def _late_collapse_message(self, v_R: float) -> str:
+        """The collapse of a fold that had held the chain for at least
+        :data:`_LATE_COLLAPSE` s: the chain speed swings with a period of 2-3 s and a
+        growing amplitude (the landing swing) until the folding roller loses the chain.
+        The push read at this moment (the chain has run away) says nothing about the
+        balance, so the message gives the speed the fold held and its swing instead."""
+        hv = self._held_v
+        lam = self.sim_cfg.chain.linear_density
+        v_held = sum(hv) / len(hv) if hv else self.speed
+        swing = 0.5 * (max(hv) - min(hv)) if hv else math.nan
+        push = self.lower.force / (lam * v_held * v_held)
+        return (f"t = {self._t:.2f} s: the folding roller lost the chain (v_R = {v_R:.2f} m/s) "
+                f"after holding it at v/2 for {self._held_t:.1f} s. In its last "
+                f"{len(hv) * _SWING_EVERY:.0f} s of holding, the chain speed was "
+                f"{v_held:.2f} m/s swinging by +-{swing:.2f} m/s (lower cart push "
+                f"{push:.2f} lambda*v^2 at that speed): in this model the landing swing "
+                "(period 2-3 s) grows until the fold fails. A lower cart a few grams "
+                "lighter or heavier, a start 2 % faster or slower, a stiffer catch or longer "
+                "strands only move the failure (7-23 s for apparatus_special at solver.dt "
+                "0.5 ms; docs/apparatus.md, 'Fifteenth session')")
 
     # ------------------------------------------------------------------ treadmill
     def travel(self, i: int) -> float:
