@@ -1,0 +1,151 @@
+"""The landing swing of the fold presets run long: how fast it grows, when the fold fails.
+
+    .venv/bin/python benchmarks/swing_study.py                      # ~30 s
+    .venv/bin/python benchmarks/swing_study.py --speeds 2.94 3.0 3.06
+    .venv/bin/python benchmarks/swing_study.py --lower-cart 0.054 0.058 0.062
+    .venv/bin/python benchmarks/swing_study.py --dt 0.5 0.1 --clearance 0.002 \
+        --lower-cart 0.044 --speeds 2.97 --seconds 8
+    .venv/bin/python benchmarks/swing_study.py --close-rate 2 20 100
+
+Runs a 'fold' level (default ``apparatus_special``, both plates treadmills, so nothing
+runs out) for up to ``--seconds`` and samples the chain speed (the upper plate strand)
+every 0.01 s. One Markdown row per run: when it ended (``FoldCollapsed``) or ``-``; the
+mean speed over 0.5-8 s; the speed swing (half the peak-to-peak about a linear trend)
+over 0.5-3.5 s and over the last 3 s before the end (or before ``--seconds`` minus 1 s);
+and a fit ``v = c0 + c1 t + A exp(sigma t) sin(omega t + phi)`` over 0.5 s to 1 s before
+the end: ``sigma`` (1/s, growth rate of the swing; > 0 grows) and the period.
+``--close-rate`` sets the catch's closing speed (m/s, module constant
+``_FOLD_CLOSE_RATE``, 5 as shipped). docs/apparatus.md, "Fifteenth session".
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import itertools
+import math
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+from scipy.optimize import curve_fit
+
+import chainfountain.sim.apparatus as apparatus
+from chainfountain.errors import RunEnded
+from chainfountain.level import io
+from chainfountain.sim import Simulation
+from chainfountain.sim.config import SimConfig
+
+ROOT = Path(__file__).resolve().parents[1]
+SAMPLE = 0.01
+
+
+def configure(level: str, dt_ms: float, lower_cart: float | None, speed: float | None,
+              clearance: float | None) -> SimConfig:
+    """The level's configuration with the study's changes."""
+    path = Path(level) if level.endswith(".toml") else ROOT / "levels" / f"{level}.toml"
+    cfg = io.load(path).sim
+    if cfg.apparatus is None or cfg.apparatus.variant != "fold":
+        raise SystemExit(f"{path.name}: not a 'fold' apparatus level")
+    a = cfg.apparatus
+    if speed is not None:
+        a = dataclasses.replace(a, speed=speed)
+    if clearance is not None:
+        a = dataclasses.replace(a, fold_clearance=clearance)
+    carts = list(cfg.carts)
+    if lower_cart is not None:
+        carts[1] = dataclasses.replace(carts[1], mass=lower_cart)
+    return dataclasses.replace(cfg, apparatus=a, carts=carts,
+                               solver=dataclasses.replace(cfg.solver, dt=dt_ms * 1e-3))
+
+
+def trace(cfg: SimConfig, seconds: float) -> tuple[np.ndarray, np.ndarray, float | None]:
+    """Strand speed every :data:`SAMPLE` s and the time the run ended (None: it did not)."""
+    sim = Simulation(cfg)
+    app = sim.apparatus
+    t, v = [], []
+    try:
+        while sim.time < seconds - 1e-9:
+            sim.advance(SAMPLE)
+            t.append(sim.time)
+            v.append(app.strand_speed)
+    except RunEnded:
+        return np.array(t), np.array(v), sim.time
+    return np.array(t), np.array(v), None
+
+
+def swing(t: np.ndarray, v: np.ndarray, a: float, b: float) -> float:
+    """Half the peak-to-peak speed about its linear trend over ``[a, b)`` (m/s)."""
+    m = (t >= a) & (t < b)
+    if m.sum() < 50:
+        return math.nan
+    d = v[m] - np.polyval(np.polyfit(t[m], v[m], 1), t[m])
+    return 0.5 * float(d.max() - d.min())
+
+
+def growth(t: np.ndarray, v: np.ndarray, a: float, b: float) -> tuple[float, float]:
+    """Fitted growth rate ``sigma`` (1/s) and period (s) of the swing over ``[a, b)``."""
+    m = (t >= a) & (t < b)
+    tt, vv = t[m], v[m]
+    if len(tt) < 200:
+        return math.nan, math.nan
+    p = np.polyfit(tt, vv, 1)
+    d = vv - np.polyval(p, tt)
+    f = np.fft.rfftfreq(len(d), SAMPLE)
+    w0 = 2.0 * math.pi * f[1 + int(np.argmax(np.abs(np.fft.rfft(d * np.hanning(len(d))))[1:]))]
+
+    def model(x, amp, s, w, ph, c0, c1):
+        return c0 + c1 * x + amp * np.exp(s * (x - a)) * np.sin(w * x + ph)
+
+    best = None
+    for ph in np.linspace(0.0, 2.0 * math.pi, 8, endpoint=False):
+        try:
+            pp, _ = curve_fit(model, tt, vv, p0=[1.4 * np.std(d), 0.0, w0, ph, p[1], p[0]],
+                              maxfev=20000)
+        except RuntimeError:
+            continue
+        r = float(np.sum((model(tt, *pp) - vv) ** 2))
+        if best is None or r < best[0]:
+            best = (r, pp)
+    if best is None:
+        return math.nan, math.nan
+    return float(best[1][1]), 2.0 * math.pi / abs(float(best[1][2]))
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--level", default="apparatus_special", help="a 'fold' level name or path")
+    ap.add_argument("--seconds", type=float, default=30.0)
+    ap.add_argument("--dt", type=float, nargs="+", default=[0.5], help="solver steps (ms)")
+    ap.add_argument("--lower-cart", type=float, nargs="+", default=[None], help="kg")
+    ap.add_argument("--speeds", type=float, nargs="+", default=[None], help="start speeds")
+    ap.add_argument("--clearance", type=float, default=None, help="apparatus.fold_clearance")
+    ap.add_argument("--close-rate", type=float, nargs="+", default=[None],
+                    help="the catch's closing speed (m/s)")
+    args = ap.parse_args(argv)
+    print("| dt ms | lower cart g | start m/s | close m/s | ended s | v m/s (0.5-8 s) "
+          "| swing early m/s | swing late m/s | sigma 1/s | period s | wall s |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    shipped = apparatus._FOLD_CLOSE_RATE
+    for dt, mass, v0, rate in itertools.product(args.dt, args.lower_cart, args.speeds,
+                                                args.close_rate):
+        apparatus._FOLD_CLOSE_RATE = shipped if rate is None else rate
+        cfg = configure(args.level, dt, mass, v0, args.clearance)
+        w0 = time.perf_counter()
+        t, v, ended = trace(cfg, args.seconds)
+        end = ended if ended is not None else args.seconds
+        late = (max(0.5, end - 4.0), end - 1.0)
+        mean = v[(t >= 0.5) & (t < min(8.0, end))]
+        s, period = growth(t, v, 0.5, end - 1.0)
+        print(f"| {dt:g} | {1e3 * cfg.carts[1].mass:g} | {cfg.apparatus.speed:g} | "
+              f"{apparatus._FOLD_CLOSE_RATE:g} | {'-' if ended is None else f'{ended:.2f}'} | "
+              f"{float(np.mean(mean)) if len(mean) else math.nan:.3f} | "
+              f"{swing(t, v, 0.5, 3.5):.3f} | {swing(t, v, *late):.3f} | {s:+.3f} | "
+              f"{period:.2f} | {time.perf_counter() - w0:.0f} |", flush=True)
+    apparatus._FOLD_CLOSE_RATE = shipped
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
