@@ -1,15 +1,15 @@
 """The special preset run long: the landing swing grows until the fold fails (issue 4).
 
 ``apparatus_special`` runs with both plates as treadmills, so nothing in the machine
-runs out, and a classroom run may go on for as long as the window is open. In this
-model it does not go on for ever (fifteenth session, docs/apparatus.md): the chain
-speed carries an oscillation of period 2.2 s (the landing swing: the fountain stores
-and gives back up to 12 links, its vertex moves between 0.08 and 0.19 m) whose
-amplitude grows by a factor ``e`` about every 8 s, until at 15.5 s the folding roller
-loses the chain (started 2 % slower or faster: at 12.0 s and 6.7 s). The collapse message used to blame a missing push ("raise the lower
-cart mass", read at the run-away speed); it now says how long the fold held and how
-large the swing had grown. Measured with ``chainfountain run apparatus_special
---duration 20`` and a scratch trace of the strand speed.
+runs out, and a classroom run may go on for as long as the window is open. In this model
+it does not go on for ever (fifteenth session, docs/apparatus.md): the chain speed
+carries an oscillation of period 2.2 s (the landing swing: the fountain stores and gives
+back up to 12 links, its vertex moves between 0.08 and 0.19 m) whose amplitude grows by
+a factor ``e`` about every 8 s, until at 15.5 s the folding roller loses the chain
+(started 2 % slower or faster: at 12.0 s and 6.7 s). The collapse message used to blame
+a missing push ("raise the lower cart mass", read at the run-away speed); it now says
+how long the fold held and how large the swing had grown. Measured with ``chainfountain
+run apparatus_special --duration 20`` and ``benchmarks/swing_study.py``.
 """
 
 from __future__ import annotations
