@@ -837,7 +837,7 @@ class Apparatus:
         swing = 0.5 * (max(hv) - min(hv)) if hv else math.nan
         push = self.lower.force / (lam * v_held * v_held)
         return (f"t = {self._t:.2f} s: the folding roller lost the chain (v_R = {v_R:.2f} m/s) "
-                f"after holding it at v/2 for {self._held_t:.1f} s. In its last "
+                f"after holding it at v/2 for {self._held_t:.1f} s in all. In its last "
                 f"{len(hv) * _SWING_EVERY:.0f} s of holding, the chain speed was "
                 f"{v_held:.2f} m/s swinging by +-{swing:.2f} m/s (lower cart push "
                 f"{push:.2f} lambda*v^2 at that speed): in this model the landing swing "
