@@ -546,7 +546,8 @@ class Apparatus:
         self._back_t = 0.0
         """How long (s) the folding roller has been rolling backwards without a break."""
         self._held_t = 0.0
-        """How long (s) the folding roller has rolled at ``v/2`` (within :data:`_HELD`)."""
+        """How long (s) the folding roller has rolled at ``v/2`` (within :data:`_HELD`),
+        sampled every :data:`_SWING_EVERY` s."""
         self._held_v: deque[float] = deque(maxlen=_SWING_SAMPLES)
         """Chain speed (m/s) every :data:`_SWING_EVERY` s while the fold held: the speed
         swing the collapse message reports."""
@@ -792,12 +793,12 @@ class Apparatus:
         v_R = self.lower.speed
         if v_R >= 0.0:
             self._back_t = 0.0
-            v = self.speed
-            if v > 0.0 and abs(v_R / v - 0.5) <= _HELD:
-                self._held_t += dt
-                if self._t >= self._swing_next:
+            if self._t >= self._swing_next:  # the hold is sampled, not read every step
+                self._swing_next = self._t + _SWING_EVERY
+                v = self.speed
+                if v > 0.0 and abs(v_R / v - 0.5) <= _HELD:
+                    self._held_t += _SWING_EVERY
                     self._held_v.append(v)
-                    self._swing_next = self._t + _SWING_EVERY
             return
         self._back_t += dt
         if self._back_t < _COLLAPSE_TIME:
