@@ -45,7 +45,10 @@ def configure(level: str, dt_ms: float, lower_cart: float | None, speed: float |
               clearance: float | None) -> SimConfig:
     """The level's configuration with the study's changes."""
     path = Path(level) if level.endswith(".toml") else ROOT / "levels" / f"{level}.toml"
-    cfg = io.load(path).sim
+    try:
+        cfg = io.load(path).sim
+    except io.LevelError as exc:
+        raise SystemExit(str(exc)) from None
     if cfg.apparatus is None or cfg.apparatus.variant != "fold":
         raise SystemExit(f"{path.name}: not a 'fold' apparatus level")
     a = cfg.apparatus
