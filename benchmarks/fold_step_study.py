@@ -38,7 +38,7 @@ from chainfountain.errors import RunEnded
 from chainfountain.level import io
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import report
-from chainfountain.sim.config import ChainConfig, SolverConfig
+from chainfountain.sim.config import ChainConfig, SimConfig, SolverConfig
 from chainfountain.sim.pickup import RigConfig, run_rig
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -66,12 +66,19 @@ def _clamp_force(sim: Simulation, seconds: float) -> float:
     return total[0] / seconds
 
 
-def run_preset(name: str, dt: float, seconds: float, clearance: float | None = None,
-               lower_cart: float | None = None, speed: float | None = None) -> tuple[str, bool]:
-    """One Markdown row, and whether the run held cleanly: not ended, the folding roller
-    at ``v_R/v = 0.5 +- 0.02`` and the speed drift within 1 %/s (the issue's steadiness)."""
-    cfg = io.load(ROOT / "levels" / f"{name}.toml").sim
+def fold_config(level: str, dt: float, clearance: float | None = None,
+                lower_cart: float | None = None, speed: float | None = None) -> SimConfig:
+    """A 'fold' level (a name in ``levels/`` or a ``.toml`` path) at solver step ``dt`` (s),
+    with the study's changes (``None``: as in the level). A missing, bad or non-fold level
+    stops the script with one line."""
+    path = Path(level) if level.endswith(".toml") else ROOT / "levels" / f"{level}.toml"
+    try:
+        cfg = io.load(path).sim
+    except io.LevelError as exc:
+        raise SystemExit(str(exc)) from None
     a = cfg.apparatus
+    if a is None or a.variant != "fold":
+        raise SystemExit(f"{path.name}: not a 'fold' apparatus level")
     if clearance is not None:
         a = dataclasses.replace(a, fold_clearance=clearance)
     if speed is not None:
@@ -79,8 +86,16 @@ def run_preset(name: str, dt: float, seconds: float, clearance: float | None = N
     carts = list(cfg.carts)
     if lower_cart is not None:
         carts[1] = dataclasses.replace(carts[1], mass=lower_cart)
-    cfg = dataclasses.replace(cfg, solver=dataclasses.replace(cfg.solver, dt=dt), apparatus=a,
-                              carts=carts)
+    return dataclasses.replace(cfg, solver=dataclasses.replace(cfg.solver, dt=dt),
+                               apparatus=a, carts=carts)
+
+
+def run_preset(name: str, dt: float, seconds: float, clearance: float | None = None,
+               lower_cart: float | None = None, speed: float | None = None) -> tuple[str, bool]:
+    """One Markdown row, and whether the run held cleanly: not ended, the folding roller
+    at ``v_R/v = 0.5 +- 0.02`` and the speed drift within 1 %/s (the issue's steadiness)."""
+    cfg = fold_config(name, dt, clearance, lower_cart, speed)
+    a, carts = cfg.apparatus, cfg.carts
     sim = Simulation(cfg)
     rec = Recorder(sim, profiles=False)
     t0 = time.perf_counter()

@@ -21,46 +21,21 @@ the end: ``sigma`` (1/s, growth rate of the swing; > 0 grows) and the period.
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import itertools
 import math
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
+from fold_step_study import fold_config  # the sibling script (benchmarks/ is on sys.path)
 from scipy.optimize import curve_fit
 
 import chainfountain.sim.apparatus as apparatus
 from chainfountain.errors import RunEnded
-from chainfountain.level import io
 from chainfountain.sim import Simulation
 from chainfountain.sim.config import SimConfig
 
-ROOT = Path(__file__).resolve().parents[1]
 SAMPLE = 0.01
-
-
-def configure(level: str, dt_ms: float, lower_cart: float | None, speed: float | None,
-              clearance: float | None) -> SimConfig:
-    """The level's configuration with the study's changes."""
-    path = Path(level) if level.endswith(".toml") else ROOT / "levels" / f"{level}.toml"
-    try:
-        cfg = io.load(path).sim
-    except io.LevelError as exc:
-        raise SystemExit(str(exc)) from None
-    if cfg.apparatus is None or cfg.apparatus.variant != "fold":
-        raise SystemExit(f"{path.name}: not a 'fold' apparatus level")
-    a = cfg.apparatus
-    if speed is not None:
-        a = dataclasses.replace(a, speed=speed)
-    if clearance is not None:
-        a = dataclasses.replace(a, fold_clearance=clearance)
-    carts = list(cfg.carts)
-    if lower_cart is not None:
-        carts[1] = dataclasses.replace(carts[1], mass=lower_cart)
-    return dataclasses.replace(cfg, apparatus=a, carts=carts,
-                               solver=dataclasses.replace(cfg.solver, dt=dt_ms * 1e-3))
 
 
 def trace(cfg: SimConfig, seconds: float) -> tuple[np.ndarray, np.ndarray, float | None]:
@@ -134,7 +109,7 @@ def main(argv: list[str] | None = None) -> int:
     for dt, mass, v0, rate in itertools.product(args.dt, args.lower_cart, args.speeds,
                                                 args.close_rate):
         apparatus._FOLD_CLOSE_RATE = shipped if rate is None else rate
-        cfg = configure(args.level, dt, mass, v0, args.clearance)
+        cfg = fold_config(args.level, dt * 1e-3, args.clearance, mass, v0)
         w0 = time.perf_counter()
         t, v, ended = trace(cfg, args.seconds)
         end = ended if ended is not None else args.seconds
