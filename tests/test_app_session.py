@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
+import numpy as np
 import pytest
 
 from chainfountain.app import controls
@@ -200,3 +202,21 @@ def test_collapsed_fold_pauses_and_keeps_the_reason() -> None:
     assert s.stopped is not None and "folding roller rolls backwards" in s.stopped
     s.reset()
     assert s.stopped is None and s.sim.time == 0.0
+
+
+def test_apparatus_history_has_the_roller_speeds() -> None:
+    """The speed plot's pick-up and fold lines (twice each roller's speed) are in the
+    history for a fold level, and absent (nan) for a feed level."""
+    lvl = io.load(Path(__file__).resolve().parents[1] / "levels" / "apparatus_special.toml")
+    s = Session(lvl)
+    s.advance(0.6)
+    h = s.history.arrays()
+    late = h["t"] > 0.3
+    assert late.sum() > 5
+    v = float(np.mean(h["speed"][late]))
+    # rolling without slip at alpha = 0: the chain moves at twice each roller's speed
+    assert np.mean(h["speed_in"][late]) == pytest.approx(v, rel=0.03)
+    assert np.mean(h["speed_out"][late]) == pytest.approx(v, rel=0.03)
+    f = Session(small_level())
+    f.advance(0.1)
+    assert len(f.history.t) > 2 and np.isnan(f.history.arrays()["speed_in"]).all()

@@ -108,21 +108,27 @@ class History:
         self.TE: list[float] = []
         self.vertex_y: list[float] = []
         self.landing_x: list[float] = []
+        self.speed_in: list[float] = []
+        """Apparatus: chain speed at the pick-up (twice the roller speed; nan otherwise)."""
+        self.speed_out: list[float] = []
+        """Apparatus with a fold: chain speed at the folding roller (nan otherwise)."""
+
+    def _lists(self) -> tuple[list[float], ...]:
+        return (self.t, self.speed, self.T0, self.TE, self.vertex_y, self.landing_x,
+                self.speed_in, self.speed_out)
 
     def clear(self) -> None:
-        for lst in (self.t, self.speed, self.T0, self.TE, self.vertex_y, self.landing_x):
+        for lst in self._lists():
             lst.clear()
 
-    def append(self, t: float, speed: float, T0: float, TE: float, vy: float, lx: float) -> None:
-        self.t.append(t)
-        self.speed.append(speed)
-        self.T0.append(T0)
-        self.TE.append(TE)
-        self.vertex_y.append(vy)
-        self.landing_x.append(lx)
+    def append(self, t: float, speed: float, T0: float, TE: float, vy: float, lx: float,
+               speed_in: float = math.nan, speed_out: float = math.nan) -> None:
+        for lst, x in zip(self._lists(), (t, speed, T0, TE, vy, lx, speed_in, speed_out),
+                          strict=True):
+            lst.append(x)
         if len(self.t) > 64 and self.t[-1] - self.t[0] > 1.1 * self.span:
             cut = int(np.searchsorted(np.asarray(self.t), self.t[-1] - self.span))
-            for lst in (self.t, self.speed, self.T0, self.TE, self.vertex_y, self.landing_x):
+            for lst in self._lists():
                 del lst[:cut]
 
     def arrays(self) -> dict[str, np.ndarray]:
@@ -130,6 +136,7 @@ class History:
             "t": np.asarray(self.t), "speed": np.asarray(self.speed),
             "T0": np.asarray(self.T0), "TE": np.asarray(self.TE),
             "vertex_y": np.asarray(self.vertex_y), "landing_x": np.asarray(self.landing_x),
+            "speed_in": np.asarray(self.speed_in), "speed_out": np.asarray(self.speed_out),
         }
 
 
@@ -433,12 +440,20 @@ class Session:
         """Move new recorder samples into the plot history and trim the recorder."""
         rec = self.recorder
         samples, profiles = rec.samples, rec.profiles
+        # apparatus levels: one ApparatusSample per Sample, appended and trimmed together
+        ap = rec.apparatus_samples if self.sim.apparatus is not None else []
         for i in range(self._consumed, len(samples)):
             s = samples[i]
             te = math.nan
             if i < len(profiles) and len(profiles[i].tension_bar):
                 te = float(profiles[i].tension_bar[-1])
-            self.history.append(s.t, s.speed_mean, s.T0_bar, te, s.vertex_y, s.landing_x)
+            v_in = v_out = math.nan
+            if i < len(ap):
+                v_in = 2.0 * ap[i].v_roller_up
+                if self.sim.apparatus.lower is not None:
+                    v_out = 2.0 * ap[i].v_roller_lo
+            self.history.append(s.t, s.speed_mean, s.T0_bar, te, s.vertex_y, s.landing_x,
+                                v_in, v_out)
         self._consumed = len(samples)
         keep = max(64, int(2.0 * rec.cfg.window / rec.cfg.sample_interval))
         if len(samples) > 2 * keep:
@@ -446,6 +461,8 @@ class Session:
             del samples[:cut]
             if len(profiles) >= cut:
                 del profiles[:cut]
+            if len(ap) >= cut:
+                del ap[:cut]
             self._consumed -= cut
 
     def readout(self) -> Readout:

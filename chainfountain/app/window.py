@@ -730,9 +730,18 @@ class App:
         sel = t >= t0
         fs = s.sim.feed.speed
         sp = [render.Series(t[sel], hist["speed"][sel], render.SPEED_COL, "mean link speed")]
+        # apparatus: the chain speed at each roller (twice its speed) shows the slow swing
+        # of the stored length, which the fountain's mean link speed averages away
+        extra = [(k, col, label) for k, col, label in (
+            ("speed_in", render.T0_COL, "pick-up 2 v_R"),
+            ("speed_out", render.TE_COL, "fold 2 v_R")) if np.isfinite(hist[k][sel]).any()]
+        n_sm = max(1, round(0.05 / s.recorder.cfg.sample_interval))  # rollers jitter
+        rollers = [render.Series(t[sel], _smooth(hist[k][sel], n_sm), col, label, width=1)
+                   for k, col, label in extra]
+        sp += rollers
         sp.append(render.Series(np.array([t0, max(t1, t0 + 1)]), np.array([fs, fs]),
                                 render.DIM, "feed", width=1))
-        vals = hist["speed"][sel]
+        vals = np.concatenate([hist["speed"][sel]] + [r.y for r in rollers])
         vals = vals[np.isfinite(vals)]
         lo = min(float(vals.min()) if len(vals) else fs, fs) * 0.97
         hi = max(float(vals.max()) if len(vals) else fs, fs) * 1.03
