@@ -15,7 +15,10 @@ over 0.5-3.5 s and over the last 3 s before the end (or before ``--seconds`` min
 and a fit ``v = c0 + c1 t + A exp(sigma t) sin(omega t + phi)`` over 0.5 s to 1 s before
 the end: ``sigma`` (1/s, growth rate of the swing; > 0 grows) and the period.
 ``--close-rate`` sets the catch's closing speed (m/s, module constant
-``_FOLD_CLOSE_RATE``, 5 as shipped). docs/apparatus.md, "Fifteenth session".
+``_FOLD_CLOSE_RATE``, 5 as shipped). ``--upper-drag c`` (N s/m) adds a damper to the
+pick-up carriage about the steady roller speed, ``-c (v_R - v0/2)``: not part of the
+paper's apparatus, a probe of whether damping the chain before the fountain stops the
+swing. docs/apparatus.md, "Fifteenth session" and "Sixteenth session".
 """
 
 from __future__ import annotations
@@ -32,16 +35,32 @@ from scipy.optimize import curve_fit
 
 import chainfountain.sim.apparatus as apparatus
 from chainfountain.errors import RunEnded
-from chainfountain.sim import Simulation
+from chainfountain.sim import Simulation, fastbody
 from chainfountain.sim.config import SimConfig
 
 SAMPLE = 0.01
 
 
-def trace(cfg: SimConfig, seconds: float) -> tuple[np.ndarray, np.ndarray, float | None]:
+def _upper_drag(app: apparatus.Apparatus, c: float, v0: float) -> None:
+    """Damp the pick-up carriage about ``v0/2`` with ``c`` (N s/m), every step."""
+    before = app.before_step
+    h = fastbody.handle(app.upper.carriage)
+
+    def step() -> None:
+        before()
+        vx = fastbody.get_velocity(h).x
+        fastbody.apply_force_at_local_point(h, (-c * (vx - 0.5 * v0), 0.0), (0.0, 0.0))
+
+    app.before_step = step
+
+
+def trace(cfg: SimConfig, seconds: float,
+          upper_drag: float = 0.0) -> tuple[np.ndarray, np.ndarray, float | None]:
     """Strand speed every :data:`SAMPLE` s and the time the run ended (None: it did not)."""
     sim = Simulation(cfg)
     app = sim.apparatus
+    if upper_drag:
+        _upper_drag(app, upper_drag, cfg.apparatus.speed)
     t, v = [], []
     try:
         while sim.time < seconds - 1e-9:
@@ -101,23 +120,27 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--clearance", type=float, default=None, help="apparatus.fold_clearance")
     ap.add_argument("--close-rate", type=float, nargs="+", default=[None],
                     help="the catch's closing speed (m/s)")
+    ap.add_argument("--upper-drag", type=float, nargs="+", default=[0.0],
+                    help="damper on the pick-up carriage about v0/2 (N s/m; not the paper's)")
     args = ap.parse_args(argv)
-    print("| dt ms | lower cart g | start m/s | close m/s | ended s | v m/s (0.5-8 s) "
-          "| swing early m/s | swing late m/s | sigma 1/s | period s | wall s |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    print("| dt ms | lower cart g | start m/s | close m/s | upper drag N s/m | ended s "
+          "| v m/s (0.5-8 s) | swing early m/s | swing late m/s | sigma 1/s | period s "
+          "| wall s |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     shipped = apparatus._FOLD_CLOSE_RATE
-    for dt, mass, v0, rate in itertools.product(args.dt, args.lower_cart, args.speeds,
-                                                args.close_rate):
+    for dt, mass, v0, rate, drag in itertools.product(args.dt, args.lower_cart, args.speeds,
+                                                      args.close_rate, args.upper_drag):
         apparatus._FOLD_CLOSE_RATE = shipped if rate is None else rate
         cfg = fold_config(args.level, dt * 1e-3, args.clearance, mass, v0)
         w0 = time.perf_counter()
-        t, v, ended = trace(cfg, args.seconds)
+        t, v, ended = trace(cfg, args.seconds, drag)
         end = ended if ended is not None else args.seconds
         late = (max(0.5, end - 4.0), end - 1.0)
         mean = v[(t >= 0.5) & (t < min(8.0, end))]
         s, period = growth(t, v, 0.5, end - 1.0)
         print(f"| {dt:g} | {1e3 * cfg.carts[1].mass:g} | {cfg.apparatus.speed:g} | "
-              f"{apparatus._FOLD_CLOSE_RATE:g} | {'-' if ended is None else f'{ended:.2f}'} | "
+              f"{apparatus._FOLD_CLOSE_RATE:g} | {drag:g} | "
+              f"{'-' if ended is None else f'{ended:.2f}'} | "
               f"{float(np.mean(mean)) if len(mean) else math.nan:.3f} | "
               f"{swing(t, v, 0.5, 3.5):.3f} | {swing(t, v, *late):.3f} | {s:+.3f} | "
               f"{period:.2f} | {time.perf_counter() - w0:.0f} |", flush=True)
