@@ -201,6 +201,10 @@ _LATE_COLLAPSE = 2.0
 """'fold': a collapse after the folding roller has held the chain this long (s) is
 reported as the landing swing's, not as a missing push (docs/apparatus.md, "Fifteenth
 session")."""
+_CATCH_LOST = 0.1
+"""'fold': a collapse this long (s) or longer after the last link entered the end guide
+through its mouth (normally one does every ``L/v``, about 7 ms) was preceded by a lost
+catch, and the collapse message says so (docs/apparatus.md, "Seventeenth session")."""
 _PRELOAD_STEPS = 40
 """Treadmill: a joint made in the tensioned plate strand starts with the tension of the
 joint it replaces as an internal force pair, faded out over this many steps (the
@@ -558,6 +562,11 @@ class Apparatus:
         """'fold' guide: links held by each element (most downstream first)."""
         self._cap_next = -1
         """'fold' guide: chain index of the next link to capture at the mouth."""
+        self._mouth_t, self._mouth_dr = 0.0, 0.0
+        """'fold' guide: time (s) of the last capture through the mouth (at or before its
+        angle; later captures take links falling into the turn from the side) and that
+        link's offset from the turn's radius (m; > 0 outside: the fountain landed short).
+        The collapse message says when the catch was lost."""
         self.released = 0
         """'fold' guide: links handed from the lower plate to the folding roller."""
         if self.plate_mode == "groove":
@@ -630,6 +639,12 @@ class Apparatus:
         if not g:
             return math.nan
         return float(sum(lk.body.velocity.x for lk, _ in g) / len(g))
+
+    @property
+    def last_mouth_entry(self) -> float:
+        """'fold': time (s) at which the last link entered the end guide through its
+        mouth (0 before any did)."""
+        return self._mouth_t
 
     def moving_mass(self, v_min: float = 1.0) -> float:
         """Mass of the links moving faster than ``v_min`` (kg), the lumped tail included."""
@@ -824,7 +839,26 @@ class Apparatus:
             head + "This model's put-down needs a forward push of about 0.3 lambda*v^2 or "
             "more (docs/apparatus.md, 'Put-down rig'); "
             + ("raise the lower cart mass" if push else
-               "give the level a second [[carts]] entry (the lower cart)"))
+               "give the level a second [[carts]] entry (the lower cart)") + "."
+            + self._catch_note())
+
+    def _catch_note(self) -> str:
+        """'fold': a sentence for the collapse message if the chain had stopped entering
+        the end guide through its mouth :data:`_CATCH_LOST` s or more before the collapse
+        (the fountain landed outside the catch's band and fell into the turn from the
+        side), '' otherwise. It states the order, not a cause. Measured
+        (docs/apparatus.md, "Seventeenth session"): the catch is lost 1.1-1.2 s before
+        the folding roller rolls back in ``apparatus_special``, 0.47 s before in
+        ``apparatus_limit``."""
+        if not self.fold_guided or self._t - self._mouth_t < _CATCH_LOST:
+            return ""
+        dr = self._mouth_dr
+        where, shape = ("outside", "narrowed") if dr > 0 else ("inside", "widened")
+        return (f" The end guide's catch had been lost before that: the chain last entered "
+                f"the guide through its mouth at t = {self._mouth_t:.2f} s, "
+                f"{100.0 * abs(dr):.1f} cm {where} the first turn's radius (the catch takes "
+                f"links within {100.0 * _FOLD_CAPTURE[0]:.0f} cm); the fountain had {shape} "
+                "and after that the chain fell into the turn from the side.")
 
     def _late_collapse_message(self, v_R: float) -> str:
         """The collapse of a fold that had held the chain for at least
@@ -845,7 +879,7 @@ class Apparatus:
                 "(period 2-3 s) grows until the fold fails. A lower cart a few grams "
                 "lighter or heavier, a start 2 % faster or slower, a stiffer catch or longer "
                 "strands only move the failure (7-23 s for apparatus_special at solver.dt "
-                "0.5 ms; docs/apparatus.md, 'Fifteenth session')")
+                "0.5 ms; docs/apparatus.md, 'Fifteenth session')." + self._catch_note())
 
     # ------------------------------------------------------------------ treadmill
     def travel(self, i: int) -> float:
@@ -1147,6 +1181,8 @@ class Apparatus:
             if not (el0.th0 - _FOLD_CAPTURE[1] <= th <= max(lim, el0.th1)
                     and abs(d - Rc) < _FOLD_CAPTURE[0]):
                 break
+            if th <= el0.th0:  # through the mouth, not into the turn from the side
+                self._mouth_t, self._mouth_dr = self._t, d - Rc
             self._hold(0, links[self._cap_next])
             self._cap_next += 1
         space = self.space
