@@ -13,7 +13,7 @@ import pytest  # noqa: E402
 
 from chainfountain.app import render  # noqa: E402
 from chainfountain.app.session import Session  # noqa: E402
-from chainfountain.app.window import App  # noqa: E402
+from chainfountain.app.window import STOP_ROWS, App, status_rows  # noqa: E402
 from chainfountain.level import io  # noqa: E402
 from chainfountain.sim.config import SimConfig  # noqa: E402
 
@@ -247,3 +247,26 @@ def test_quit_keeps_the_clip_and_the_changed_setup(tmp_path, monkeypatch):
     assert any(n.startswith("clip saved") for n in notes), notes
     saved = tmp_path / "home" / "levels" / "autosave.toml"
     assert saved.exists() and io.load(saved).sim.feed.speed == 4.3
+
+
+def test_status_keeps_a_long_stop_reason_from_its_head():
+    """A fold's collapse message runs to 8-10 rows in the view; the window used to show the
+    last 6 rows of all messages, which cut off the head that says what failed."""
+    import textwrap
+
+    reason = "t = 15.53 s: the folding roller lost the chain. " + "Why it did. " * 80 + "End."
+    msgs = [reason.rstrip(".") + "; paused", "running", "paused"]
+
+    def wrap(m: str) -> list[str]:
+        return textwrap.wrap(m, 70)
+
+    rows = status_rows(msgs, reason, wrap)
+    assert rows[0].startswith("t = 15.53 s: the folding roller lost the chain")
+    assert len(wrap(reason)) > STOP_ROWS and len(rows) == STOP_ROWS + 1
+    assert rows[-1] == "paused"  # the newest other message, once
+    short = "t = 1.00 s: the table is used up."
+    rows = status_rows([short.rstrip(".") + "; paused"], short, wrap)
+    assert rows == ["t = 1.00 s: the table is used up; paused"]
+    # not stopped: the newest messages' last 6 rows, as before
+    rows = status_rows(["a " * 200, "b"], None, wrap)
+    assert len(rows) == 6 and rows[-1] == "b"

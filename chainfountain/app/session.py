@@ -55,6 +55,12 @@ def default_level() -> Level:
                              "onto an absorbing floor", SimConfig())
 
 
+def paused_message(reason: str) -> str:
+    """The status line for a run that stopped itself: ``reason`` (the exception's text)
+    and that the window is paused."""
+    return f"{reason.rstrip('.')}; paused"
+
+
 @dataclass
 class Applied:
     """Result of :meth:`Session.set_field`."""
@@ -338,7 +344,7 @@ class Session:
         except UserError as exc:  # the run cannot go on (a table used up, the fold collapsed)
             self.paused = True
             self.stopped = str(exc)
-            self.say(f"{exc}; paused")
+            self.say(paused_message(str(exc)))
 
     def _step_n(self, n: int) -> None:
         sim = self.sim

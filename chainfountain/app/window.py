@@ -15,6 +15,7 @@ import math
 import os
 import textwrap
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -35,7 +36,7 @@ from chainfountain.app import paths, render
 from chainfountain.app.capture import BackgroundSaver, ClipRecorder, mp4_available, timestamp
 from chainfountain.app.capture import unique_path as _unique
 from chainfountain.app.controls import SLIDER_STEPS, FieldSpec, control_fields
-from chainfountain.app.session import Session
+from chainfountain.app.session import Session, paused_message
 
 LEFT_W = 300
 RIGHT_W = 390
@@ -46,6 +47,22 @@ PLOT_EVERY = 4
 """Redraw the live plots every this many frames (15 Hz at 60 frames/s)."""
 REBUILD_DELAY = 0.35
 """Seconds a rebuild-only slider must rest before the scene is rebuilt."""
+STOP_ROWS = 12
+"""Rows of the view kept for why a run stopped (the status text over the chain)."""
+
+
+def status_rows(msgs: list[str], stopped: str | None,
+                wrap: Callable[[str], list[str]]) -> list[str]:
+    """Rows of status text over the view: the newest messages' last 6 rows; or, while a
+    run that stopped itself is paused (``stopped``: why), that reason whole from its head
+    (up to :data:`STOP_ROWS`; a fold's collapse runs to 8-10 rows) and the newest other
+    message's first 2 rows below it."""
+    if not stopped:
+        return [ln for m in msgs for ln in wrap(m)][-6:]
+    others = [m for m in msgs if not m.startswith(stopped.rstrip("."))][-1:]
+    rows = wrap(paused_message(stopped))[:STOP_ROWS]
+    return rows + [ln for m in others for ln in wrap(m)][:2]
+
 
 KEYS: tuple[tuple[str, str], ...] = (
     ("Space", "play / pause"),
@@ -645,13 +662,13 @@ class App:
             scr.blit(surf, (xx, 48))
             xx += surf.get_width() + 14
         # status messages (newest last), shown for 6 s, wrapped to the view's width; why
-        # the run stopped stays while paused
+        # the run stopped stays whole while paused (its head says what failed: a fold's
+        # collapse runs to 8-10 rows), with the newest other message below it
         now = s.clock()
         small = render.font(17)
         msgs = [m for t, m in s.messages if now - t < 6.0][-3:]
-        if s.stopped and s.paused and not any(m.startswith(s.stopped) for m in msgs):
-            msgs = [f"{s.stopped}; paused"] + msgs[-2:]
-        rows = [ln for m in msgs for ln in render.wrap(small, m, rect.w - 20)][-6:]
+        rows = status_rows(msgs, s.stopped if s.paused else None,
+                           lambda m: render.wrap(small, m, rect.w - 20))
         y = rect.bottom - 44 - 18 * len(rows)
         for m in rows:
             img = small.render(m, True, render.TEXT)
