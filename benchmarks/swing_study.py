@@ -6,6 +6,7 @@
     .venv/bin/python benchmarks/swing_study.py --dt 0.5 0.1 --clearance 0.002 \
         --lower-cart 0.044 --speeds 2.97 --seconds 8
     .venv/bin/python benchmarks/swing_study.py --close-rate 2 20 100
+    .venv/bin/python benchmarks/swing_study.py --upper-drag 0.2 --band 0.06 0.1
 
 Runs a 'fold' level (default ``apparatus_special``, both plates treadmills, so nothing
 runs out) for up to ``--seconds`` and samples the chain speed (the upper plate strand)
@@ -15,10 +16,13 @@ over 0.5-3.5 s and over the last 3 s before the end (or before ``--seconds`` min
 and a fit ``v = c0 + c1 t + A exp(sigma t) sin(omega t + phi)`` over 0.5 s to 1 s before
 the end: ``sigma`` (1/s, growth rate of the swing; > 0 grows) and the period.
 ``--close-rate`` sets the catch's closing speed (m/s, module constant
-``_FOLD_CLOSE_RATE``, 5 as shipped). ``--upper-drag c`` (N s/m) adds a damper to the
+``_FOLD_CLOSE_RATE``, 5 as shipped), ``--band`` its capture band (m, the first
+element of ``_FOLD_CAPTURE``, 0.06 as shipped). "catch lost s" is the time the last
+link entered the end guide through its mouth when that was :data:`_CATCH_LOST` s or more
+before the end (``-`` otherwise). ``--upper-drag c`` (N s/m) adds a damper to the
 pick-up carriage about the steady roller speed, ``-c (v_R - v0/2)``: not part of the
 paper's apparatus, a probe of whether damping the chain before the fountain stops the
-swing. docs/apparatus.md, "Fifteenth session" and "Sixteenth session".
+swing. docs/apparatus.md, "Fifteenth session" to "Seventeenth session".
 """
 
 from __future__ import annotations
@@ -54,9 +58,10 @@ def _upper_drag(app: apparatus.Apparatus, c: float, v0: float) -> None:
     app.before_step = step
 
 
-def trace(cfg: SimConfig, seconds: float,
-          upper_drag: float = 0.0) -> tuple[np.ndarray, np.ndarray, float | None]:
-    """Strand speed every :data:`SAMPLE` s and the time the run ended (None: it did not)."""
+def trace(cfg: SimConfig, seconds: float, upper_drag: float = 0.0
+          ) -> tuple[np.ndarray, np.ndarray, float | None, float]:
+    """Strand speed every :data:`SAMPLE` s, the time the run ended (None: it did not) and
+    the time the last link entered the end guide through its mouth."""
     sim = Simulation(cfg)
     app = sim.apparatus
     if upper_drag:
@@ -68,8 +73,8 @@ def trace(cfg: SimConfig, seconds: float,
             t.append(sim.time)
             v.append(app.strand_speed)
     except RunEnded:
-        return np.array(t), np.array(v), sim.time
-    return np.array(t), np.array(v), None
+        return np.array(t), np.array(v), sim.time, app.last_mouth_entry
+    return np.array(t), np.array(v), None, app.last_mouth_entry
 
 
 def swing(t: np.ndarray, v: np.ndarray, a: float, b: float) -> float:
@@ -120,31 +125,37 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--clearance", type=float, default=None, help="apparatus.fold_clearance")
     ap.add_argument("--close-rate", type=float, nargs="+", default=[None],
                     help="the catch's closing speed (m/s)")
+    ap.add_argument("--band", type=float, nargs="+", default=[None],
+                    help="the catch's capture band (m)")
     ap.add_argument("--upper-drag", type=float, nargs="+", default=[0.0],
                     help="damper on the pick-up carriage about v0/2 (N s/m; not the paper's)")
     args = ap.parse_args(argv)
-    print("| dt ms | lower cart g | start m/s | close m/s | upper drag N s/m | ended s "
-          "| v m/s (0.5-8 s) | swing early m/s | swing late m/s | sigma 1/s | period s "
-          "| wall s |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
-    shipped = apparatus._FOLD_CLOSE_RATE
-    for dt, mass, v0, rate, drag in itertools.product(args.dt, args.lower_cart, args.speeds,
-                                                      args.close_rate, args.upper_drag):
+    print("| dt ms | lower cart g | start m/s | close m/s | band m | upper drag N s/m "
+          "| ended s | catch lost s | v m/s (0.5-8 s) | swing early m/s | swing late m/s "
+          "| sigma 1/s | period s | wall s |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    shipped, shipped_band = apparatus._FOLD_CLOSE_RATE, apparatus._FOLD_CAPTURE
+    for dt, mass, v0, rate, band, drag in itertools.product(
+            args.dt, args.lower_cart, args.speeds, args.close_rate, args.band,
+            args.upper_drag):
         apparatus._FOLD_CLOSE_RATE = shipped if rate is None else rate
+        apparatus._FOLD_CAPTURE = shipped_band if band is None else (band, shipped_band[1])
         cfg = fold_config(args.level, dt * 1e-3, args.clearance, mass, v0)
         w0 = time.perf_counter()
-        t, v, ended = trace(cfg, args.seconds, drag)
+        t, v, ended, mouth = trace(cfg, args.seconds, drag)
+        lost = ended is not None and ended - mouth >= apparatus._CATCH_LOST
         end = ended if ended is not None else args.seconds
         late = (max(0.5, end - 4.0), end - 1.0)
         mean = v[(t >= 0.5) & (t < min(8.0, end))]
         s, period = growth(t, v, 0.5, end - 1.0)
         print(f"| {dt:g} | {1e3 * cfg.carts[1].mass:g} | {cfg.apparatus.speed:g} | "
-              f"{apparatus._FOLD_CLOSE_RATE:g} | {drag:g} | "
+              f"{apparatus._FOLD_CLOSE_RATE:g} | {apparatus._FOLD_CAPTURE[0]:g} | {drag:g} | "
               f"{'-' if ended is None else f'{ended:.2f}'} | "
+              f"{f'{mouth:.2f}' if lost else '-'} | "
               f"{float(np.mean(mean)) if len(mean) else math.nan:.3f} | "
               f"{swing(t, v, 0.5, 3.5):.3f} | {swing(t, v, *late):.3f} | {s:+.3f} | "
               f"{period:.2f} | {time.perf_counter() - w0:.0f} |", flush=True)
-    apparatus._FOLD_CLOSE_RATE = shipped
+    apparatus._FOLD_CLOSE_RATE, apparatus._FOLD_CAPTURE = shipped, shipped_band
     return 0
 
 
