@@ -173,6 +173,26 @@ def test_xi3_control_only_where_the_variant_uses_it(variant, shown):
     assert ("apparatus.xi3" in paths) is shown
     # only 'floor' has a floor to lower below the fountain end
     assert ("apparatus.floor_depth" in paths) is (variant == "floor")
+    # only 'fold' has a folding roller to give a clearance
+    assert ("apparatus.fold_clearance" in paths) is (variant == "fold")
+
+
+def test_fold_clearance_control_lowers_the_lower_table() -> None:
+    """The collapse message at a small step advises apparatus.fold_clearance = 0.002; the
+    window offers it (a linear slider over 0-5 mm) and the rebuilt scene has the lower
+    table that much lower."""
+    from pathlib import Path
+
+    lvl = io.load(Path(__file__).resolve().parents[1] / "levels" / "apparatus_special.toml")
+    s = Session(lvl)
+    spec = controls.spec_for(s.level.sim, "apparatus.fold_clearance")
+    assert not spec.log and spec.slider_lo == 0.0 and spec.slider_hi == 0.005
+    y0 = s.sim.apparatus.y_table_lo
+    r = s.set_field("apparatus.fold_clearance", 0.002)
+    assert r.ok and not r.live and "rebuilt" in r.message
+    assert s.sim.apparatus.y_table_lo == pytest.approx(y0 - 0.002, abs=1e-12)
+    r = s.set_field("apparatus.fold_clearance", 0.01)
+    assert "outside the allowed range" in r.message and "[0, 0.005]" in r.message
 
 
 def test_floor_depth_control_rebuilds_and_refuses() -> None:

@@ -28,6 +28,7 @@ CONTROL_PATTERNS: tuple[str, ...] = (
     r"(.*\.)?xi2",
     r"(.*\.)?xi3",
     r"apparatus\.floor_depth",
+    r"apparatus\.fold_clearance",
     r"carts\[\d+\]\.mass",
     r"carts\[\d+\]\.incline",
     r"(.*\.)?launch_speed",
@@ -48,11 +49,16 @@ LABELS: dict[str, str] = {
     "apparatus.launch_angle": "launch angle alpha0",
     "apparatus.drop": "drop H",
     "apparatus.floor_depth": "floor below end d",
+    "apparatus.fold_clearance": "fold clearance",
     "chain.bending_stiffness": "bending stiffness c",
     "chain.bending_damping": "bending damping d",
     "chain.link_length": "link length",
     "chain.friction": "friction",
 }
+
+LINEAR: frozenset[str] = frozenset({"apparatus.fold_clearance"})
+"""Fields whose slider stays linear although their range starts at zero (a gap of a few
+millimetres: a logarithmic slider would spend most of its travel below a micrometre)."""
 
 SLIDER_STEPS = 1000
 """Slider positions 0 .. SLIDER_STEPS map onto a field's range (linear or logarithmic)."""
@@ -253,7 +259,7 @@ def make_spec(path: str, tp: Any, meta: dict, current: float) -> FieldSpec:
         s_lo, s_hi = -span, span
     log = False
     floor = 0.0
-    if tp is float and s_lo >= 0 and s_hi > 0:
+    if tp is float and s_lo >= 0 and s_hi > 0 and path not in LINEAR:
         # many decades from (about) zero, and the current value sits near the bottom:
         # a logarithmic slider, position 0 being the lower limit itself
         if s_lo == 0:
@@ -277,10 +283,11 @@ def make_spec(path: str, tp: Any, meta: dict, current: float) -> FieldSpec:
 ONLY_FOR_VARIANT: dict[str, tuple[str, ...]] = {
     "apparatus.xi3": ("fold",),
     "apparatus.floor_depth": ("floor",),
+    "apparatus.fold_clearance": ("fold",),
 }
 """Apparatus fields that only the named ``apparatus.variant`` values use: for any other
 variant a slider would change nothing (xi3 is the lower table's height, and only
-'fold' has a lower table; only 'floor' has a floor)."""
+'fold' has a lower table; only 'floor' has a floor; only 'fold' has a folding roller)."""
 
 
 def unused_fields(config: Any) -> set[str]:
