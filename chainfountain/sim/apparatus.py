@@ -562,11 +562,12 @@ class Apparatus:
         """'fold' guide: links held by each element (most downstream first)."""
         self._cap_next = -1
         """'fold' guide: chain index of the next link to capture at the mouth."""
-        self._mouth_t, self._mouth_dr = 0.0, 0.0
+        self._mouth_t: float | None = None
+        self._mouth_dr = 0.0
         """'fold' guide: time (s) of the last capture through the mouth (at or before its
-        angle; later captures take links falling into the turn from the side) and that
-        link's offset from the turn's radius (m; > 0 outside: the fountain landed short).
-        The collapse message says when the catch was lost."""
+        angle; later captures take links falling into the turn from the side; None before
+        the first) and that link's offset from the turn's radius (m; > 0 outside: the
+        fountain landed short). The collapse message says when the catch was lost."""
         self.released = 0
         """'fold' guide: links handed from the lower plate to the folding roller."""
         if self.plate_mode == "groove":
@@ -643,8 +644,8 @@ class Apparatus:
     @property
     def last_mouth_entry(self) -> float:
         """'fold': time (s) at which the last link entered the end guide through its
-        mouth (0 before any did)."""
-        return self._mouth_t
+        mouth (nan before any did)."""
+        return math.nan if self._mouth_t is None else self._mouth_t
 
     def moving_mass(self, v_min: float = 1.0) -> float:
         """Mass of the links moving faster than ``v_min`` (kg), the lumped tail included."""
@@ -846,11 +847,12 @@ class Apparatus:
         """'fold': a sentence for the collapse message if the chain had stopped entering
         the end guide through its mouth :data:`_CATCH_LOST` s or more before the collapse
         (the fountain landed outside the catch's band and fell into the turn from the
-        side), '' otherwise. It states the order, not a cause. Measured
-        (docs/apparatus.md, "Seventeenth session"): the catch is lost 1.1-1.2 s before
-        the folding roller rolls back in ``apparatus_special``, 0.47 s before in
-        ``apparatus_limit``."""
-        if not self.fold_guided or self._t - self._mouth_t < _CATCH_LOST:
+        side), '' otherwise (or before any link entered: nothing to compare). It states
+        the order, not a cause. Measured (docs/apparatus.md, "Seventeenth session"): the
+        catch is lost 1.0-1.3 s before the folding roller rolls back in
+        ``apparatus_special`` (starts 2.97-3.06 m/s), 0.47 s before in ``apparatus_limit``."""
+        if (not self.fold_guided or self._mouth_t is None
+                or self._t - self._mouth_t < _CATCH_LOST):
             return ""
         dr = self._mouth_dr
         where, shape = ("outside", "narrowed") if dr > 0 else ("inside", "widened")
