@@ -17,7 +17,9 @@ import dataclasses
 import io as _io
 import json
 import math
+import shutil
 import sys
+import textwrap
 import time
 from pathlib import Path
 from typing import Any
@@ -358,8 +360,13 @@ def describe_outputs(summary_path: Path) -> str:
     ]
     ended = s.get("ended_early")
     if ended:
-        lines.append(f"  ENDED EARLY (of {s['requested_duration_s']:g} s asked for): "
-                     f"{ended['reason']}")
+        # the reason runs to several sentences (a fold's collapse: about 900 characters):
+        # wrapped to the terminal, continuation lines indented under it
+        width = max(60, min(100, shutil.get_terminal_size((100, 24)).columns - 1))
+        lines.append(textwrap.fill(
+            f"ENDED EARLY (of {s['requested_duration_s']:g} s asked for): {ended['reason']}",
+            width=width, initial_indent="  ", subsequent_indent="    ",
+            break_on_hyphens=False))
     if th:
         lines.append(
             f"  vertex height {s['h']:.4f} m (theory {th['h']:.4f}, {pct(err.get('h'))}), "

@@ -107,6 +107,11 @@ def test_run_that_ends_early_writes_its_part_and_exits_3(tmp_path):
     assert s["duration_s"] == ended["t_s"]
     assert "ENDED EARLY" in r.stdout and "Traceback" not in r.stderr
     assert (tmp_path / "snapshot.png").exists() and (tmp_path / "speed.csv").exists()
+    # the reason (about 600 characters here) is wrapped for the terminal, not one line
+    out = r.stdout.splitlines()
+    i = next(k for k, ln in enumerate(out) if "ENDED EARLY" in ln)
+    assert len(out) - i > 3 and all(len(ln) <= 100 for ln in out[i:])
+    assert " ".join(ln.strip() for ln in out[i:]).count("folding roller rolls backwards") == 1
 
 
 def test_full_run_is_not_marked_ended_early(tmp_path, quick_level):
