@@ -8,6 +8,8 @@
     .venv/bin/python benchmarks/fold_step_study.py --only special --seconds 6 --dt 0.5 \
         --speeds 2.94 2.97 3.0 3.03 3.06                            # perturbed starts
     .venv/bin/python benchmarks/fold_step_study.py --rig --feed groove --push 0.632
+    .venv/bin/python benchmarks/fold_step_study.py --rig --feed groove --push 0.632 \
+        --clearance 0.002 --dt 0.5 0.1 0.025 --iterations 10 40
 
 Runs each 'fold' preset (real geometry or treadmills, as shipped) for ``--seconds`` at
 each step of ``--dt`` (ms; the iterations as in the preset) and prints a Markdown row
@@ -22,8 +24,9 @@ holds), and the last line counts the runs that held cleanly. ``--clearance`` set
 ``apparatus.fold_clearance`` (m), ``--lower-cart`` the lower cart's mass (kg). ``--rig``
 runs the put-down rig alone (2 cm links, 3 m/s, push ``--push`` ``lambda v^2``; ``--feed
 groove``: the strand held on a groove line as on the apparatus's lower plate,
-``--clearance`` above the roller's top) at the same steps.
-docs/apparatus.md, "Twelfth session" and "Thirteenth session".
+``--clearance`` above the roller's top) at the same steps, with ``--iterations`` (10 by
+default; several values give a row each).
+docs/apparatus.md, "Twelfth session", "Thirteenth session" and "Seventeenth session".
 """
 
 from __future__ import annotations
@@ -121,15 +124,17 @@ def run_preset(name: str, dt: float, seconds: float, clearance: float | None = N
             f"{100 * c['vertex_y_rel_error']:+.1f} % | {tail}"), held
 
 
-def rig_row(dt: float, push: float = 0.4, feed: str = "free", clearance: float = 0.0) -> str:
+def rig_row(dt: float, push: float = 0.4, feed: str = "free", clearance: float = 0.0,
+            iterations: int = 10) -> str:
     lam, v = 0.05, 3.0
     ch = ChainConfig(link_length=0.02, linear_density=lam, friction=0.6, link_radius=0.002)
-    sol = SolverConfig(dt=dt, iterations=10, joint_error_bias=1e-10, collision_slop=1e-4)
+    sol = SolverConfig(dt=dt, iterations=iterations, joint_error_bias=1e-10,
+                       collision_slop=1e-4)
     cfg = RigConfig(mode="putdown", speed=v, cart_force=push * lam * v * v, chain=ch,
                     solver=sol, feed=feed, clearance=clearance)
     r = run_rig(cfg, duration=1.5, settle=0.5)
-    return (f"| {feed} | {1e3 * clearance:g} | {push:g} | {dt * 1e3:g} | {r.speed:.3f} | "
-            f"{r.roller_ratio:.3f} | {r.force_bar:.3f} |")
+    return (f"| {feed} | {1e3 * clearance:g} | {push:g} | {dt * 1e3:g} | {iterations} | "
+            f"{r.speed:.3f} | {r.roller_ratio:.3f} | {r.force_bar:.3f} |")
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -146,13 +151,18 @@ def main(argv: list[str] | None = None) -> int:
                     help="start speeds apparatus.speed in m/s (perturbed starts of the "
                     "same level; default: the preset's)")
     ap.add_argument("--feed", choices=("free", "groove"), default="free", help="rig feed")
+    ap.add_argument("--iterations", type=int, nargs="+", default=[10],
+                    help="rig solver iterations")
     ap.add_argument("--push", type=float, default=0.4, help="rig cart push / (lambda v^2)")
     args = ap.parse_args(argv)
     if args.rig:
-        print("| feed | clearance mm | push | dt ms | chain m/s | v_R/v | entry Tbar |")
-        print("|---|---|---|---|---|---|---|")
-        for dt in args.dt:
-            print(rig_row(dt * 1e-3, args.push, args.feed, args.clearance or 0.0), flush=True)
+        print("| feed | clearance mm | push | dt ms | iterations | chain m/s | v_R/v "
+              "| entry Tbar |")
+        print("|---|---|---|---|---|---|---|---|")
+        for it in args.iterations:
+            for dt in args.dt:
+                print(rig_row(dt * 1e-3, args.push, args.feed, args.clearance or 0.0, it),
+                      flush=True)
         return 0
     print(f"Window {WINDOW_START:g} s to the end of a {args.seconds:g}-s run.\n")
     print("| preset | clearance mm | lower cart g | v0 m/s | dt ms | iterations | v m/s | "
