@@ -328,6 +328,11 @@ def run_level(level: Level, out_dir: Path, duration: float | None = None, *,
     sim, rec, wall, ended = simulate(level, duration, seed=seed, progress=progress)
     summary = summarize(level, sim, rec, duration, wall)
     summary["ended_early"] = None if ended is None else {"t_s": _f(sim.time), "reason": ended}
+    app = sim.apparatus
+    if ended is not None and app is not None and app.fold_guided:
+        # when the fountain last landed in the end guide's mouth (a lost catch comes about
+        # 1 s before the fold's collapse; docs/apparatus.md, "Seventeenth session")
+        summary["ended_early"]["last_mouth_entry_s"] = _f(app.last_mouth_entry)
     lam = level.sim.chain.linear_density
     _write_tensions(out_dir / "tensions.csv", rec, lam)
     _write_speed(out_dir / "speed.csv", rec)

@@ -104,6 +104,10 @@ def test_run_that_ends_early_writes_its_part_and_exits_3(tmp_path):
     ended = s["ended_early"]
     assert ended is not None and 0.5 < ended["t_s"] < s["requested_duration_s"] == 2.0
     assert "folding roller rolls backwards" in ended["reason"]
+    # measured: the fountain last landed in the end guide's mouth at 0.52 s (the catch
+    # lost before the collapse at 0.99 s); the reason says the same
+    assert 0.0 < ended["last_mouth_entry_s"] < ended["t_s"] - 0.1
+    assert f"mouth at t = {ended['last_mouth_entry_s']:.2f} s" in ended["reason"]
     assert s["duration_s"] == ended["t_s"]
     assert "ENDED EARLY" in r.stdout and "Traceback" not in r.stderr
     assert (tmp_path / "snapshot.png").exists() and (tmp_path / "speed.csv").exists()
