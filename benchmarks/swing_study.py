@@ -7,6 +7,7 @@
         --lower-cart 0.044 --speeds 2.97 --seconds 8
     .venv/bin/python benchmarks/swing_study.py --close-rate 2 20 100
     .venv/bin/python benchmarks/swing_study.py --upper-drag 0.2 --band 0.06 0.1
+    .venv/bin/python benchmarks/swing_study.py --figure docs/img/fold_catch.png   # ~25 s
 
 Runs a 'fold' level (default ``apparatus_special``, both plates treadmills, so nothing
 runs out) for up to ``--seconds`` and samples the chain speed (the upper plate strand)
@@ -22,7 +23,10 @@ link entered the end guide through its mouth when that was :data:`_CATCH_LOST` s
 before the end (``-`` otherwise). ``--upper-drag c`` (N s/m) adds a damper to the
 pick-up carriage about the steady roller speed, ``-c (v_R - v0/2)``: not part of the
 paper's apparatus, a probe of whether damping the chain before the fountain stops the
-swing. docs/apparatus.md, "Fifteenth session" to "Seventeenth session".
+swing. ``--figure PATH`` instead draws the preset's run to its end (first ``--speeds``
+value): the chain speed at the pick-up and at the folding roller, and where each link
+landed in the end guide's mouth against the catch's band. docs/apparatus.md, "Fifteenth
+session" to "Seventeenth session".
 """
 
 from __future__ import annotations
@@ -77,6 +81,58 @@ def trace(cfg: SimConfig, seconds: float, upper_drag: float = 0.0
     return np.array(t), np.array(v), None, app.last_mouth_entry
 
 
+def figure(cfg: SimConfig, seconds: float, out: str) -> None:
+    """The run to its end: speeds, and the landing offset in the mouth against the band."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    sim = Simulation(cfg)
+    app = sim.apparatus
+    rows = []
+    ended = None
+    try:
+        while sim.time < seconds - 1e-9:
+            sim.advance(SAMPLE)
+            rows.append((sim.time, app.speed, 2.0 * app.lower.speed, app.last_mouth_entry,
+                         app.last_mouth_offset))
+    except RunEnded:
+        ended = sim.time
+    r = np.array(rows)
+    t = r[:, 0]
+    fig, (ax, bx) = plt.subplots(2, 1, figsize=(9, 5.6), sharex=True)
+    ax.plot(t, r[:, 1], lw=0.8, label="pick-up: 2 v_R")
+    ax.plot(t, r[:, 2], lw=0.8, label="folding roller: 2 v_R")
+    ax.set_ylim(0.0, 4.5)
+    ax.set_ylabel("chain speed (m/s)")
+    fresh = t - r[:, 3] < 2.0 * SAMPLE  # a link entered through the mouth in this sample
+    band = 100.0 * apparatus._FOLD_CAPTURE[0]
+    bx.axhspan(-band, band, color="0.9", label="catch band")
+    bx.plot(t[fresh], 100.0 * r[fresh, 4], ".", ms=2, color="C2",
+            label="landing offset in the mouth (> 0: short)")
+    bx.set_ylim(-1.3 * band, 1.3 * band)
+    bx.set_ylabel("offset from the turn's radius (cm)")
+    bx.set_xlabel("t (s)")
+    lost = r[-1, 3]
+    if ended is not None and ended - lost >= apparatus._CATCH_LOST:
+        for x in (ax, bx):
+            x.axvline(lost, color="C3", lw=0.8, ls="--")
+        bx.annotate(f"catch lost {lost:.2f} s", (lost, -1.2 * band), color="C3", fontsize=8,
+                    ha="right")
+    if ended is not None:
+        for x in (ax, bx):
+            x.axvline(ended, color="k", lw=0.8)
+        ax.annotate(f"fold collapsed {ended:.2f} s", (ended, 4.2), fontsize=8, ha="right")
+    ax.legend(fontsize=8, loc="lower left")
+    bx.legend(fontsize=8, loc="lower left")
+    ax.set_title(f"{cfg.name}, start {cfg.apparatus.speed:g} m/s, "
+                 f"dt {cfg.solver.dt * 1e3:g} ms: the landing swing until the fold fails")
+    fig.tight_layout()
+    fig.savefig(out, dpi=90)
+    print(f"wrote {out}")
+
+
 def swing(t: np.ndarray, v: np.ndarray, a: float, b: float) -> float:
     """Half the peak-to-peak speed about its linear trend over ``[a, b)`` (m/s)."""
     m = (t >= a) & (t < b)
@@ -127,9 +183,14 @@ def main(argv: list[str] | None = None) -> int:
                     help="the catch's closing speed (m/s)")
     ap.add_argument("--band", type=float, nargs="+", default=[None],
                     help="the catch's capture band (m)")
+    ap.add_argument("--figure", default=None, help="draw the run to its end into this PNG")
     ap.add_argument("--upper-drag", type=float, nargs="+", default=[0.0],
                     help="damper on the pick-up carriage about v0/2 (N s/m; not the paper's)")
     args = ap.parse_args(argv)
+    if args.figure:
+        figure(fold_config(args.level, args.dt[0] * 1e-3, args.clearance, args.lower_cart[0],
+                           args.speeds[0]), args.seconds, args.figure)
+        return 0
     print("| dt ms | lower cart g | start m/s | close m/s | band m | upper drag N s/m "
           "| ended s | catch lost s | v m/s (0.5-8 s) | swing early m/s | swing late m/s "
           "| sigma 1/s | period s | wall s |")

@@ -647,6 +647,12 @@ class Apparatus:
         mouth (nan before any did)."""
         return math.nan if self._mouth_t is None else self._mouth_t
 
+    @property
+    def last_mouth_offset(self) -> float:
+        """'fold': that link's offset from the first turn's radius at capture (m; > 0
+        outside: the fountain landed short; nan before any)."""
+        return math.nan if self._mouth_t is None else self._mouth_dr
+
     def moving_mass(self, v_min: float = 1.0) -> float:
         """Mass of the links moving faster than ``v_min`` (kg), the lumped tail included."""
         n = sum(1 for lk in self.chain.links if lk.body.velocity.length > v_min)
