@@ -137,6 +137,17 @@ def rig_row(dt: float, push: float = 0.4, feed: str = "free", clearance: float =
             f"{r.speed:.3f} | {r.roller_ratio:.3f} | {r.force_bar:.3f} |")
 
 
+
+def _positive_int(text: str) -> int:
+    """argparse type: a int > 0 (one line naming the value otherwise)."""
+    try:
+        x = int(text)
+    except ValueError:
+        x = 0
+    if not x > 0:
+        raise argparse.ArgumentTypeError(f"{text!r}: allowed: a whole number > 0")
+    return x
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--dt", type=float, nargs="+", default=[0.5, 0.35, 0.25, 0.1],
@@ -151,7 +162,7 @@ def main(argv: list[str] | None = None) -> int:
                     help="start speeds apparatus.speed in m/s (perturbed starts of the "
                     "same level; default: the preset's)")
     ap.add_argument("--feed", choices=("free", "groove"), default="free", help="rig feed")
-    ap.add_argument("--iterations", type=int, nargs="+", default=[10],
+    ap.add_argument("--iterations", type=_positive_int, nargs="+", default=[10],
                     help="rig solver iterations")
     ap.add_argument("--push", type=float, default=0.4, help="rig cart push / (lambda v^2)")
     args = ap.parse_args(argv)
