@@ -148,6 +148,7 @@ def _positive_int(text: str) -> int:
         raise argparse.ArgumentTypeError(f"{text!r}: allowed: a whole number > 0")
     return x
 
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--dt", type=float, nargs="+", default=[0.5, 0.35, 0.25, 0.1],

@@ -182,6 +182,7 @@ def _positive_float(text: str) -> float:
         raise argparse.ArgumentTypeError(f"{text!r}: allowed: a number > 0")
     return x
 
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--level", default="apparatus_special", help="a 'fold' level name or path")
