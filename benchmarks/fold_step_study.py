@@ -35,6 +35,7 @@ import argparse
 import dataclasses
 import sys
 import time
+from collections.abc import Callable
 from pathlib import Path
 
 from chainfountain.errors import RunEnded
@@ -138,15 +139,21 @@ def rig_row(dt: float, push: float = 0.4, feed: str = "free", clearance: float =
 
 
 
-def _positive_int(text: str) -> int:
-    """argparse type: a int > 0 (one line naming the value otherwise)."""
-    try:
-        x = int(text)
-    except ValueError:
-        x = 0
-    if not x > 0:
-        raise argparse.ArgumentTypeError(f"{text!r}: allowed: a whole number > 0")
-    return x
+def positive(kind: type) -> Callable[[str], float]:
+    """argparse type: a number of ``kind`` (int or float) > 0, one line naming the value
+    otherwise (also used by the sibling ``swing_study.py``)."""
+    what = "a whole number" if kind is int else "a number"
+
+    def conv(text: str) -> float:
+        try:
+            x = kind(text)
+        except ValueError:
+            x = 0
+        if not x > 0:
+            raise argparse.ArgumentTypeError(f"{text!r}: allowed: {what} > 0")
+        return x
+
+    return conv
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -163,7 +170,7 @@ def main(argv: list[str] | None = None) -> int:
                     help="start speeds apparatus.speed in m/s (perturbed starts of the "
                     "same level; default: the preset's)")
     ap.add_argument("--feed", choices=("free", "groove"), default="free", help="rig feed")
-    ap.add_argument("--iterations", type=_positive_int, nargs="+", default=[10],
+    ap.add_argument("--iterations", type=positive(int), nargs="+", default=[10],
                     help="rig solver iterations")
     ap.add_argument("--push", type=float, default=0.4, help="rig cart push / (lambda v^2)")
     args = ap.parse_args(argv)

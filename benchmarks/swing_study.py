@@ -38,7 +38,7 @@ import sys
 import time
 
 import numpy as np
-from fold_step_study import fold_config  # the sibling script (benchmarks/ is on sys.path)
+from fold_step_study import fold_config, positive  # sibling script (benchmarks/ on sys.path)
 from scipy.optimize import curve_fit
 
 import chainfountain.sim.apparatus as apparatus
@@ -172,16 +172,6 @@ def growth(t: np.ndarray, v: np.ndarray, a: float, b: float) -> tuple[float, flo
 
 
 
-def _positive_float(text: str) -> float:
-    """argparse type: a float > 0 (one line naming the value otherwise)."""
-    try:
-        x = float(text)
-    except ValueError:
-        x = 0
-    if not x > 0:
-        raise argparse.ArgumentTypeError(f"{text!r}: allowed: a number > 0")
-    return x
-
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -193,7 +183,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--clearance", type=float, default=None, help="apparatus.fold_clearance")
     ap.add_argument("--close-rate", type=float, nargs="+", default=[None],
                     help="the catch's closing speed (m/s)")
-    ap.add_argument("--band", type=_positive_float, nargs="+", default=[None],
+    ap.add_argument("--band", type=positive(float), nargs="+", default=[None],
                     help="the catch's capture band (m)")
     ap.add_argument("--figure", default=None, help="draw the run to its end into this PNG")
     ap.add_argument("--upper-drag", type=float, nargs="+", default=[0.0],
