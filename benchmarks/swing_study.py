@@ -171,8 +171,6 @@ def growth(t: np.ndarray, v: np.ndarray, a: float, b: float) -> tuple[float, flo
     return float(best[1][1]), 2.0 * math.pi / abs(float(best[1][2]))
 
 
-
-
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--level", default="apparatus_special", help="a 'fold' level name or path")
