@@ -124,6 +124,9 @@ APPARATUS_BAD = [  # (key, new line, field, shown, allowed) in a copy of apparat
     ("mode", 'mode = "stub"', "initial.mode", "'stub'", "allowed: 'catenary'"),
     ("variant", 'variant = "open"', "apparatus.fold_clearance", "0.002", "allowed: 0"),
     ("fold_clearance", "fold_clearance = 0.02", "apparatus.fold_clearance", "0.02", "[0, 0.005]"),
+    ("plate", 'plate = "contact"', "apparatus.upper_guide", "'joints'", "allowed: 'walls'"),
+    ("upper_guide", 'upper_guide = "pipes"', "apparatus.upper_guide", "'pipes'",
+     "'walls', 'joints'"),
 ]
 
 
@@ -131,10 +134,13 @@ APPARATUS_BAD = [  # (key, new line, field, shown, allowed) in a copy of apparat
                          ids=[b[2] + ":" + b[1] for b in APPARATUS_BAD])
 def test_apparatus_bad_files_one_clear_line(tmp_path, key, new, field, shown, allowed):
     """The apparatus lays its own chain, so ``[initial]`` settings would be silently
-    ignored there: they are refused instead; ``fold_clearance`` only where it applies."""
+    ignored there: they are refused instead; ``fold_clearance`` and ``upper_guide = "joints"``
+    only where they apply."""
     text = (ROOT / "levels" / "apparatus_special.toml").read_text()
     if key in ("variant", "fold_clearance"):  # the preset leaves it at its default, 0
         text = _replace_key(text, "plate_links", "plate_links = 20\nfold_clearance = 0.002")
+    if key in ("plate", "upper_guide"):  # no treadmill: a contact plate may have none
+        text = _replace_key(text, "plate_links", 'plate_links = 0\nupper_guide = "joints"')
     bad = tmp_path / "bad.toml"
     bad.write_text(_replace_key(text, key, new))
     with pytest.raises(io.LevelError) as exc:

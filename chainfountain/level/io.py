@@ -229,6 +229,10 @@ def _check_apparatus(level: Level, where: str) -> None:
         _fail(where, "apparatus.fold_clearance",
               f"{a.fold_clearance!r} m only applies to variant = 'fold' with plate = 'groove' "
               f"(here variant {a.variant!r}, plate {a.plate!r}); allowed: 0")
+    if a.upper_guide == "joints" and a.plate != "groove":
+        _fail(where, "apparatus.upper_guide",
+              f"'joints' needs apparatus.plate = 'groove' (it is {a.plate!r}): the joint guide "
+              "takes the links from the plate's grooves; allowed: 'walls' with a 'contact' plate")
 
 
 def parse_level(data: dict[str, Any], where: str = "<level>") -> Level:

@@ -77,6 +77,7 @@ from chainfountain.sim.guide import (
     end_channel_bends,
     resample,
     upper_channel,
+    upper_guide,
 )
 
 PICKUP_BAR = 0.27
@@ -210,6 +211,13 @@ _PRELOAD_STEPS = 40
 joint it replaces as an internal force pair, faded out over this many steps (the
 solver's warm start then carries it; in 'fold' trials a cold joint in a plate strand
 every 13 steps made the lower turn yield sooner)."""
+_UP_RELEASE = 0.5
+"""Upper joint guide: a link leaves the guide's straight once its centre is this many
+link lengths short of the fountain start, i.e. once its front joint has left the guide,
+so the free fountain starts at ``(0, 0)`` as with the channel's walls. Measured
+(``apparatus_floor``, 2-6 s; docs/apparatus.md, "Eighteenth session"): the vertex is
++5.4 % off the catenary through the ends when links leave at their centre (0), +0.1 %
+at 0.5, -1.6 % at 0.6, -6.0 % at 1 (the walls: +1.7 %)."""
 _CLEAR = 0.0008
 """Clearance between a link capsule and each channel wall (m)."""
 _ONLY_CHAIN = pymunk.ShapeFilter(categories=SCENERY_CATEGORY, mask=CHAIN_CATEGORY)
@@ -390,9 +398,20 @@ class Apparatus:
         self.walls: list[pymunk.Segment] = []
         off = rho + _CLEAR + _WALL_R
         ch = Channel(ch_pts)
+        self.upper_guided = a.upper_guide == "joints"
+        if self.upper_guided and a.plate != "groove":  # the level check says so too
+            raise ValueError("apparatus.upper_guide: 'joints' needs apparatus.plate = 'groove' "
+                             f"(it is {a.plate!r}); allowed: 'walls' with a 'contact' plate")
+        """The upper channel is a frictionless joint guide (:attr:`up_guide`); its walls
+        are drawn only."""
         for w in ch.walls(off):
-            self.walls += _static_polyline(space, w, _WALL_R)
+            self.walls += _static_polyline(space, w, _WALL_R, add=not self.upper_guided)
         self.channel_up = ch_pts
+        self.up_guide: list[GuideElement] = (
+            upper_guide(H, a.xi2, self.alpha0, self.R_up, 0.1) if self.upper_guided else [])
+        self._uq: list[deque[tuple[Link, pymunk.Constraint]]] = [
+            deque() for _ in self.up_guide]
+        """Upper joint guide: links held by each element (most downstream first)."""
         # ---- path (upstream -> downstream) with per-point speed tags
         yc = self.upper.yc
         n_rest = self.n_ahead
@@ -573,6 +592,8 @@ class Apparatus:
         if self.plate_mode == "groove":
             self._init_grooves()
             self._update_lo_grooves()
+        if self.upper_guided:
+            self._init_upper_guide()
         self._fly_next = -1
         """'fold' guide: chain index of the next link to leave the upper channel."""
         if self.fold_guided:
@@ -800,6 +821,8 @@ class Apparatus:
         if self.plate_mode == "groove":
             self._update_grooves(popped)
             self._update_lo_grooves()
+        if self.upper_guided:
+            self._update_upper_guide()
         if self.fold_guided:
             self._update_flight(popped)
             self._update_fold_guide(popped)
@@ -1214,10 +1237,63 @@ class Apparatus:
                 link, j = q.popleft()
                 space.remove(j)
                 self._hold(k + 1, link)
-        self._keep_on_arcs()
+        self._keep_on_arcs(self.guide, self._gq)
 
-    def _keep_on_arcs(self) -> None:
-        """'fold': for each link held on an arc of the guide, close its slide joint's
+    # ------------------------------------------------------------------ upper guide
+    def _init_upper_guide(self) -> None:
+        """Put the links laid along the upper channel (downstream of the plate's grooved
+        strand) into the upper guide's elements."""
+        links = self.chain.links
+        i_g = self.chain.ids.index(self._grooves[0][0].id) if self._grooves else len(links)
+        found: list[tuple[int, int]] = []
+        for i in range(i_g - 1, -1, -1):  # upstream to downstream
+            p = pos(links[i].body)
+            P = np.array([[p.x, p.y]])
+            for k, el in enumerate(self.up_guide):
+                if el.on(P, 0.003)[0] and not el.passed(p.x, p.y):
+                    found.append((i, k))
+                    break
+            else:
+                if found:
+                    break  # past the exit: the fountain
+        for i, k in sorted(found):  # downstream first in each queue
+            self._hold_up(k, links[i])
+
+    def _hold_up(self, k: int, link: Link) -> None:
+        """Hold ``link`` in upper guide element ``k`` (out of the collision broadphase)."""
+        j = self.up_guide[k].joint(self.space, link.body, self.sim_cfg.solver.joint_error_bias)
+        if link.shape is not None and link.shape.space is not None:
+            self.space.remove(link.shape)
+        self._uq[k].append((link, j))
+
+    def _update_upper_guide(self) -> None:
+        """Upper joint guide: move links from element to element as they pass each end
+        (downstream elements first, so a link moves at most one element per step) and
+        release them into flight past the fountain start. A released link stays out of
+        the broadphase in 'fold' (nothing to touch in flight, :meth:`_update_flight`)
+        and gets its shape back otherwise (the floor variants need it)."""
+        space = self.space
+        els, qs = self.up_guide, self._uq
+        last = len(els) - 1
+        for k in range(last, -1, -1):
+            q, el = qs[k], els[k]
+            before = _UP_RELEASE * self.L if k == last else 0.0
+            while q:
+                p = pos(q[0][0].body)
+                if not el.passed(p.x, p.y, before):
+                    break
+                link, j = q.popleft()
+                space.remove(j)
+                if k < last:
+                    self._hold_up(k + 1, link)
+                elif not self.fold_guided and link.shape is not None \
+                        and link.shape.space is None:
+                    space.add(link.shape)
+        self._keep_on_arcs(els, qs)
+
+    def _keep_on_arcs(self, guide: list[GuideElement],
+                      queues: list[deque[tuple[Link, pymunk.Constraint]]]) -> None:
+        """Joint guides: for each link held on an arc of ``guide``, close its slide joint's
         limits in toward ``R -+ PLAY`` at :data:`_FOLD_CLOSE_RATE` (a link captured off
         the radius), then put it back onto the nearest limit if it has left them and take
         away its velocity across it.
@@ -1234,7 +1310,7 @@ class Apparatus:
         close = _FOLD_CLOSE_RATE * self.sim_cfg.solver.dt
         get_p, set_p = fastbody.get_position, fastbody.set_position
         get_v, set_v = fastbody.get_velocity, fastbody.set_velocity
-        for el, q in zip(self.guide, self._gq, strict=True):
+        for el, q in zip(guide, queues, strict=True):
             if el.kind != "arc":
                 continue
             cx, cy = el.a
@@ -1333,7 +1409,9 @@ class Apparatus:
         while g and pos(g[0][0].body).x > lim:
             link, j = g.popleft()
             self.space.remove(j)
-            if link.shape is not None:
+            if self.upper_guided:  # on into the upper joint guide's lead, still shapeless
+                self._hold_up(0, link)
+            elif link.shape is not None:
                 self.space.add(link.shape)
         while 0 <= self._g_next < len(links) and self._on_plate(links[self._g_next].body):
             self._groove(links[self._g_next])

@@ -142,7 +142,6 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
         else:  # external force on the end link, like a contact
             contacts[0, 0] += app.end_pull * dt
     F = joint_forces(pre, post, chain.mass, dt, app.g, n - 1, contacts)
-    ten, _ = signed_tension(F, post, n - 1)
     L = app.L
     u = np.column_stack((np.cos(post.angle), np.sin(post.angle)))
     back = post.position - 0.5 * L * u
@@ -151,6 +150,7 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
     gaps = np.linalg.norm(back[:-1] - front[1:], axis=1)
     d0 = np.hypot(J[:, 0], J[:, 1])
     j0 = int(np.argmin(d0))
+    ten, _ = signed_tension(F, post, n - 1)
     if app.fold_guided and k > 0:
         jE = k - 1  # the last guided link: the mouth of the joint guide
     elif app.end_mode == "absorbing" and app.floor_depth > 0:
@@ -183,7 +183,17 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
         # the grooves' vertical impulses are not in ``contacts``: on the horizontal
         # plate the tension is the horizontal joint force alone (grooves add none)
         k = int(np.argmin(np.hypot(J[:, 0] - xu - 6 * L, J[:, 1] - app.y_up)))
-        T_up = float(np.mean(-F[max(k - 2, 0):min(k + 3, len(F)), 0])) / scale
+        Fu = F
+        if app.upper_guided:
+            # the upper guide's joint impulses are not among the contacts either (and
+            # have horizontal parts on its bend and straight): sum from the upstream
+            # end instead, the resting chain, whose table and roller contacts are all
+            # recorded (F_j = -(momentum change of the links beyond joint j) / dt)
+            imp = chain.mass * (post.velocity - pre_vel)
+            imp[:, 1] += chain.mass * app.g * dt
+            imp -= contacts
+            Fu = -np.cumsum(imp[::-1], axis=0)[::-1][1:] / dt
+        T_up = float(np.mean(-Fu[max(k - 2, 0):min(k + 3, len(Fu)), 0])) / scale
     else:
         T_up = at(xu + 6 * L, app.y_up)
     if app.fold_guided:

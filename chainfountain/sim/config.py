@@ -342,6 +342,16 @@ class ApparatusConfig:
         "3-4 s at 0.1 ms (docs/apparatus.md, 'Thirteenth session', 'Fourteenth session')",
         min=0.0, max=0.005,
     )
+    upper_guide: str = param(
+        "walls", unit="", doc="Upper guide channel (plate end to fountain start): 'walls' is "
+        "a frictionless two-sided channel of static segments (one contact per link, the "
+        "presets' build); 'joints' (needs plate = 'groove') holds each link centre on the "
+        "channel's centre line with frictionless joints (groove joints on the straight "
+        "pieces, a slide joint to the bend's centre on the bend), as the 'fold' lower guide: "
+        "no wall contacts and no shapes in the channel (docs/apparatus.md, 'Eighteenth "
+        "session')",
+        choices=("walls", "joints"),
+    )
 
 
 @dataclass

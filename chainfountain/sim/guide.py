@@ -85,6 +85,25 @@ def upper_channel(H: float, xi2: float, alpha0: float, R: float, lead: float,
     return out, R
 
 
+def upper_guide(H: float, xi2: float, alpha0: float, R: float,
+                lead: float) -> list[GuideElement]:
+    """The pieces of the upper channel's centre line (:func:`upper_channel`, same
+    ``R`` as it returned) as joint-guide elements, chain direction: the horizontal
+    lead, the bend up to ``alpha0`` (centre above the lead) and the straight to the
+    fountain start ``(0, 0)``."""
+    rise = xi2 * H
+    S = (rise - R * (1.0 - math.cos(alpha0))) / math.sin(alpha0)
+    xb = -(R * math.sin(alpha0) + S * math.cos(alpha0))
+    out = [GuideElement("line", (xb - lead, -rise), (xb, -rise))]
+    if R > 0:
+        c = (xb, -rise + R)
+        out.append(GuideElement("arc", c, c, R, -0.5 * math.pi, alpha0 - 0.5 * math.pi))
+    if S > 1e-9:
+        p = (xb + R * math.sin(alpha0), -rise + R * (1.0 - math.cos(alpha0)))
+        out.append(GuideElement("line", p, (0.0, 0.0)))
+    return out
+
+
 def end_channel_bends(alphaE: float, rise: float, R: float,
                       up: float = math.radians(60.0)) -> tuple[float, float]:
     """Bend radius and straight length of a rising end channel (:func:`end_channel`):
@@ -168,7 +187,8 @@ class ArcJoint(pymunk.SlideJoint):
 
 @dataclass
 class GuideElement:
-    """One piece of a frictionless joint guide ('fold' lower channel): a circular arc
+    """One piece of a frictionless joint guide (the 'fold' lower channel; the upper
+    channel with ``upper_guide = "joints"``): a circular arc
     (links held by a :class:`pymunk.SlideJoint` to its centre) or a straight line (a
     :class:`pymunk.GrooveJoint`). The chain moves along it from ``start`` to ``end``."""
 
@@ -188,14 +208,16 @@ class GuideElement:
     def ccw(self) -> bool:
         return self.th1 > self.th0
 
-    def passed(self, x: float, y: float) -> bool:
-        """Has a link centre at ``(x, y)`` gone past the element's end?"""
+    def passed(self, x: float, y: float, before: float = 0.0) -> bool:
+        """Has a link centre at ``(x, y)`` gone past the element's end (a line's: past
+        ``before`` m short of it)?"""
         if self.kind == "arc":
             th = math.atan2(y - self.a[1], x - self.a[0])
             return th > self.th1 if self.ccw else th < self.th1
         (ax, ay), (bx, by) = self.a, self.b
         tx, ty = bx - ax, by - ay
-        return (x - ax) * tx + (y - ay) * ty > tx * tx + ty * ty
+        ln = math.hypot(tx, ty)
+        return (x - ax) * tx + (y - ay) * ty > ln * (ln - before)
 
     def on(self, P: np.ndarray, tol: float) -> np.ndarray:
         """Which of the points ``P`` (n, 2) lie on the element within ``tol`` (m)."""
