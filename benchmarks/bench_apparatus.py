@@ -1,6 +1,7 @@
 """Speed of the apparatus presets: real-time factor, links, steps per second.
 
     .venv/bin/python benchmarks/bench_apparatus.py [--seconds 6] [--repeat 3] [--only special]
+    .venv/bin/python benchmarks/bench_apparatus.py --only special --upper-guide walls joints
     .venv/bin/python benchmarks/bench_apparatus.py --figure docs/img/apparatus_floor.png
 
 ``--figure`` instead runs the two floor presets (6 s and 5 s) and the 9 g one
@@ -14,6 +15,7 @@ catenary through its measured ends (paper Eq. of the catenary, launch at
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import math
 import time
 from pathlib import Path
@@ -28,28 +30,39 @@ from chainfountain.sim.apparatus_report import catenary_through, report
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def bench(seconds: float, repeat: int = 1, only: str = "") -> None:
+def bench(seconds: float, repeat: int = 1, only: str = "",
+          guides: tuple[str | None, ...] = (None,)) -> None:
     """Markdown table of the real-time factor of every apparatus preset (names
-    containing ``only``). With ``repeat > 1`` each preset runs that many times and
+    containing ``only``), built with each of ``guides`` (``apparatus.upper_guide``;
+    None: as in the level). With ``repeat > 1`` each preset runs that many times and
     the table gives the best and the median: this machine's speed wanders by
-    20-40 % between identical runs, and the best is the least disturbed one."""
-    print("| preset | links (start/end) | steps/s (best) | real-time factor best / median |")
-    print("|---|---|---|---|")
+    20-40 % between identical runs, and the best is the least disturbed one. The
+    builds' runs alternate, so a slow spell of the machine hits them alike."""
+    print("| preset | upper guide | links (start/end) | steps/s (best) "
+          "| real-time factor best / median |")
+    print("|---|---|---|---|---|")
     for path in sorted((ROOT / "levels").glob("apparatus_*.toml")):
         if only not in path.stem:
             continue
         lvl = io.load(path)
         T = min(seconds, default_duration(lvl))  # a table-sized preset stops with its table
-        walls = []
+        cfgs = [lvl.sim if g is None else dataclasses.replace(
+            lvl.sim, apparatus=dataclasses.replace(lvl.sim.apparatus, upper_guide=g))
+            for g in guides]
+        walls: list[list[float]] = [[] for _ in cfgs]
+        links = [(0, 0)] * len(cfgs)
         for _ in range(repeat):
-            sim = Simulation(lvl.sim)
-            n0 = sim.n_links
-            t0 = time.perf_counter()
-            steps = sim.advance(T)
-            walls.append(time.perf_counter() - t0)
-        best, med = min(walls), float(np.median(walls))
-        print(f"| {path.stem} ({T:g} s) | {n0}/{sim.n_links} | {steps / best:.0f} | "
-              f"{T / best:.2f} / {T / med:.2f} |", flush=True)
+            for i, cfg in enumerate(cfgs):
+                sim = Simulation(cfg)
+                n0 = sim.n_links
+                t0 = time.perf_counter()
+                steps = sim.advance(T)
+                walls[i].append(time.perf_counter() - t0)
+                links[i] = (n0, sim.n_links)
+        for cfg, w, (n0, n1) in zip(cfgs, walls, links, strict=True):
+            best, med = min(w), float(np.median(w))
+            print(f"| {path.stem} ({T:g} s) | {cfg.apparatus.upper_guide} | {n0}/{n1} | "
+                  f"{steps / best:.0f} | {T / best:.2f} / {T / med:.2f} |", flush=True)
 
 
 def figure(out: Path) -> None:
@@ -129,6 +142,9 @@ def main() -> None:
                     help="runs per preset; the table gives the best and the median")
     ap.add_argument("--only", default="", help="only presets whose name contains this")
     ap.add_argument("--figure", type=Path, default=None, help="draw the speed-selection figure")
+    ap.add_argument("--upper-guide", nargs="+", default=[None], choices=("walls", "joints"),
+                    help="build each preset with these apparatus.upper_guide values "
+                    "(default: as in the level)")
     args = ap.parse_args()
     if args.repeat < 1:
         ap.error(f"--repeat: {args.repeat} is not a number of runs; allowed: 1 or more")
@@ -139,7 +155,7 @@ def main() -> None:
     if args.figure is not None:
         figure(args.figure)
     else:
-        bench(args.seconds, args.repeat, args.only)
+        bench(args.seconds, args.repeat, args.only, tuple(args.upper_guide))
 
 
 if __name__ == "__main__":

@@ -32,6 +32,7 @@ session" to "Seventeenth session".
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import itertools
 import math
 import sys
@@ -186,22 +187,31 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--figure", default=None, help="draw the run to its end into this PNG")
     ap.add_argument("--upper-drag", type=float, nargs="+", default=[0.0],
                     help="damper on the pick-up carriage about v0/2 (N s/m; not the paper's)")
+    ap.add_argument("--iterations", type=positive(int), nargs="+", default=[None],
+                    help="solver.iterations (default: as in the level)")
+    ap.add_argument("--upper-guide", nargs="+", default=[None], choices=("walls", "joints"),
+                    help="apparatus.upper_guide (default: as in the level)")
     args = ap.parse_args(argv)
     if args.figure:
         figure(fold_config(args.level, args.dt[0] * 1e-3, args.clearance, args.lower_cart[0],
                            args.speeds[0]), args.seconds, args.figure)
         return 0
-    print("| dt ms | lower cart g | start m/s | close m/s | band m | upper drag N s/m "
-          "| ended s | catch lost s | v m/s (0.5-8 s) | swing early m/s | swing late m/s "
-          "| sigma 1/s | period s | wall s |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    print("| dt ms | iterations | lower cart g | start m/s | close m/s | band m | upper drag N s/m "
+          "| upper guide | ended s | catch lost s | v m/s (0.5-8 s) | swing early m/s "
+          "| swing late m/s | sigma 1/s | period s | wall s |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     shipped, shipped_band = apparatus._FOLD_CLOSE_RATE, apparatus._FOLD_CAPTURE
-    for dt, mass, v0, rate, band, drag in itertools.product(
-            args.dt, args.lower_cart, args.speeds, args.close_rate, args.band,
-            args.upper_drag):
+    for dt, its, mass, v0, rate, band, drag, guide in itertools.product(
+            args.dt, args.iterations, args.lower_cart, args.speeds, args.close_rate, args.band,
+            args.upper_drag, args.upper_guide):
         apparatus._FOLD_CLOSE_RATE = shipped if rate is None else rate
         apparatus._FOLD_CAPTURE = shipped_band if band is None else (band, shipped_band[1])
         cfg = fold_config(args.level, dt * 1e-3, args.clearance, mass, v0)
+        if its is not None:
+            cfg = dataclasses.replace(cfg, solver=dataclasses.replace(cfg.solver, iterations=its))
+        if guide is not None:
+            cfg = dataclasses.replace(cfg, apparatus=dataclasses.replace(
+                cfg.apparatus, upper_guide=guide))
         w0 = time.perf_counter()
         t, v, ended, mouth = trace(cfg, args.seconds, drag)
         lost = ended is not None and ended - mouth >= apparatus._CATCH_LOST
@@ -209,9 +219,10 @@ def main(argv: list[str] | None = None) -> int:
         late = (max(0.5, end - 4.0), end - 1.0)
         mean = v[(t >= 0.5) & (t < min(8.0, end))]
         s, period = growth(t, v, 0.5, end - 1.0)
-        print(f"| {dt:g} | {1e3 * cfg.carts[1].mass:g} | {cfg.apparatus.speed:g} | "
+        print(f"| {dt:g} | {cfg.solver.iterations} | {1e3 * cfg.carts[1].mass:g} | "
+              f"{cfg.apparatus.speed:g} | "
               f"{apparatus._FOLD_CLOSE_RATE:g} | {apparatus._FOLD_CAPTURE[0]:g} | {drag:g} | "
-              f"{'-' if ended is None else f'{ended:.2f}'} | "
+              f"{cfg.apparatus.upper_guide} | {'-' if ended is None else f'{ended:.2f}'} | "
               f"{f'{mouth:.2f}' if lost else '-'} | "
               f"{float(np.mean(mean)) if len(mean) else math.nan:.3f} | "
               f"{swing(t, v, 0.5, 3.5):.3f} | {swing(t, v, *late):.3f} | {s:+.3f} | "
