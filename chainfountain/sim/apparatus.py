@@ -399,11 +399,11 @@ class Apparatus:
         off = rho + _CLEAR + _WALL_R
         ch = Channel(ch_pts)
         self.upper_guided = a.upper_guide == "joints"
+        """The upper channel is a frictionless joint guide (:attr:`up_guide`); its walls
+        are drawn only."""
         if self.upper_guided and a.plate != "groove":  # the level check says so too
             raise ValueError("apparatus.upper_guide: 'joints' needs apparatus.plate = 'groove' "
                              f"(it is {a.plate!r}); allowed: 'walls' with a 'contact' plate")
-        """The upper channel is a frictionless joint guide (:attr:`up_guide`); its walls
-        are drawn only."""
         for w in ch.walls(off):
             self.walls += _static_polyline(space, w, _WALL_R, add=not self.upper_guided)
         self.channel_up = ch_pts

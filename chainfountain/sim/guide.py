@@ -216,6 +216,8 @@ class GuideElement:
             return th > self.th1 if self.ccw else th < self.th1
         (ax, ay), (bx, by) = self.a, self.b
         tx, ty = bx - ax, by - ay
+        if not before:
+            return (x - ax) * tx + (y - ay) * ty > tx * tx + ty * ty
         ln = math.hypot(tx, ty)
         return (x - ax) * tx + (y - ay) * ty > ln * (ln - before)
 
