@@ -408,7 +408,8 @@ class Apparatus:
             self.walls += _static_polyline(space, w, _WALL_R, add=not self.upper_guided)
         self.channel_up = ch_pts
         self.up_guide: list[GuideElement] = (
-            upper_guide(H, a.xi2, self.alpha0, self.R_up, 0.1) if self.upper_guided else [])
+            upper_guide(H, a.xi2, self.alpha0, a.channel_radius, 0.1) if self.upper_guided
+            else [])
         self._uq: list[deque[tuple[Link, pymunk.Constraint]]] = [
             deque() for _ in self.up_guide]
         """Upper joint guide: links held by each element (most downstream first)."""

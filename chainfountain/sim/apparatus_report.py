@@ -142,6 +142,7 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
         else:  # external force on the end link, like a contact
             contacts[0, 0] += app.end_pull * dt
     F = joint_forces(pre, post, chain.mass, dt, app.g, n - 1, contacts)
+    ten, _ = signed_tension(F, post, n - 1)
     L = app.L
     u = np.column_stack((np.cos(post.angle), np.sin(post.angle)))
     back = post.position - 0.5 * L * u
@@ -150,7 +151,6 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
     gaps = np.linalg.norm(back[:-1] - front[1:], axis=1)
     d0 = np.hypot(J[:, 0], J[:, 1])
     j0 = int(np.argmin(d0))
-    ten, _ = signed_tension(F, post, n - 1)
     if app.fold_guided and k > 0:
         jE = k - 1  # the last guided link: the mouth of the joint guide
     elif app.end_mode == "absorbing" and app.floor_depth > 0:

@@ -62,14 +62,21 @@ class Channel:
         return p + offset * nrm, p - offset * nrm
 
 
+def _upper_bend(H: float, xi2: float, alpha0: float,
+                R: float) -> tuple[float, float, float, float]:
+    """The upper channel's rise, bend radius actually used (at most ``R``), straight
+    length and horizontal run from the bend's start to the fountain start (m)."""
+    rise = xi2 * H
+    R = min(R, rise / (1.0 - math.cos(alpha0))) if rise > 0 else 0.0
+    S = (rise - R * (1.0 - math.cos(alpha0))) / math.sin(alpha0)
+    return rise, R, S, R * math.sin(alpha0) + S * math.cos(alpha0)
+
+
 def upper_channel(H: float, xi2: float, alpha0: float, R: float, lead: float,
                   step: float) -> tuple[np.ndarray, float]:
     """Centre line from the plate end to the start (0, 0): horizontal lead, bend up to
     ``alpha0``, straight. Returns the points and the bend radius actually used."""
-    rise = xi2 * H
-    R = min(R, rise / (1.0 - math.cos(alpha0))) if rise > 0 else 0.0
-    S = (rise - R * (1.0 - math.cos(alpha0))) / math.sin(alpha0)
-    run = R * math.sin(alpha0) + S * math.cos(alpha0)
+    rise, R, S, run = _upper_bend(H, xi2, alpha0, R)
     x0 = -run - lead
     pts = [np.array([[x0, -rise]])]
     p, x, y = _line(x0, -rise, 0.0, lead, step)
@@ -87,13 +94,12 @@ def upper_channel(H: float, xi2: float, alpha0: float, R: float, lead: float,
 
 def upper_guide(H: float, xi2: float, alpha0: float, R: float,
                 lead: float) -> list[GuideElement]:
-    """The pieces of the upper channel's centre line (:func:`upper_channel`, same
-    ``R`` as it returned) as joint-guide elements, chain direction: the horizontal
-    lead, the bend up to ``alpha0`` (centre above the lead) and the straight to the
-    fountain start ``(0, 0)``."""
-    rise = xi2 * H
-    S = (rise - R * (1.0 - math.cos(alpha0))) / math.sin(alpha0)
-    xb = -(R * math.sin(alpha0) + S * math.cos(alpha0))
+    """The pieces of the upper channel's centre line (:func:`upper_channel` with the
+    same arguments) as joint-guide elements, chain direction: the horizontal lead, the
+    bend up to ``alpha0`` (centre above the lead) and the straight to the fountain
+    start ``(0, 0)``."""
+    rise, R, S, run = _upper_bend(H, xi2, alpha0, R)
+    xb = -run
     out = [GuideElement("line", (xb - lead, -rise), (xb, -rise))]
     if R > 0:
         c = (xb, -rise + R)
