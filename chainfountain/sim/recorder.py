@@ -114,7 +114,12 @@ class Recorder:
             lo = app.lower
             roller = (app.upper.x, app.upper.speed, lo.x if lo else float("nan"),
                       lo.speed if lo else float("nan"))
-            self._raw.append(("apparatus", sim.time, pre.velocity, post, contacts, roller))
+            pivots = None
+            if app.fold_guided:  # joint force sizes, for the lower guide's correction
+                pivots = np.array([abs(lk.up_joint.impulse) if lk.up_joint is not None
+                                   else np.nan for lk in sim.chain.links]) / sim.dt
+            self._raw.append(("apparatus", sim.time, pre.velocity, post, contacts, roller,
+                              pivots))
             return
         end_force = sim.feed.end_force
         if end_force is not None:  # the floor's pull is an external force on link 0
@@ -152,12 +157,13 @@ class Recorder:
         return self._ap_samples
 
     def _analyse_apparatus(self, t: float, pre_vel: np.ndarray, post: ChainState,
-                           contacts: np.ndarray, roller: tuple) -> None:
+                           contacts: np.ndarray, roller: tuple,
+                           pivots: np.ndarray | None) -> None:
         from chainfountain.sim.apparatus_report import analyse
 
         sim = self.sim
         s, prof = analyse(sim.apparatus, t, pre_vel, post, contacts, sim.dt,
-                          sim.chain.cfg.linear_density, roller)
+                          sim.chain.cfg.linear_density, roller, pivots)
         self._ap_samples.append(s)
         sp = prof["speed"]
         self._samples.append(Sample(
