@@ -228,11 +228,10 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
             # the upper guide's joint impulses are not among the contacts either (and
             # have horizontal parts on its bend and straight): sum from the upstream
             # end instead, the resting chain, whose table and roller contacts are all
-            # recorded (F_j = -(momentum change of the links beyond joint j) / dt)
-            imp = chain.mass * (post.velocity - pre_vel)
-            imp[:, 1] += chain.mass * app.g * dt
-            imp -= contacts
-            Fu = -np.cumsum(imp[::-1], axis=0)[::-1][1:] / dt
+            # recorded (F_j = -(momentum change of the links beyond joint j) / dt: the
+            # sum over all links less the sum up to j)
+            Fall = joint_forces(pre, post, chain.mass, dt, app.g, n, contacts)
+            Fu = Fall[:-1] - Fall[-1]
         T_up = float(np.mean(-Fu[max(k - 2, 0):min(k + 3, len(Fu)), 0])) / scale
     else:
         T_up = at(xu + 6 * L, app.y_up)
