@@ -188,7 +188,8 @@ _FOLD_DT_MIN = 3.5e-4
 """'fold': smallest solver step (s) at which this model's fold was measured to hold.
 The fold is not converged in the step: ``apparatus_fold`` and ``apparatus_special``
 hold for 3 s at dt 0.35-0.5 ms, lose their folding roller at about 2.1 s at 0.25 ms
-and within 0.2 s at 0.1 ms (docs/apparatus.md, "Twelfth session"); the put-down rig
+(``apparatus_special`` with its joint guide: at 0.65 s) and within 0.2 s at 0.1 ms
+(docs/apparatus.md, "Twelfth session", "Twentieth session"); the put-down rig
 alone is converged down to 0.03 ms. With ``fold_clearance = 0`` only: the cause is the
 folding roller locking between the plate grooves and the table ("Thirteenth session")."""
 _HELD = 0.1
@@ -880,7 +881,8 @@ class Apparatus:
         side), '' otherwise (or before any link entered: nothing to compare). It states
         the order, not a cause. Measured (docs/apparatus.md, "Seventeenth session"): the
         catch is lost 1.0-1.3 s before the folding roller rolls back in
-        ``apparatus_special`` (starts 2.97-3.06 m/s), 0.47 s before in ``apparatus_limit``."""
+        ``apparatus_special`` (starts 2.97-3.06 m/s, the channel's walls; 1.13 s with the
+        joint guide from 3.0 m/s), 0.47 s before in ``apparatus_limit``."""
         if (not self.fold_guided or self._mouth_t is None
                 or self._t - self._mouth_t < _CATCH_LOST):
             return ""
@@ -910,8 +912,10 @@ class Apparatus:
                 f"{push:.2f} lambda*v^2 at that speed): in this model the landing swing "
                 "(period 2-3 s) grows until the fold fails. A lower cart a few grams "
                 "lighter or heavier, a start 2 % faster or slower, a stiffer catch or longer "
-                "strands only move the failure (7-23 s for apparatus_special at solver.dt "
-                "0.5 ms; docs/apparatus.md, 'Fifteenth session')." + self._catch_note())
+                "strands only move the failure (5.5-18.3 s for apparatus_special at "
+                "solver.dt 0.5 ms, 6.7-22.5 s with the upper channel's walls; "
+                "docs/apparatus.md, 'Fifteenth session', 'Twentieth session')."
+                + self._catch_note())
 
     # ------------------------------------------------------------------ treadmill
     def travel(self, i: int) -> float:
