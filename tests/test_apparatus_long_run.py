@@ -5,9 +5,9 @@ runs out, and a classroom run may go on for as long as the window is open. In th
 it does not go on for ever (fifteenth session, docs/apparatus.md): the chain speed
 carries an oscillation of period about 2.1 s (the landing swing: the fountain stores and
 gives back up to 12 links, its vertex moves between 0.08 and 0.19 m; measured with the
-channel's walls) whose amplitude grows until the folding roller loses the chain. The collapse message used to blame a
-missing push ("raise the lower cart mass", read at the run-away speed); it now says how
-long the fold held and how large the swing had grown.
+channel's walls) whose amplitude grows until the folding roller loses the chain. The
+collapse message used to blame a missing push ("raise the lower cart mass", read at the
+run-away speed); it now says how long the fold held and how large the swing had grown.
 
 Twentieth session: the preset's upper channel is now a joint guide, and this is its
 run (``chainfountain run apparatus_special --duration 25``): 3.020 m/s over 0.5-8 s, the
