@@ -38,18 +38,21 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from chainfountain.theory.catenary import s_of_x, x_of_y, y_of_x
 from chainfountain.theory.constants import G0
 
 
 def stored_length(a: float, theta: float, H: float) -> float:
-    """Chain stored in a catenary fountain of parameter ``a`` (m) leaving at ``theta``
-    (rad above the horizontal) and ending ``H`` below its start: ``a tan(theta)`` up to
-    the vertex, ``a sinh(u)`` down to the end, ``cosh(u) = 1 + (a (1/cos(theta) - 1) +
-    H)/a`` (the vertex stands ``a (1/cos(theta) - 1)`` above the start)."""
+    """Chain stored in a catenary fountain of parameter ``a = 1/q`` (m) leaving at
+    ``theta`` (rad above the horizontal) and ending ``H`` below its start: the arc of
+    Eq. (func_graph) (:mod:`chainfountain.theory.catenary`) from the point of slope
+    ``tan(theta)`` over the vertex to the falling branch ``H`` lower."""
     if a <= 0.0 or not 0.0 < theta < 0.5 * math.pi or H < 0.0:
         raise ValueError(f"need a > 0, 0 < theta < pi/2, H >= 0 (got {a}, {theta}, {H})")
-    u = math.acosh(1.0 + (a * (1.0 / math.cos(theta) - 1.0) + H) / a)
-    return a * math.tan(theta) + a * math.sinh(u)
+    q = 1.0 / a
+    x0 = -math.asinh(math.tan(theta)) / q
+    x1 = float(x_of_y(float(y_of_x(x0, q)) - H, q, side=1))
+    return float(s_of_x(x1, q) - s_of_x(x0, q))
 
 
 def fountain_spring(a: float, theta: float, H: float, lam: float, g: float = G0) -> float:
