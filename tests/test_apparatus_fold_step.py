@@ -10,7 +10,8 @@ run ends at 2.1 s, and at 0.1 ms it ends at 0.16 s (twentieth session, with the 
 channel a joint guide: holds at 0.35-0.5 ms with ``v_R/v`` 0.501, ends at 0.65 s at
 0.25 ms and at 0.16 s at 0.1 ms; ``fold_step_study.py --only special --dt 0.5 0.4 0.35
 0.25 0.1 --seconds 3``); ``apparatus_fold`` behaves the same
-(holds at 0.35-0.5 ms, ends at 2.08 s at 0.25 ms). So the fold presets' balances (the
+(holds at 0.35-0.5 ms, ends at 2.08 s at 0.25 ms; with the joint guide since the
+twentieth session: holds at 0.35 ms, ends at 1.96 s at 0.25 ms). So the fold presets' balances (the
 58 g and 41 g lower carts) hold at their 0.5 ms step only. The passing test pins that a
 collapse at a small step says so (instead of advising a heavier cart); the strict
 expected failure is the converged fold. docs/apparatus.md, "Twelfth session".
