@@ -11,7 +11,7 @@ mean vertex height over 1 s to the end (the catenary parameter ``a = h/(1/cos(th
 1)``, hence the fountain's spring ``K``). Then prints
 :func:`chainfountain.theory.swing.swing_mode` for the paper's rig laws (``p = d =
 1/2``) and for this model's (the pick-up's ``lambda v^2``-part ``p`` = 0.23 from
-``PICKUP_RIG_2CM``'s slope at 3 m/s or 0.28 from the zero-force fit over 2-5 m/s; the
+``PICKUP_RIG_2CM``'s slope at the run's speed or 0.28 from the zero-force fit over 2-5 m/s; the
 put-down's ``d`` = 0.13 from ``PUTDOWN_RIG_2CM`` taken to scale as ``lambda v^2``, which
 was measured at 3 m/s only), with and without the seventeenth session's measured lag of
 the launch tension (0.039 s). What the simulation measured for ``apparatus_special``
@@ -31,10 +31,23 @@ import numpy as np
 
 from chainfountain.level import io, library
 from chainfountain.sim import Recorder, Simulation
+from chainfountain.sim.apparatus import PICKUP_RIG_2CM, PUTDOWN_RIG_2CM
 from chainfountain.theory.swing import fountain_spring, swing_mode
 
 MEASURED_LAG = 0.039
 """Lag of the launch tension behind the stored chain (s), seventeenth session."""
+PICKUP_ZERO_FORCE_P = 0.28
+"""``lambda v^2``-part of the pick-up's exit tension from the zero-force rig runs at
+2.0-5.0 m/s (``0.28 + 0.0175 N/(lambda v^2)``, docs/apparatus.md, "Rig law for the
+presets' links")."""
+
+
+def pickup_p(v: float) -> float:
+    """``(dT_exit/dv)/(2 lambda v)`` from :data:`PICKUP_RIG_2CM` (``p`` linear in ``v``):
+    ``p(v) + v p'(v)/2``."""
+    (va, pa), (vb, pb) = PICKUP_RIG_2CM
+    slope = (pb - pa) / (vb - va)
+    return pa + slope * (v - va) + 0.5 * v * slope
 
 
 def _moving(sim: Simulation, v: float) -> tuple[float, float]:
@@ -91,9 +104,10 @@ def main(argv: list[str] | None = None) -> int:
     print("| rig laws | p | d | lag s | period s | growth 1/s | speed selection 1/s "
           "| abs(dv1/dv2) | phase deg |")
     print("|---|---|---|---|---|---|---|---|---|")
-    rows = [("paper", 0.5, 0.5), ("this model's (pick-up slope)", 0.23, 0.13),
-            ("this model's (pick-up zero-force fit)", 0.28, 0.13),
-            ("pick-up 0.28, paper's put-down", 0.28, 0.5)]
+    p_rig, p0, d_rig = round(pickup_p(v), 2), PICKUP_ZERO_FORCE_P, PUTDOWN_RIG_2CM[0]
+    rows = [("paper", 0.5, 0.5), ("this model's (pick-up slope)", p_rig, d_rig),
+            ("this model's (pick-up zero-force fit)", p0, d_rig),
+            (f"pick-up {p0}, paper's put-down", p0, 0.5)]
     for name, p, d in rows:
         for lag in (0.0, MEASURED_LAG):
             s = swing_mode(m1, m2, K, lam, v, p=p, d=d, delay=lag)
