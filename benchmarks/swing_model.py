@@ -72,7 +72,11 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--level", default="apparatus_special", help="a 'fold' level name or path")
     ap.add_argument("--seconds", type=float, default=3.0)
     args = ap.parse_args(argv)
-    level = io.load(library.resolve(args.level))
+    try:
+        level = io.load(library.resolve(args.level))
+    except io.LevelError as exc:
+        print(f"--level: {exc}", file=sys.stderr)
+        return 2
     cfg = level.sim
     if cfg.kind != "apparatus" or cfg.apparatus.variant != "fold":
         print(f"--level: {args.level!r} is not a 'fold' apparatus level", file=sys.stderr)
