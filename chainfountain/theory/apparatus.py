@@ -19,6 +19,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
 from chainfountain.theory.constants import G0
 
 
@@ -112,3 +114,48 @@ def limit_case_xi3(k: float, H: float) -> float:
     """``xi3 = 1/(2*k*H)`` of the limit case ``k = k_max``, ``Tbar_lc = 0``
     (then ``Tbar_E = 0``)."""
     return 1.0 / (2.0 * k * H)
+
+
+def referred_mass(strand_mass: float, carriage_mass: float, roller_mass: float) -> float:
+    """Mass of a pick-up strand with its roller unit, referred to the chain speed ``v``.
+
+    Not in the paper. The carriage (cart included) and the roller move at ``v/2``
+    (alpha = 0) and the roller, a uniform disc of radius ``r``, turns at ``v/(2 r)``, so
+    their kinetic energy is ``(v**2/2)*((m_c + m_r)/4 + m_r/8)`` beside the strand's
+    ``M*v**2/2``. ``strand_mass`` is the chain the roller drives along a fixed path: in
+    the apparatus the links between the pick-up and the fountain start; the chain in
+    flight is not on a fixed path and does not take part (``docs/apparatus.md``,
+    "Unbalanced carts")."""
+    for name, m in (("strand_mass", strand_mass), ("carriage_mass", carriage_mass),
+                    ("roller_mass", roller_mass)):
+        if not m >= 0.0:
+            raise ValueError(f"{name} = {m!r}: must be >= 0 kg")
+    return strand_mass + 0.25 * (carriage_mass + roller_mass) + 0.125 * roller_mass
+
+
+def cart_step_speed(t: float | np.ndarray, dF: float, mass: float, gain: float = 0.5,
+                    drag: float = 0.0) -> float | np.ndarray:
+    """Change of the chain speed a time ``t`` after the upper cart's force steps by ``dF``.
+
+    Not in the paper. Linear response of ``mass * d(dv)/dt = -gain*dF - drag*dv``
+    (``mass`` from :func:`referred_mass`), against the same run without the step:
+
+    - ``gain = 1/2`` is the energy balance of an ideal rolling pulley: the cart is
+      lifted at ``v_R = v/2``, so it takes the power ``F*v/2`` from the chain;
+    - ``gain = 1`` is the paper's momentum law ``Tbar_0 = 1/2 + Tbar_uc + ...``;
+    - ``drag = d(T_pickup)/dv`` is the rise of the pick-up's own tension with speed
+      (``lambda*v`` for the paper's ``lambda*v**2/2``).
+
+    Returns ``-(gain*dF/drag)*(1 - exp(-drag*t/mass))``, or ``-gain*dF*t/mass`` when
+    ``drag = 0``.
+    """
+    if not mass > 0.0:
+        raise ValueError(f"mass = {mass!r}: must be > 0 kg")
+    if not drag >= 0.0:
+        raise ValueError(f"drag = {drag!r}: must be >= 0 N s/m")
+    t = np.asarray(t, dtype=float)
+    if drag == 0.0:
+        out = -gain * dF * t / mass
+    else:
+        out = -(gain * dF / drag) * -np.expm1(-drag * t / mass)
+    return float(out) if out.ndim == 0 else out
