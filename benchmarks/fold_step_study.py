@@ -135,7 +135,7 @@ def rig_row(dt: float, push: float = 0.4, feed: str = "free", clearance: float =
                     solver=sol, feed=feed, clearance=clearance)
     r = run_rig(cfg, duration=1.5, settle=0.5)
     return (f"| {feed} | {1e3 * clearance:g} | {push:g} | {dt * 1e3:g} | {iterations} | "
-            f"{r.speed:.3f} | {r.roller_ratio:.3f} | {r.force_bar:.3f} |")
+            f"{r.speed:.3f} | {r.roller_ratio:.3f} | {r.force_bar:.3f} | {r.pivot_bar:.3f} |")
 
 
 
@@ -176,8 +176,8 @@ def main(argv: list[str] | None = None) -> int:
     args = ap.parse_args(argv)
     if args.rig:
         print("| feed | clearance mm | push | dt ms | iterations | chain m/s | v_R/v "
-              "| entry Tbar |")
-        print("|---|---|---|---|---|---|---|---|")
+              "| entry Tbar (contacts) | entry Tbar (pivots) |")
+        print("|---|---|---|---|---|---|---|---|---|")
         for it in args.iterations:
             for dt in args.dt:
                 print(rig_row(dt * 1e-3, args.push, args.feed, args.clearance or 0.0, it),

@@ -25,7 +25,6 @@ import argparse
 import math
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
 
@@ -50,8 +49,9 @@ def rig_2cm(mode: str, forces: tuple[float, ...], v: float = 3.0, iterations: in
     from chainfountain.sim.config import SolverConfig
 
     word = "exit" if mode == "pickup" else "entry"
-    print(f"| Fbar_c | chain speed m/s | v_R/v | Tbar {word} | halves |")
-    print("|---|---|---|---|---|")
+    print(f"| Fbar_c | chain speed m/s | v_R/v | Tbar {word} (pivots) | halves | "
+          "from contacts |")
+    print("|---|---|---|---|---|---|")
     fit = []
     ch = ChainConfig(link_length=0.02, linear_density=LAM, friction=0.6, link_radius=0.002)
     sol = SolverConfig(dt=0.0005, iterations=iterations, joint_error_bias=1e-10,
@@ -62,13 +62,13 @@ def rig_2cm(mode: str, forces: tuple[float, ...], v: float = 3.0, iterations: in
         cfg = RigConfig(mode=mode, speed=v, cart_force=F, chain=ch, solver=sol, **extra)
         r = run_rig(cfg, duration=duration, settle=0.25 if mode == "pickup" else 0.5)
         h = len(r.t) // 2
-        halves = [float(np.mean(r.force[s])) / (LAM * float(np.mean(np.abs(r.v[s]))) ** 2)
+        halves = [float(np.mean(r.pivot_force[s])) / (LAM * float(np.mean(np.abs(r.v[s]))) ** 2)
                   for s in (slice(0, h), slice(h, None))]
-        print(f"| {f:.2f} | {r.speed:.3f} | {r.roller_ratio:.3f} | {r.force_bar:.3f} | "
-              f"{halves[0]:.3f} / {halves[1]:.3f} |")
+        print(f"| {f:.2f} | {r.speed:.3f} | {r.roller_ratio:.3f} | {r.pivot_bar:.3f} | "
+              f"{halves[0]:.3f} / {halves[1]:.3f} | {r.force_bar:.3f} |")
         sys.stdout.flush()
         if f >= fit_from - 1e-9:
-            fit.append((f, r.force_bar))
+            fit.append((f, r.pivot_bar))
     if len(fit) >= 2:
         G, c = np.polyfit([x for x, _ in fit], [y for _, y in fit], 1)
         print(f"\nTbar = {c:.3f} + {G:.3f}*Fbar_c (Fbar_c >= {fit_from:g})")
@@ -97,8 +97,8 @@ def main(argv: list[str] | None = None) -> int:
     t0 = time.perf_counter()
     rows = []
     print("| mode | alpha deg | cart F/(lambda v^2) | L mm | v_R/v | paper v_R/v | "
-          "F/(lambda v^2) | paper | lossless |")
-    print("|---|---|---|---|---|---|---|---|---|")
+          "F/(lambda v^2) (pivots) | from contacts | paper | lossless |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     runs = [("pickup", a, 0.0, 0.01) for a in (0, 45, 90)]
     runs += [("pickup", a, 0.0, 0.005) for a in (0, 90)]
     runs += [("pickup", 0, f, 0.01) for f in (0.2, 0.5)]
@@ -107,9 +107,9 @@ def main(argv: list[str] | None = None) -> int:
         r = one(mode, a, f, L)
         ca = math.cos(math.radians(a))
         paper = 1.0 / (1.0 + ca) if mode == "pickup" else 0.5
-        rows.append((mode, a, f, L, r.roller_ratio, r.force_bar, paper))
+        rows.append((mode, a, f, L, r.roller_ratio, r.pivot_bar, paper))
         print(f"| {mode} | {a} | {f:.1f} | {L * 1e3:.0f} | {r.roller_ratio:.3f} | "
-              f"{1 / (1 + ca):.3f} | {r.force_bar:.3f} | {paper:.3f} | "
+              f"{1 / (1 + ca):.3f} | {r.pivot_bar:.3f} | {r.force_bar:.3f} | {paper:.3f} | "
               f"{lossless_bar(mode, math.radians(a), f):.3f} |")
         sys.stdout.flush()
     print(f"\nwall {time.perf_counter() - t0:.0f} s")
@@ -141,6 +141,8 @@ def main(argv: list[str] | None = None) -> int:
     ax = axs[1]
     fs = np.linspace(0, 0.5, 10)
     ax.plot(fs, 0.5 + fs, "--", color="#d62728", label="paper: 1/2 + F_c (put-down)")
+    ax.plot(fs, [lossless_bar("pickup", 0.0, f) for f in fs], ":", color="k",
+            label="energy balance, no loss, 0 deg: 1/4 + F_c/2")
     for mode, marker, col in (("pickup", "o", "#1f77b4"), ("putdown", "^", "#2ca02c")):
         for a in (0, 45, 90):
             pts = [(f, fb) for m, aa, f, L, _, fb, _ in rows if m == mode and aa == a
@@ -150,13 +152,15 @@ def main(argv: list[str] | None = None) -> int:
                 ax.plot(x, y, marker + "-", color=col, alpha=0.4 + a / 180,
                         label=f"sim {mode} {a} deg")
     ax.set_xlabel("cart force F_c / (lambda v^2)")
-    ax.set_ylabel("strand tension / (lambda v^2)")
+    ax.set_ylabel("strand tension / (lambda v^2), pivots")
     ax.set_title("with a cart force on the roller", fontsize=9)
     ax.legend(fontsize=7)
     ax.grid(alpha=0.3)
     fig.tight_layout()
-    Path(args.out).parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(args.out)
+    from chainfountain.atomic import atomic_path
+
+    with atomic_path(args.out) as tmp:
+        fig.savefig(tmp)
     print(f"wrote {args.out}")
     return 0
 

@@ -1,19 +1,24 @@
 """Pick-up and put-down by a roller rolling on a resting chain (paper section
 "Pick-Up and Pull-Down Forces"), measured with :mod:`chainfountain.sim.pickup`.
 
-What is asserted is the measured law (see ``docs/apparatus.md``), not a fit:
+What is asserted is the measured law (see ``docs/apparatus.md``), not a fit. The strand
+tension is read from the solver's pivot impulses (:attr:`RigResult.pivot_bar`): the
+reading summed through the contacts (:attr:`RigResult.force_bar`) carries pymunk's stale
+impulses of contacts that touch again, which made a cart force look fully passed on
+until the twenty-first session (``test_contact_reading_is_biased_by_retouching_contacts``).
 
 - roller speed ``v_R = v/(1 + cos(alpha))`` (paper) within 3 %;
 - pick-up force: equals the paper's ``lambda*v^2/(1 + cos(alpha))`` only at
   alpha = 90 deg (within 10 %); at 0 and 45 deg it is close to the loss-free
   energy balance (:func:`lossless_bar`, about half the paper's value) and far
-  below the paper. The remaining excess at 0 deg (about +10 % with 1 cm links
-  on a 3 cm roller) shrinks with the link length;
-- a cart force ``F_c`` on the roller raises the strand tension by ``F_c``
-  (slope 1 within 10 %), as the paper assumes, not by the power-balance
-  ``F_c*v_R/v``;
-- put-down needs a forward push; extrapolated to zero push it gives about a
-  quarter of ``lambda*v^2``, not the paper's half.
+  below the paper. The remaining excess at 0 deg (about +13 % with 1 cm links
+  on a 3 cm roller, +9 % with 5 mm links) shrinks with the link length;
+- a cart force ``F_c`` on the roller raises the strand tension by ``F_c*v_R/v =
+  F_c/2`` (slope 1/2 within 10 %), the loss-free power balance, not by ``F_c`` as the
+  paper assumes;
+- put-down needs a forward push; extrapolated to zero push it gives a quarter of
+  ``lambda*v^2`` (the loss-free energy balance), not the paper's half, and at 0, 45
+  and 90 deg it follows the loss-free energy balance within 5 %.
 """
 
 from __future__ import annotations
@@ -49,32 +54,64 @@ def test_pickup_roller_speed_is_paper_kinematics(alpha: float) -> None:
 
 def test_pickup_force_at_90_deg_matches_paper() -> None:
     r = rig("pickup", 90.0)
-    assert r.force_bar == pytest.approx(r.paper_bar, rel=0.10)
+    assert r.pivot_bar == pytest.approx(r.paper_bar, rel=0.10)
 
 
 @pytest.mark.parametrize("alpha,tol", [(0.0, 0.15), (45.0, 0.10)])
 def test_pickup_force_below_paper_near_energy_balance(alpha: float, tol: float) -> None:
     r = rig("pickup", alpha)
     a = math.radians(alpha)
-    assert r.force_bar < 0.7 * r.paper_bar  # the paper's law is off by far more than 10 %
-    assert r.force_bar == pytest.approx(lossless_bar("pickup", a), rel=tol)
+    assert r.pivot_bar < 0.7 * r.paper_bar  # the paper's law is off by far more than 10 %
+    assert r.pivot_bar == pytest.approx(lossless_bar("pickup", a), rel=tol)
 
 
-def test_cart_force_adds_fully_to_the_tension() -> None:
+def test_cart_force_adds_half_to_the_tension() -> None:
+    """The power balance of a rolling pulley: the cart is pulled at ``v_R = v/2``, so the
+    strand pays ``F_c*v_R`` (measured slope 0.49; the paper's 1 is off by half)."""
     base, pulled = rig("pickup", 0.0), rig("pickup", 0.0, 0.5)
-    slope = (pulled.force_bar - base.force_bar) / 0.5
-    assert slope == pytest.approx(1.0, rel=0.10)
+    slope = (pulled.pivot_bar - base.pivot_bar) / 0.5
+    assert slope == pytest.approx(0.5, rel=0.10)
     assert pulled.roller_ratio == pytest.approx(0.5, rel=0.03)
 
 
-def test_putdown_needs_push_and_gives_about_a_quarter() -> None:
+def test_putdown_needs_push_and_gives_a_quarter() -> None:
     lo, hi = rig("putdown", 0.0, 0.1), rig("putdown", 0.0, 0.5)
     for r in (lo, hi):
         assert r.roller_ratio == pytest.approx(0.5, rel=0.03)
-    slope = (hi.force_bar - lo.force_bar) / 0.4
-    intercept = lo.force_bar - 0.1 * slope
-    assert 0.1 < intercept < 0.4  # paper: 0.5; loss-free energy balance: 0.25
-    assert 0.7 < slope < 1.3
+    slope = (hi.pivot_bar - lo.pivot_bar) / 0.4
+    intercept = lo.pivot_bar - 0.1 * slope
+    # paper: 0.5 + F_c; loss-free energy balance: 0.25 + F_c/2 (measured 0.244 + 0.50 F_c)
+    assert intercept == pytest.approx(0.25, rel=0.15)
+    assert slope == pytest.approx(0.5, rel=0.10)
+
+
+@pytest.mark.parametrize("alpha", [0.0, 45.0, 90.0])
+def test_putdown_follows_the_energy_balance(alpha: float) -> None:
+    """Measured 0.402 / 0.536 / 1.331 against 0.400 / 0.519 / 1.300 at ``F_c = 0.3``."""
+    r = rig("putdown", alpha, 0.3)
+    assert r.pivot_bar == pytest.approx(lossless_bar("putdown", math.radians(alpha), 0.3),
+                                        rel=0.05)
+
+
+def test_contact_reading_is_biased_by_retouching_contacts() -> None:
+    """Why the reading through the contacts is not used. pymunk keeps a contact that
+    stops touching for ``collision_persistence`` steps (3); when it touches again, its
+    accumulated impulse starts from the old value, which was not applied in this step
+    (no warm start on a first contact) but is reported by ``Arbiter.total_impulse``.
+    With a cart pressing the roller, links touch the roller again and again: the reading
+    through the contacts overstates the strand tension (0.78 against 0.53 at ``F_c =
+    0.5``). With ``collision_persistence = 1`` no contact is kept and both readings
+    agree."""
+    from chainfountain.sim.pickup import RollerRig
+
+    r = rig("pickup", 0.0, 0.5)
+    assert r.force_bar - r.pivot_bar > 0.1
+    cfg = RigConfig(mode="pickup", speed=V, cart_force=0.5 * LAM * V * V, rest_length=2.0)
+    one = RollerRig(cfg)
+    one.space.collision_persistence = 1
+    r1 = one.run(0.6, settle=0.25)
+    assert r1.force_bar == pytest.approx(r1.pivot_bar, abs=0.03)
+    assert r1.pivot_bar == pytest.approx(r.pivot_bar, abs=0.03)
 
 
 def test_rig_refuses_to_run_out_of_chain() -> None:

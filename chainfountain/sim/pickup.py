@@ -387,7 +387,8 @@ class RollerRig:
         n_steps = int(round(duration / self.dt))
         m = self.chain.mass
         ex, ey = self.e
-        F, V, VR, ALPHA, T = [], [], [], [], []
+        F, V, VR, ALPHA, T, PIV = [], [], [], [], [], []
+        links = self.chain.links
         for _ in range(n_steps):
             sample = self.time >= settle and (self.steps + 1) % every == 0
             if sample:
@@ -420,6 +421,10 @@ class RollerRig:
                 self._bookkeeping()
                 continue
             F.append(float(np.mean(ten[sel])))
+            # the same joints' force from the solver's pivot impulses (no contact in between)
+            PIV.append(float(np.mean([abs(links[j].up_joint.impulse)
+                                      for j in np.flatnonzero(sel)
+                                      if links[j].up_joint is not None])) / self.dt)
             lsel = instrand & (d > 0.2 * self.cfg.strand) & (d < 0.8 * self.cfg.strand)
             vel = post.velocity[:nd][lsel]
             V.append(float(np.mean(vel[:, 0] * ex + vel[:, 1] * ey)))
@@ -430,7 +435,8 @@ class RollerRig:
             T.append(self.time)
             self._bookkeeping()
         return RigResult(cfg=self.cfg, t=np.array(T), force=np.array(F), v=np.array(V),
-                         v_roller=np.array(VR), alpha=np.array(ALPHA))
+                         v_roller=np.array(VR), alpha=np.array(ALPHA),
+                         pivot_force=np.array(PIV))
 
 
 @dataclass
@@ -445,6 +451,11 @@ class RigResult:
     """Chain speed along the strand (signed: + leaving, - arriving)."""
     v_roller: np.ndarray
     alpha: np.ndarray
+    pivot_force: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    """The same joints' force from the solver's pivot impulses (N). Unlike :attr:`force`
+    it involves no contact impulse: pymunk reports a stale accumulated impulse for a
+    contact that touches again within its persistence window (``docs/apparatus.md``,
+    "Contact impulses"), which biases :attr:`force` when a cart presses the roller."""
 
     @property
     def speed(self) -> float:
@@ -455,6 +466,12 @@ class RigResult:
         """Mean exit force over ``lambda*v**2`` (v: measured mean chain speed)."""
         lam = self.cfg.chain.linear_density
         return float(np.mean(self.force)) / (lam * self.speed**2)
+
+    @property
+    def pivot_bar(self) -> float:
+        """Mean of :attr:`pivot_force` over ``lambda*v**2``."""
+        lam = self.cfg.chain.linear_density
+        return float(np.mean(self.pivot_force)) / (lam * self.speed**2)
 
     @property
     def roller_ratio(self) -> float:
