@@ -97,6 +97,8 @@ def run(args: argparse.Namespace) -> int:
     print(f"  bottom  xi3 = {s.xi3:.4f}  ({d.bottom_rise:.4g} m above the fountain end)")
     print(f"  upper cart Tbar_uc = {s.T_uc:.4f} -> {d.m_uc:.4g} kg on a {args.slope:g} deg track")
     print(f"  lower cart Tbar_lc = {s.T_lc:.4f} -> {d.m_lc:.4g} kg on a {args.slope:g} deg track")
+    print(f"  (a cart passes on {d.cart_gain:g} of its force, as the simulated roller does; "
+          "the paper's carts pass on all of it and need half these masses)")
     print(f"  supplies Tbar_0 = 1/2 + Tbar_uc + xi2*k*H = {s.T0_bar:.4f}, "
           f"Tbar_E = 1/2 + Tbar_lc - xi3*k*H = {s.TE_bar:.4f}")
     print("Alternatives:")
