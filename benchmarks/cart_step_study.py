@@ -3,7 +3,8 @@
 Runs :func:`chainfountain.sim.cart_step.cart_step` on ``apparatus_floor`` (long strand,
 ``plate_links = 0``, unless ``--plate-links``) for each cart mass and prints, per window,
 the measured deceleration over the predicted one for the energy balance (gain 1/2, with
-and without the pick-up's speed dependence), the rig's steady gain and the paper's
+and without the pick-up's speed dependence), ``CART_GAIN_2CM`` (the rig read through its
+contacts, biased: ``docs/apparatus.md``, "Contact impulses") and the paper's
 momentum law (gain 1), beside the pair's tension readings. ``docs/apparatus.md``,
 "Unbalanced carts", quotes it::
 
@@ -68,7 +69,7 @@ def figure(steps: dict[float, CartStep], out: Path, title: str) -> None:
         ax.plot(s.t, s.predicted(0.5), color=col, ls="--", lw=1.0,
                 label="energy balance (gain 1/2)" if i == 0 else None)
         ax.plot(s.t, s.predicted(CART_GAIN_2CM), color=col, ls=":", lw=1.0,
-                label=f"rig's steady gain {CART_GAIN_2CM:g}" if i == 0 else None)
+                label=f"CART_GAIN_2CM {CART_GAIN_2CM:g}" if i == 0 else None)
     ax.set_xlabel("time after the cart was made heavier (s)")
     ax.set_ylabel("chain speed change (m/s)")
     ax.set_title(title, fontsize=9)

@@ -84,8 +84,9 @@ PICKUP_BAR = 0.27
 """Measured pick-up force at alpha = 0 over ``lambda*v**2`` (``docs/apparatus.md``;
 paper: 1/2, loss-free energy balance 1/4)."""
 PUTDOWN_BAR = 0.24
-"""Measured put-down force at alpha = 0 over ``lambda*v**2`` with a forward push
-(``docs/apparatus.md``; paper: 1/2)."""
+"""Measured put-down force at alpha = 0 over ``lambda*v**2`` with a forward push,
+extrapolated to no push (``docs/apparatus.md``; by pivots 0.244 + 0.50*Fbar_c, the
+loss-free 1/4 + Fbar_c/2; paper: 1/2 + Fbar_c)."""
 
 PICKUP_RIG_2CM = ((2.6, 0.331), (2.9, 0.315))
 """Pick-up force ``p`` at alpha = 0 against chain speed ``v`` (m/s), measured in the rig
@@ -95,8 +96,13 @@ friction 0.6, 20 g roller, dt 0.25 ms, 10 iterations, 2.1-s averages, cart force
 PICKUP_RIG_2CM_ERR = 0.005
 """Standard uncertainty of :data:`PICKUP_RIG_2CM` (fit, chi2/dof 1.16)."""
 CART_GAIN_2CM = 0.68
-"""Rise of the pick-up exit tension per unit cart force in the same rig fit
-(10-mm links at 5 m/s: 1.0; the paper: 1)."""
+"""Rise of the pick-up exit tension per unit cart force in the same rig fit (the paper: 1).
+Read through the rig's contact impulses, which overstate the tension under a cart
+(pymunk's stale impulses of contacts that touch again; ``docs/apparatus.md``, "Contact
+impulses"). Read by pivots the rig gives ``0.317 + 0.555*Fbar_c`` at 3 m/s over 0-0.3
+(0.64-0.68 per unit force below 0.2, 1/2 above; 10-mm links at 5 m/s: 0.49, the
+loss-free power balance). Kept for the floor presets' small cart forces, where the
+pivot-read secant agrees; to be re-fitted."""
 CART_GAIN_2CM_ERR = 0.021
 
 
@@ -105,7 +111,8 @@ PUTDOWN_RIG_2CM = (0.13, 0.78)
 (intercept ``d``, cart gain ``G_d``), fitted to rig runs at 3 m/s, dt 0.5 ms, 10
 iterations, ``Fbar_c = 0.3, 0.4, 0.5`` (2.5-s averages, about +-0.02 each;
 ``docs/apparatus.md``). Below ``Fbar_c`` of about 0.25 the roller falls behind
-and the chain piles up (not steady)."""
+and the chain piles up (not steady). Read through the rig's contact impulses, like
+:data:`CART_GAIN_2CM`; by pivots the same runs give ``0.172 + 0.618*Fbar_c``."""
 
 
 def pickup_rig_2cm(v: float) -> float:
