@@ -25,6 +25,7 @@ from chainfountain.sim.apparatus import (
     pickup_rig_2cm,
     selected_speed,
 )
+from chainfountain.theory.design import MEASURED_CART_GAIN
 
 
 @dataclass
@@ -299,18 +300,23 @@ def report(sim, rec, t0: float, t1: float) -> dict:
         Tbar_0 = 1/2 + Tbar_uc + xi2*k*H,   Tbar_E = 1/2 + Tbar_lc - xi3*k*H,
         steady: Tbar_uc = Tbar_lc + k*H*(1 - xi2 - xi3).
 
-    Measured mechanism laws (``docs/apparatus.md``, alpha = 0): pick-up
-    ``p`` = :data:`PICKUP_BAR`, put-down ``d`` = :data:`PUTDOWN_BAR`::
+    Measured mechanism laws (``docs/apparatus.md``, alpha = 0, 10-mm rig): pick-up
+    ``p`` = :data:`PICKUP_BAR`, put-down ``d`` = :data:`PUTDOWN_BAR`, cart gain
+    ``G`` = :data:`~chainfountain.theory.design.MEASURED_CART_GAIN` (1/2, the loss-free
+    power balance; until the twenty-first session 1, a biased reading)::
 
-        Tbar_0 = p + Tbar_uc + xi2*k*H,     Tbar_E = d + Tbar_lc - xi3*k*H,
-        steady: Tbar_uc = Tbar_lc + k*H*(1 - xi2 - xi3) + d - p.
+        Tbar_0 = p + G*Tbar_uc + xi2*k*H,   Tbar_E = d + G*Tbar_lc - xi3*k*H,
+        steady: Tbar_uc = Tbar_lc + (k*H*(1 - xi2 - xi3) + d - p)/G.
+
+    ``measured.pickup_p`` is ``T_exit - G*Tbar_uc`` and ``measured.putdown_d``
+    ``T_entry - G*Tbar_lc`` with that ``G``.
 
     The ``floor`` variant with ``end = "absorbing"`` has ``Tbar_E = 0``, so its
-    speed follows from ``p + Tbar_uc + xi2*k*H = k*H`` (:func:`selected_speed`); with
+    speed follows from ``p + G*Tbar_uc + xi2*k*H = k*H`` (:func:`selected_speed`); with
     the floor ``floor_depth`` below the fountain end, ``Tbar_E = k*floor_depth``
     and the right-hand side is ``k*(H + floor_depth)``. The speed is reported under
-    ``speed_selection`` for the paper's ``p = 1/2``, the 10-mm rig's 0.27 (cart gain
-    1) and the rig law for the presets' 2 cm links
+    ``speed_selection`` for the paper's ``p = 1/2`` (cart gain 1), the 10-mm rig's 0.27
+    (cart gain 1/2) and the rig law for the presets' 2 cm links
     (:data:`PICKUP_RIG_2CM`, :data:`CART_GAIN_2CM`).
     """
     app: Apparatus = sim.apparatus
@@ -334,8 +340,9 @@ def report(sim, rec, t0: float, t1: float) -> dict:
     uc, lc = app.cart_bars(v, lam)
     T0, TE = mean("T0_bar"), mean("TE_bar")
     T_up, T_lo = mean("T_up_bar"), mean("T_lo_bar")
-    p_meas = T_up - uc
-    d_meas = T_lo - lc if app.lower is not None else math.nan
+    G10 = MEASURED_CART_GAIN
+    p_meas = T_up - G10 * uc
+    d_meas = T_lo - G10 * lc if app.lower is not None else math.nan
     xi2, xi3 = a.xi2, a.xi3
     fold = app.variant == "fold"
     end = (mean("end_x"), mean("end_y"))
@@ -380,13 +387,14 @@ def report(sim, rec, t0: float, t1: float) -> dict:
         },
     }
     paper = {"T0_bar": 0.5 + uc + xi2 * kH}
-    law = {"T0_bar": PICKUP_BAR + uc + xi2 * kH}
+    law = {"T0_bar": PICKUP_BAR + G10 * uc + xi2 * kH, "cart_gain": G10}
     if fold:
         paper["TE_bar"] = 0.5 + lc - xi3 * kH
-        law["TE_bar"] = PUTDOWN_BAR + lc - xi3 * kH
+        law["TE_bar"] = PUTDOWN_BAR + G10 * lc - xi3 * kH
         paper["Tbar_uc_steady"] = lc + kH * (1.0 - xi2 - xi3)
-        law["Tbar_uc_steady"] = lc + kH * (1.0 - xi2 - xi3) + PUTDOWN_BAR - PICKUP_BAR
-        law["Tbar_uc_steady_with_measured_p_d"] = lc + kH * (1.0 - xi2 - xi3) + d_meas - p_meas
+        law["Tbar_uc_steady"] = lc + (kH * (1.0 - xi2 - xi3) + PUTDOWN_BAR - PICKUP_BAR) / G10
+        law["Tbar_uc_steady_with_measured_p_d"] = \
+            lc + (kH * (1.0 - xi2 - xi3) + d_meas - p_meas) / G10
     else:
         # a floor d below the fountain end: the hanging strand's weight, Tbar_E = k*d
         d_fl = app.floor_depth
@@ -396,8 +404,8 @@ def report(sim, rec, t0: float, t1: float) -> dict:
         # the end pull as an equivalent height ('open')
         H_d, xi_d = (H + d_fl, xi2 * H / (H + d_fl)) if app.variant == "floor" else \
             (app.y_up - app.y_lo + app.end_pull / (lam * g), 0.0)
-        for dct, pp in ((paper, 0.5), (law, PICKUP_BAR)):
-            vs = selected_speed(g, H_d, xi_d, F_uc, lam, pp)
+        for dct, pp, gg in ((paper, 0.5, 1.0), (law, PICKUP_BAR, G10)):
+            vs = selected_speed(g, H_d, xi_d, F_uc, lam, pp, gain=gg)
             dct["v_steady"] = vs
             dct["k_steady"] = g / vs**2 if vs == vs else math.nan
         if app.variant == "floor":
@@ -411,7 +419,7 @@ def report(sim, rec, t0: float, t1: float) -> dict:
                 "end": app.end_mode, "floor_depth_m": d_fl,
                 "v_measured": v,
                 "v_paper_p_half": paper["v_steady"],
-                "v_p_0.27_gain_1": law["v_steady"],
+                "v_p_0.27_gain_0.5": law["v_steady"],
                 "v_rig_2cm": v_rig, "p_rig_2cm": pickup_rig_2cm(v_rig), "gain_rig_2cm": G,
                 "v_rig_2cm_sigma": sigma,
                 "rel_error_rig_2cm": v / v_rig - 1.0 if v_rig == v_rig else math.nan,
