@@ -149,9 +149,10 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
     impulses of floor, channels, plates, rollers and tables subtracted), located on
     the path. Returns the sample and per-joint profiles of the free flight.
 
-    ``pivots`` ('fold'): the size of every chain joint's force in this step from the
-    solver's pivot impulses (N), which correct the lower guide's reconstruction by
-    :func:`_pivot_offset`."""
+    ``pivots`` ('fold' or a grooved plate): the size of every chain joint's force in this
+    step from the solver's pivot impulses (N). They correct the lower guide's
+    reconstruction by :func:`_pivot_offset` and give the pick-up exit tension on the
+    grooved plate."""
     from chainfountain.sim.measure import ChainState, joint_forces, signed_tension, vertex_of
 
     chain = app.chain
@@ -234,6 +235,11 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
             Fall = joint_forces(pre, post, chain.mass, dt, app.g, n, contacts)
             Fu = Fall[:-1] - Fall[-1]
         T_up = float(np.mean(-Fu[max(k - 2, 0):min(k + 3, len(Fu)), 0])) / scale
+        if pivots is not None and np.all(np.isfinite(pivots[max(k - 2, 0):k + 3])):
+            # the solver's pivot forces there: the sums above pass through the pick-up
+            # roller's contacts, whose reported impulses are stale for contacts that
+            # touch again (docs/apparatus.md, "Contact impulses")
+            T_up = float(np.mean(pivots[max(k - 2, 0):k + 3])) / scale
     else:
         T_up = at(xu + 6 * L, app.y_up)
     if app.fold_guided:
