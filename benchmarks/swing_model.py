@@ -12,7 +12,7 @@ mean vertex height over 1 s to the end (the catenary parameter ``a = h/(1/cos(th
 :func:`chainfountain.theory.swing.swing_mode` for the paper's rig laws (``p = d =
 1/2``) and for this model's (the pick-up's ``lambda v^2``-part ``p`` = 0.23 from
 ``PICKUP_RIG_2CM``'s slope at the run's speed or 0.28 from the zero-force fit over 2-5 m/s; the
-put-down's ``d`` = 0.13 from ``PUTDOWN_RIG_2CM`` taken to scale as ``lambda v^2``, which
+put-down's ``d`` = 0.172 from ``PUTDOWN_RIG_2CM`` taken to scale as ``lambda v^2``, which
 was measured at 3 m/s only), with and without the seventeenth session's measured lag of
 the launch tension (0.039 s). What the simulation measured for ``apparatus_special``
 (docs/apparatus.md, "Fifteenth session" to "Seventeenth session", "Twentieth session"):

@@ -106,13 +106,15 @@ pivot-read secant agrees; to be re-fitted."""
 CART_GAIN_2CM_ERR = 0.021
 
 
-PUTDOWN_RIG_2CM = (0.13, 0.78)
+PUTDOWN_RIG_2CM = (0.172, 0.618)
 """Put-down (folding) entry tension at alpha = 0 with 2 cm links: ``Tbar = d + G_d*Fbar_c``
 (intercept ``d``, cart gain ``G_d``), fitted to rig runs at 3 m/s, dt 0.5 ms, 10
-iterations, ``Fbar_c = 0.3, 0.4, 0.5`` (2.5-s averages, about +-0.02 each;
-``docs/apparatus.md``). Below ``Fbar_c`` of about 0.25 the roller falls behind
-and the chain piles up (not steady). Read through the rig's contact impulses, like
-:data:`CART_GAIN_2CM`; by pivots the same runs give ``0.172 + 0.618*Fbar_c``."""
+iterations, ``Fbar_c = 0.3, 0.4, 0.5`` (3-s averages, about +-0.02 each; the strand
+tension from the pivot forces, ``benchmarks/pickup_study.py --putdown-2cm``;
+``docs/apparatus.md``). Below ``Fbar_c`` of about 0.25 the roller falls behind and the
+chain piles up (not steady). Until the twenty-first session (0.13, 0.78), the same runs
+read through the rig's contacts, whose stale impulses overstate the tension under a
+cart ("Contact impulses")."""
 
 
 def pickup_rig_2cm(v: float) -> float:
