@@ -31,7 +31,7 @@ import numpy as np
 
 from chainfountain.level import io, library
 from chainfountain.sim import Recorder, Simulation
-from chainfountain.sim.apparatus import PICKUP_RIG_2CM, PUTDOWN_RIG_2CM
+from chainfountain.sim.apparatus import PUTDOWN_RIG_2CM, pickup_rig_2cm_drag
 from chainfountain.theory.swing import fountain_spring, swing_mode
 
 MEASURED_LAG = 0.039
@@ -45,9 +45,7 @@ presets' links")."""
 def pickup_p(v: float) -> float:
     """``(dT_exit/dv)/(2 lambda v)`` from :data:`PICKUP_RIG_2CM` (``p`` linear in ``v``):
     ``p(v) + v p'(v)/2``."""
-    (va, pa), (vb, pb) = PICKUP_RIG_2CM
-    slope = (pb - pa) / (vb - va)
-    return pa + slope * (v - va) + 0.5 * v * slope
+    return pickup_rig_2cm_drag(v, 1.0) / (2.0 * v)
 
 
 def _moving(sim: Simulation, v: float) -> tuple[float, float]:

@@ -123,6 +123,14 @@ def pickup_rig_2cm(v: float) -> float:
     return p0 + (p1 - p0) * (v - v0) / (v1 - v0)
 
 
+def pickup_rig_2cm_drag(v: float, lam: float) -> float:
+    """``d(p(v)*lambda*v**2)/dv`` of :data:`PICKUP_RIG_2CM` at speed ``v`` (N s/m): how
+    fast the pick-up's exit tension rises with the chain speed, the cart aside."""
+    (v0, p0), (v1, p1) = PICKUP_RIG_2CM
+    slope = (p1 - p0) / (v1 - v0)
+    return lam * (slope * v * v + 2.0 * pickup_rig_2cm(v) * v)
+
+
 def selected_speed(g: float, H: float, xi2: float, F_uc: float, lam: float,
                    p: float | None = None, gain: float = 1.0, dp: float = 0.0) -> float:
     """Speed a free-ended ('floor', Tbar_E = 0) apparatus selects.

@@ -235,11 +235,12 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
             Fall = joint_forces(pre, post, chain.mass, dt, app.g, n, contacts)
             Fu = Fall[:-1] - Fall[-1]
         T_up = float(np.mean(-Fu[max(k - 2, 0):min(k + 3, len(Fu)), 0])) / scale
-        if pivots is not None and np.all(np.isfinite(pivots[max(k - 2, 0):k + 3])):
+        near = pivots[max(k - 2, 0):k + 3] if pivots is not None else np.empty(0)
+        if len(near) and np.all(np.isfinite(near)):
             # the solver's pivot forces there: the sums above pass through the pick-up
             # roller's contacts, whose reported impulses are stale for contacts that
             # touch again (docs/apparatus.md, "Contact impulses")
-            T_up = float(np.mean(pivots[max(k - 2, 0):k + 3])) / scale
+            T_up = float(np.mean(near)) / scale
     else:
         T_up = at(xu + 6 * L, app.y_up)
     if app.fold_guided:

@@ -9,7 +9,7 @@ no horizontal force), at the fountain start they are the joint forces' size.
 The prediction is :func:`chainfountain.theory.apparatus.cart_step_speed`: the strand
 between the pick-up and the fountain start (the chain in flight does not take part) with
 the roller unit referred to the chain speed, the cart force passed on with ``gain`` and
-the pick-up's own speed dependence (the rig law :data:`PICKUP_RIG_2CM`) as ``drag``.
+the pick-up's own speed dependence (the rig law, :func:`pickup_rig_2cm_drag`) as ``drag``.
 """
 
 from __future__ import annotations
@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from chainfountain.sim.apparatus import PICKUP_RIG_2CM, pickup_rig_2cm
+from chainfountain.sim.apparatus import pickup_rig_2cm_drag
 from chainfountain.sim.config import SimConfig
 from chainfountain.sim.world import Simulation
 from chainfountain.theory.apparatus import cart_step_speed, referred_mass
@@ -127,10 +127,8 @@ class CartStep:
 
     @property
     def drag(self) -> float:
-        """``d(p(v) lambda v^2)/dv`` of the rig law at the switch (N s/m)."""
-        v0 = float(self.base.v[0])
-        (va, pa), (vb, pb) = PICKUP_RIG_2CM
-        return self.lam * ((pb - pa) / (vb - va) * v0**2 + 2.0 * pickup_rig_2cm(v0) * v0)
+        """:func:`pickup_rig_2cm_drag` at the speed at the switch (N s/m)."""
+        return pickup_rig_2cm_drag(float(self.base.v[0]), self.lam)
 
     @property
     def deceleration(self) -> float:
