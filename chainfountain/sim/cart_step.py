@@ -22,20 +22,18 @@ import numpy as np
 
 from chainfountain.sim.apparatus import pickup_rig_2cm_drag
 from chainfountain.sim.config import SimConfig
+from chainfountain.sim.measure import ChainState
 from chainfountain.sim.world import Simulation
 from chainfountain.theory.apparatus import cart_step_speed, referred_mass
 
 
-def upstream_mass(sim: Simulation, v_min: float = 1.0) -> float:
+def upstream_mass(st: ChainState, link_mass: float, v_min: float = 1.0) -> tuple[float, int]:
     """Mass (kg) of the links upstream of the fountain start (the origin) moving faster
-    than ``v_min``: the strand the pick-up drives along its fixed path."""
-    return _upstream(sim.state(), sim.chain.mass, v_min)[0]
-
-
-def _upstream(st, m: float, v_min: float = 1.0) -> tuple[float, int]:
+    than ``v_min`` (the strand the pick-up drives along its fixed path), and the index of
+    the link nearest the start."""
     i0 = int(np.argmin(np.hypot(st.position[:, 0], st.position[:, 1])))
     speed = np.hypot(st.velocity[i0 + 1:, 0], st.velocity[i0 + 1:, 1])
-    return float(np.count_nonzero(speed > v_min)) * m, i0
+    return float(np.count_nonzero(speed > v_min)) * link_mass, i0
 
 
 @dataclass
@@ -80,7 +78,7 @@ def run(cfg: SimConfig, mass: float | None, t_switch: float, window: float,
         if (k + 1) % every:
             continue
         g = app._grooves  # the newest, at the roller, last
-        m_up, i0 = _upstream(sim.state(), sim.chain.mass)
+        m_up, i0 = upstream_mass(sim.state(), sim.chain.mass)
         M_up.append(m_up)
         t.append(sim.time - t_switch)
         v.append(app.strand_speed)
