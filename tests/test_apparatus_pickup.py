@@ -2,10 +2,11 @@
 "Pick-Up and Pull-Down Forces"), measured with :mod:`chainfountain.sim.pickup`.
 
 What is asserted is the measured law (see ``docs/apparatus.md``), not a fit. The strand
-tension is read from the solver's pivot impulses (:attr:`RigResult.pivot_bar`): the
-reading summed through the contacts (:attr:`RigResult.force_bar`) carries pymunk's stale
+tension is read from the solver's pivot impulses (:attr:`RigResult.pivot_bar`). The
+reading summed through the contacts (:attr:`RigResult.force_bar`) carried pymunk's stale
 impulses of contacts that touch again, which made a cart force look fully passed on
-until the twenty-first session (``test_contact_reading_is_biased_by_retouching_contacts``).
+until the twenty-first session; since the twenty-second it takes them out and agrees
+(``test_contact_reading_corrects_retouching_contacts``).
 
 - roller speed ``v_R = v/(1 + cos(alpha))`` (paper) within 3 %;
 - pick-up force: equals the paper's ``lambda*v^2/(1 + cos(alpha))`` only at
@@ -33,12 +34,16 @@ LAM, V = 0.05, 5.0
 _cache: dict[tuple, RigResult] = {}
 
 
+def _run(mode: str, alpha_deg: float, f_bar: float) -> RigResult:
+    cfg = RigConfig(mode=mode, angle=math.radians(alpha_deg), speed=V,
+                    cart_force=f_bar * LAM * V * V)
+    return run_rig(cfg, duration=0.6, settle=0.25)
+
+
 def rig(mode: str, alpha_deg: float, f_bar: float = 0.0) -> RigResult:
     key = (mode, alpha_deg, f_bar)
     if key not in _cache:
-        cfg = RigConfig(mode=mode, angle=math.radians(alpha_deg), speed=V,
-                        cart_force=f_bar * LAM * V * V)
-        _cache[key] = run_rig(cfg, duration=0.6, settle=0.25)
+        _cache[key] = _run(mode, alpha_deg, f_bar)
     return _cache[key]
 
 
@@ -93,25 +98,24 @@ def test_putdown_follows_the_energy_balance(alpha: float) -> None:
                                         rel=0.05)
 
 
-def test_contact_reading_is_biased_by_retouching_contacts() -> None:
-    """Why the reading through the contacts is not used. pymunk keeps a contact that
-    stops touching for ``collision_persistence`` steps (3); when it touches again, its
-    accumulated impulse starts from the old value, which was not applied in this step
-    (no warm start on a first contact) but is reported by ``Arbiter.total_impulse``.
-    With a cart pressing the roller, links touch the roller again and again: the reading
-    through the contacts overstates the strand tension (0.78 against 0.53 at ``F_c =
-    0.5``). With ``collision_persistence = 1`` no contact is kept and both readings
-    agree."""
-    from chainfountain.sim.pickup import RollerRig
+def test_contact_reading_corrects_retouching_contacts(monkeypatch) -> None:
+    """pymunk keeps a contact that stops touching for ``collision_persistence`` steps (3);
+    when it touches again, its accumulated impulse starts from the old value, which was
+    not applied in this step (no warm start on a first contact) but is reported by
+    ``Arbiter.total_impulse``. With a cart pressing the roller, links touch the roller
+    again and again. ``ChainReader.arm`` captures those starting impulses in a pre-solve
+    callback, so the reading through the contacts is the pivot reading (0.5263 and
+    0.5263 at ``F_c = 0.5``). Without it the contacts overstate the strand tension
+    (0.73 against 0.53), as this project's readings did until the twenty-second
+    session; the capture only reads: the pivot reading is the same to the last digit."""
+    from chainfountain.sim.measure import ChainReader
 
     r = rig("pickup", 0.0, 0.5)
-    assert r.force_bar - r.pivot_bar > 0.1
-    cfg = RigConfig(mode="pickup", speed=V, cart_force=0.5 * LAM * V * V, rest_length=2.0)
-    one = RollerRig(cfg)
-    one.space.collision_persistence = 1
-    r1 = one.run(0.6, settle=0.25)
-    assert r1.force_bar == pytest.approx(r1.pivot_bar, abs=0.03)
-    assert r1.pivot_bar == pytest.approx(r.pivot_bar, abs=0.03)
+    assert r.force_bar == pytest.approx(r.pivot_bar, abs=0.002)
+    monkeypatch.setattr(ChainReader, "arm", lambda self: None)
+    raw = _run("pickup", 0.0, 0.5)
+    assert raw.force_bar - raw.pivot_bar > 0.1
+    assert raw.pivot_bar == r.pivot_bar
 
 
 def test_rig_refuses_to_run_out_of_chain() -> None:

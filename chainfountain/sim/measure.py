@@ -17,6 +17,16 @@ link ``j+1`` exerts on link ``j`` at their joint::
 chain, pointing upstream, is the signed tension ``T_j`` (negative = push); the
 normal component is the shear force ``Q`` of the paper's belt model. Scaled as
 in the paper: ``Tbar = T/(lambda*v^2)``, compared with ``Tbar(y) = 1 - k/q + k*y``.
+
+Re-touching contacts. pymunk keeps a contact that stops touching for
+``Space.collision_persistence`` steps (3). When the shapes touch again within that
+window, Chipmunk copies the old accumulated impulses into the new contact points
+(``cpArbiterUpdate``) but skips their warm start (a first contact), so
+``Arbiter.total_impulse`` reports an impulse that this step never applied. Call
+:meth:`ChainReader.arm` before the step whose contacts are read: it captures those
+starting impulses in a pre-solve callback (during that step only) and
+:meth:`ChainReader.contact_impulses` subtracts them (``docs/apparatus.md``,
+"Contact impulses").
 """
 
 from __future__ import annotations
@@ -65,6 +75,8 @@ class ChainReader:
         self._version = -1
         self._ids: NDArray[np.uintp] = np.zeros(0, dtype=np.uintp)
         self._perm: NDArray[np.intp] | None = None
+        self._armed = False
+        self._stale: list[tuple[int, int, float, float]] = []
 
     def _chain_ids(self) -> NDArray[np.uintp]:
         if self._version != self.chain.version:
@@ -94,14 +106,42 @@ class ChainReader:
         return ChainState(position=d[:, 0:2], angle=d[:, 2], velocity=d[:, 3:5],
                           angular_velocity=d[:, 5])
 
+    def arm(self) -> None:
+        """Capture, during the next step only, the impulses that re-touching contacts
+        start from (see the module docstring); :meth:`contact_impulses` then reports
+        the impulses that step applied. Costs one Python call per touching pair in
+        that step; the physics is not changed (the callback only reads)."""
+        self._stale.clear()
+        if not self._armed:
+            self.space.on_collision(pre_solve=self._capture)
+            self._armed = True
+
+    def _disarm(self) -> None:
+        if self._armed:
+            self.space.on_collision(pre_solve=pymunk.empty_callback)
+            self._armed = False
+
+    def _capture(self, arb: pymunk.Arbiter, space: pymunk.Space, data: object) -> None:
+        if arb.is_first_contact:
+            imp = arb.total_impulse
+            if imp.x or imp.y:
+                a, b = arb.bodies
+                self._stale.append((a.id, b.id, imp.x, imp.y))
+
     def contact_impulses(self) -> Array:
         """Net contact impulse of the last step on every link, chain order, shape ``(n, 2)``.
 
         From the space's arbiters: the impulse on body A is ``+total_impulse``,
         on body B ``-total_impulse`` (checked in ``tests/test_sim_tension.py``).
+        If :meth:`arm` was called before the step, the impulses that re-touching
+        contacts started from (reported, never applied) are taken out; otherwise
+        they are included, as pymunk reports them.
         """
         want = self._chain_ids()
         out = np.zeros((len(want), 2))
+        stale, armed = list(self._stale), self._armed
+        self._stale.clear()
+        self._disarm()
         if not self.chain.shapes:
             return out
         buf = self._abuf
@@ -111,6 +151,9 @@ class ChainReader:
         if len(ab) == 0:
             return out
         imp = np.frombuffer(buf.float_buf(), dtype=np.float64).reshape(-1, 2)
+        if armed and stale:
+            ab = np.vstack((ab, np.array([r[:2] for r in stale], dtype=np.uintp)))
+            imp = np.vstack((imp, -np.array([r[2:] for r in stale])))
         order = np.argsort(want)
         sw = want[order]
         for col, sign in ((0, 1.0), (1, -1.0)):

@@ -393,6 +393,7 @@ class RollerRig:
             sample = self.time >= settle and (self.steps + 1) % every == 0
             if sample:
                 pre = self.reader.read()
+                self.reader.arm()
             self._physics_step()
             if not sample:
                 self._bookkeeping()

@@ -140,6 +140,7 @@ class Simulation:
         pre: ChainState | None = None
         if rec is not None and rec.wants(self.steps + 1):
             pre = self.reader.read()
+            self.reader.arm()  # the recorder reads this step's contact impulses
         if self.apparatus is not None:
             self.apparatus.before_step()
         else:
