@@ -3,9 +3,10 @@
 Runs :func:`chainfountain.sim.cart_step.cart_step` on ``apparatus_floor`` (long strand,
 ``plate_links = 0``, unless ``--plate-links``) for each cart mass and prints, per window,
 the measured deceleration over the predicted one for the energy balance (gain 1/2, with
-and without the pick-up's speed dependence), ``CART_GAIN_2CM`` (the rig read through its
-contacts, biased: ``docs/apparatus.md``, "Contact impulses") and the paper's
-momentum law (gain 1), beside the pair's tension readings. ``docs/apparatus.md``,
+and without the pick-up's speed dependence), ``CART_GAIN_2CM`` (the rig law's steady
+gain for these links, 0.526 since the twenty-second session; 0.68 before, read through
+biased contacts: ``docs/apparatus.md``, "Contact impulses") and the paper's momentum
+law (gain 1), beside the pair's tension readings. ``docs/apparatus.md``,
 "Unbalanced carts", quotes it::
 
     .venv/bin/python benchmarks/cart_step_study.py                  # 60 g, about 10 s

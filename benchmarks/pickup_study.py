@@ -8,11 +8,18 @@ prints a Markdown table and writes ``docs/img/pickup.png``::
     .venv/bin/python benchmarks/pickup_study.py --no-figure
     .venv/bin/python benchmarks/pickup_study.py --putdown-2cm   # ~25 s, no figure
     .venv/bin/python benchmarks/pickup_study.py --pickup-2cm --iterations 20
+    .venv/bin/python benchmarks/pickup_study.py --pickup-2cm-law   # ~4 min, no figure
 
 ``--pickup-2cm``: pick-up at alpha = 0 with the same chain, 3 m/s, dt 0.5 ms, for cart
 forces 0-0.3, and the line ``Tbar = p + G*Fbar_c`` (carriage mass ``0.02 + F/(g sin 30
 deg)``, the rope-tied cart). ``--iterations`` sets the solver iterations of both studies
 (default 10; the fold preset runs at 20).
+
+``--pickup-2cm-law``: the rig law for the presets' chain, ``PICKUP_RIG_2CM`` and
+``CART_GAIN_2CM`` (``chainfountain.sim.apparatus``): 19 pick-up runs of 6 s at 2.6-5.1
+m/s and ``Fbar_c`` 0-0.5 (2 cm links, dt 0.5 ms, 10 iterations), the tension read
+through the contacts, and the weighted fit ``Tbar = p_inf + R/(lambda v^2) +
+G*Fbar_c`` (errors from six 1-s blocks per run, scaled by the fit's chi2/dof).
 
 ``--putdown-2cm``: put-down at alpha = 0 with the apparatus presets' chain (2 cm rod
 links, friction 0.6) at 3 m/s, dt 0.5 ms, 10 iterations, for several cart forces, and
@@ -75,6 +82,47 @@ def rig_2cm(mode: str, forces: tuple[float, ...], v: float = 3.0, iterations: in
     return 0
 
 
+LAW_RUNS = ([(2.6, f) for f in (0.0, 0.1, 0.2, 0.3)] + [(2.75, f) for f in (0.0, 0.1, 0.2, 0.3)]
+            + [(2.9, f) for f in (0.0, 0.1, 0.2, 0.3)] + [(3.2, f) for f in (0.0, 0.1, 0.2, 0.3)]
+            + [(5.1, f) for f in (0.0, 0.2, 0.5)])
+"""(chain speed m/s, cart force over ``lambda v^2``) of ``--pickup-2cm-law``."""
+
+
+def law_2cm(duration: float = 6.0) -> int:
+    """The pick-up rig law for the presets' chain: table of runs and weighted fit."""
+    from chainfountain.sim.config import SolverConfig
+
+    ch = ChainConfig(link_length=0.02, linear_density=LAM, friction=0.6, link_radius=0.002)
+    sol = SolverConfig(dt=0.0005, iterations=10, joint_error_bias=1e-10, collision_slop=1e-4)
+    print("| v m/s | Fbar_c | chain speed m/s | v_R/v | Tbar exit | s.e. | pivots |")
+    print("|---|---|---|---|---|---|---|")
+    rows = []
+    t0 = time.perf_counter()
+    for v, f in LAW_RUNS:
+        F = f * LAM * v * v
+        cfg = RigConfig(mode="pickup", speed=v, cart_force=F, chain=ch, solver=sol,
+                        carriage_mass=0.02 + F / (9.81 * 0.5), rest_length=2.0 * duration)
+        r = run_rig(cfg, duration=duration + 0.25, settle=0.25)
+        lv2 = LAM * r.speed**2
+        blocks = [float(np.mean(b)) / lv2 for b in np.array_split(r.force, 6)]
+        se = float(np.std(blocks, ddof=1) / math.sqrt(len(blocks)))
+        rows.append((r.speed, F / lv2, r.force_bar, se))
+        print(f"| {v:g} | {f:g} | {r.speed:.3f} | {r.roller_ratio:.3f} | {r.force_bar:.4f} | "
+              f"{se:.4f} | {r.pivot_bar:.4f} |", flush=True)
+    v, f, T, se = (np.array(c) for c in zip(*rows, strict=True))
+    X = np.column_stack([np.ones_like(v), 1.0 / (LAM * v * v), f])
+    A = X / se[:, None]
+    c = np.linalg.lstsq(A, T / se, rcond=None)[0]
+    res = (T - X @ c) / se
+    chi2 = float(res @ res) / (len(T) - 3)
+    err = np.sqrt(np.diag(np.linalg.inv(A.T @ A)) * max(chi2, 1.0))
+    print(f"\nTbar = {c[0]:.4f} (+-{err[0]:.4f}) + {c[1]:.4f} (+-{err[1]:.4f}) N/(lambda v^2) "
+          f"+ {c[2]:.4f} (+-{err[2]:.4f}) Fbar_c; chi2/dof {chi2:.2f}, rms residual "
+          f"{float(np.sqrt(np.mean((T - X @ c) ** 2))):.4f}; wall "
+          f"{time.perf_counter() - t0:.0f} s")
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--no-figure", action="store_true")
@@ -82,6 +130,8 @@ def main(argv: list[str] | None = None) -> int:
                     help="put-down at the apparatus presets' scale (2 cm links, 3 m/s)")
     ap.add_argument("--pickup-2cm", action="store_true",
                     help="pick-up at the apparatus presets' scale (2 cm links, 3 m/s)")
+    ap.add_argument("--pickup-2cm-law", action="store_true",
+                    help="the pick-up rig law for the presets' chain (19 runs, ~4 min)")
     ap.add_argument("--iterations", type=int, default=10,
                     help="solver iterations for --putdown-2cm / --pickup-2cm")
     ap.add_argument("--duration", type=float, default=None,
@@ -91,6 +141,8 @@ def main(argv: list[str] | None = None) -> int:
     if args.putdown_2cm:
         return rig_2cm("putdown", (0.1, 0.2, 0.3, 0.4, 0.5), iterations=args.iterations,
                        duration=args.duration or 3.0, fit_from=0.3)
+    if args.pickup_2cm_law:
+        return law_2cm()
     if args.pickup_2cm:
         return rig_2cm("pickup", (0.0, 0.1, 0.2, 0.3), iterations=args.iterations,
                        duration=args.duration or 2.0)

@@ -10,8 +10,9 @@ the chain speed (``(m_roller + m_carriage + m_cart)/4 + m_roller/8``), the speed
 mean vertex height over 1 s to the end (the catenary parameter ``a = h/(1/cos(theta) -
 1)``, hence the fountain's spring ``K``). Then prints
 :func:`chainfountain.theory.swing.swing_mode` for the paper's rig laws (``p = d =
-1/2``) and for this model's (the pick-up's ``lambda v^2``-part ``p`` = 0.23 from
-``PICKUP_RIG_2CM``'s slope at the run's speed or 0.28 from the zero-force fit over 2-5 m/s; the
+1/2``) and for this model's (the pick-up's ``lambda v^2``-part ``p`` = 0.27 from
+``PICKUP_RIG_2CM``, its ``p_inf``: the rolling resistance does not grow with the speed;
+0.23 from the law of sessions 7-21; or 0.28 from the zero-force fit over 2-5 m/s; the
 put-down's ``d`` = 0.172 from ``PUTDOWN_RIG_2CM`` taken to scale as ``lambda v^2``, which
 was measured at 3 m/s only), with and without the seventeenth session's measured lag of
 the launch tension (0.039 s). What the simulation measured for ``apparatus_special``
@@ -43,8 +44,8 @@ presets' links")."""
 
 
 def pickup_p(v: float) -> float:
-    """``(dT_exit/dv)/(2 lambda v)`` from :data:`PICKUP_RIG_2CM` (``p`` linear in ``v``):
-    ``p(v) + v p'(v)/2``."""
+    """``(dT_exit/dv)/(2 lambda v)`` from :data:`PICKUP_RIG_2CM`: ``p(v) + v p'(v)/2``,
+    which is its ``p_inf``."""
     return pickup_rig_2cm_drag(v, 1.0) / (2.0 * v)
 
 

@@ -18,3 +18,27 @@ def run_fold(cfg: SimConfig, until: float, clean: tuple[float, float],
         sim.advance(0.1)
         held.append(len(sim.apparatus._gq[0]))
     return sim, report(sim, rec, *clean), held, [report(sim, rec, *w) for w in windows]
+
+
+DESIGN_RIG_2CM = ((2.6, 0.331), (2.9, 0.315), 0.68)
+"""The 2 cm rig law the fountain D and limit presets' upper carts were sized with (sessions
+7-21): pick-up ``p`` linear in ``v`` through the two points, cart gain 0.68, read through
+the rig's contacts before their stale impulses were taken out. The presets keep those
+carts (their runs are measured with them); the report predicts with
+:data:`chainfountain.sim.apparatus.PICKUP_RIG_2CM`."""
+
+
+def design_pickup(v: float) -> float:
+    """``p(v)`` of :data:`DESIGN_RIG_2CM`."""
+    (v0, p0), (v1, p1), _ = DESIGN_RIG_2CM
+    return p0 + (p1 - p0) * (v - v0) / (v1 - v0)
+
+
+def design_speed(g: float, H: float, xi2: float, F_uc: float, lam: float) -> float:
+    """The speed :data:`DESIGN_RIG_2CM` selects for a free end (fixed point of
+    ``v**2 = (g*H*(1 - xi2) - G*F_uc/lambda)/p(v)``)."""
+    num = g * H * (1.0 - xi2) - DESIGN_RIG_2CM[2] * F_uc / lam
+    v = (num / 0.3) ** 0.5
+    for _ in range(200):
+        v = (num / design_pickup(v)) ** 0.5
+    return v

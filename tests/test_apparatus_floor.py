@@ -11,13 +11,15 @@ What is asserted is what the simulation does (``docs/apparatus.md``):
 - summary.json carries the measured and predicted quantities side by side;
 - with the absorbing floor (free end, Tbar_E = 0) the fountain becomes steady
   and its speed selects itself, ``v**2 = (g*H*(1 - xi2) - G*F_uc/lambda)/p``;
-  with ``p(v)`` and ``G`` measured in the rig for these links
-  (:data:`~chainfountain.sim.apparatus.PICKUP_RIG_2CM`, ``CART_GAIN_2CM``) the
-  selected speed is within two standard uncertainties of the prediction (1.2 % below
-  it); the paper's ``p = 1/2, G = 1`` predicts a speed 23 % too slow. (With the
-  channel's walls, ``upper_guide = "walls"``, which cost about 0.02 ``lambda v^2``,
-  the speed was 3.3-3.4 % below, about 3 sigma: docs/apparatus.md, "Eighteenth
-  session".)
+  the paper's ``p = 1/2, G = 1`` predicts a speed 23 % too slow;
+- the pick-up's exit tension is the rig's for these links
+  (:data:`~chainfountain.sim.apparatus.PICKUP_RIG_2CM`, ``CART_GAIN_2CM``) at the
+  measured speed and cart (0.3695 against 0.3686);
+- but the chain runs 2.4 % below the speed the rig law selects (3.071 +- 0.013 m/s;
+  strict expected failure): the joint guide costs 0.014 ``lambda v^2`` beyond the
+  weight of the rise, and the selected speed moves by about 1.9 % per 0.01 (it enters
+  against ``p_inf`` = 0.266). Until the twenty-second session the rig law, read through
+  biased contacts, happened to predict 3.034 (-1.2 %, within two sigma).
 """
 
 from __future__ import annotations
@@ -107,9 +109,22 @@ def test_speed_selects_itself_far_from_the_papers_p(run) -> None:
     assert sel["rel_error_paper"] > 0.2
 
 
+def test_pickup_exit_tension_is_the_rig_law(run) -> None:
+    """Exit tension on the grooved plate against the rig law at the measured speed and
+    cart force: within 0.015 ``lambda v^2``, twice the single rig runs' scatter about
+    the law (0.0065) plus its uncertainty (0.002). Measured 0.3695 against 0.3686."""
+    from chainfountain.sim.apparatus import CART_GAIN_2CM, pickup_rig_2cm
+
+    _, sim, rec, _ = run
+    m = report(sim, rec, *STEADY)["measured"]
+    law = pickup_rig_2cm(m["v"]) + CART_GAIN_2CM * m["Tbar_uc"]
+    assert m["T_pickup_exit_bar"] == pytest.approx(law, abs=0.015)
+
+
+@pytest.mark.xfail(strict=True, reason="measured 2.997 m/s against the rig law's 3.071 +- "
+                   "0.013 (-2.4 %): the joint guide costs 0.014 lambda v^2 beyond the "
+                   "weight of the rise; docs/apparatus.md, 'Rig law for the presets' links'")
 def test_speed_selects_itself_within_two_sigma(run) -> None:
-    """Measured 2.997 m/s against the rig law's 3.034 +- 0.035 m/s (-1.2 %). With the
-    channel's walls it was 2.932 (-3.3 %, a strict xfail until the eighteenth session)."""
     _, sim, rec, _ = run
     assert sim.config.apparatus.upper_guide == "joints"
     sel = report(sim, rec, *STEADY)["speed_selection"]

@@ -3,8 +3,9 @@
 Both presets use the 'floor' variant with the absorbing end (the paper's "idealized
 beaker, real floor", Fig. "pulley_experiment_equiv_ground", left) at full scale,
 ``H = 2 m``, launched at fountain D's angle (82.0 deg) from a guide ``xi2*H = 0.6 m``
-above the pick-up roller; the upper cart is the mass the 2 cm rig law (extrapolated
-from 2.6-2.9 m/s) needs for the preset's speed.
+above the pick-up roller; the upper cart is the mass the 2 cm rig law of sessions 7-21
+(extrapolated from 2.6-2.9 m/s, :data:`apparatus_runs.DESIGN_RIG_2CM`) needs for the
+preset's speed.
 
 - `levels/apparatus_fountain_d_kmax.toml`, ``k = k_max``: a free end has
   ``Tbar_E = 0``, so the speed selects itself where
@@ -32,10 +33,10 @@ import re
 from pathlib import Path
 
 import pytest
+from apparatus_runs import design_speed
 
 from chainfountain.level import io
 from chainfountain.sim import Recorder, Simulation
-from chainfountain.sim.apparatus import CART_GAIN_2CM, selected_speed
 from chainfountain.sim.apparatus_report import report
 from chainfountain.theory import Fountain
 
@@ -63,11 +64,11 @@ def _check_preset(name: str, f: Fountain, depth: float) -> None:
     assert a.speed == pytest.approx(f.v, rel=1e-12)
     # launch angle of fountain D's catenary at its start: cos(alpha0) = 1/(1 + q*h)
     assert math.cos(a.launch_angle) == pytest.approx(1.0 / (1.0 + f.q * H_D), rel=1e-12)
-    # the cart is the rig law's choice for the preset's speed (mass to 0.1 g); the
+    # the cart is the design rig law's choice for the preset's speed (mass to 0.1 g); the
     # drive is the drop to the floor, H + d
     F_uc = cfg.carts[0].mass * cfg.gravity * math.sin(cfg.carts[0].incline)
-    v_rig = selected_speed(cfg.gravity, H + depth, a.xi2 * H / (H + depth), F_uc,
-                           cfg.chain.linear_density, gain=CART_GAIN_2CM)
+    v_rig = design_speed(cfg.gravity, H + depth, a.xi2 * H / (H + depth), F_uc,
+                         cfg.chain.linear_density)
     assert v_rig == pytest.approx(f.v, rel=1e-3)
 
 

@@ -28,10 +28,11 @@ import math
 from pathlib import Path
 
 import pytest
+from apparatus_runs import DESIGN_RIG_2CM, design_pickup
 
 from chainfountain.level import io
 from chainfountain.sim import Recorder, Simulation
-from chainfountain.sim.apparatus import CART_GAIN_2CM, FoldCollapsed, pickup_rig_2cm
+from chainfountain.sim.apparatus import FoldCollapsed
 from chainfountain.sim.apparatus_report import report
 
 LEVEL = Path(__file__).resolve().parents[1] / "levels" / "apparatus_limit.toml"
@@ -61,9 +62,10 @@ def test_preset_is_the_paper_limit_case():
     k = cfg.gravity / a.speed**2
     assert a.xi3 == pytest.approx(1.0 / (2.0 * k * a.drop), rel=1e-9)
     assert len(cfg.carts) == 1  # no lower cart: Tbar_lc = 0
-    # upper cart: this model's pick-up law for Tbar_0 = p + G*Tbar_uc + xi2*k*H = k*H
+    # upper cart: the design pick-up law (sessions 7-21, apparatus_runs.DESIGN_RIG_2CM)
+    # for Tbar_0 = p + G*Tbar_uc + xi2*k*H = k*H
     lam, v = cfg.chain.linear_density, a.speed
-    tbar_uc = (k * a.drop * (1.0 - a.xi2) - pickup_rig_2cm(v)) / CART_GAIN_2CM
+    tbar_uc = (k * a.drop * (1.0 - a.xi2) - design_pickup(v)) / DESIGN_RIG_2CM[2]
     c = cfg.carts[0]
     F = c.mass * cfg.gravity * math.sin(c.incline)
     assert F / (lam * v * v) == pytest.approx(tbar_uc, rel=0.01)

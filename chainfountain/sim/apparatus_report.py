@@ -149,10 +149,9 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
     impulses of floor, channels, plates, rollers and tables subtracted), located on
     the path. Returns the sample and per-joint profiles of the free flight.
 
-    ``pivots`` ('fold' or a grooved plate): the size of every chain joint's force in this
-    step from the solver's pivot impulses (N). They correct the lower guide's
-    reconstruction by :func:`_pivot_offset` and give the pick-up exit tension on the
-    grooved plate."""
+    ``pivots`` ('fold'): the size of every chain joint's force in this step from the
+    solver's pivot impulses (N). They correct the lower guide's reconstruction by
+    :func:`_pivot_offset`."""
     from chainfountain.sim.measure import ChainState, joint_forces, signed_tension, vertex_of
 
     chain = app.chain
@@ -234,13 +233,11 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
             # sum over all links less the sum up to j)
             Fall = joint_forces(pre, post, chain.mass, dt, app.g, n, contacts)
             Fu = Fall[:-1] - Fall[-1]
+        # (not the pivot forces: the grooves and the pivots over-constrain the straight
+        # strand, and the pivots carry an alternating vertical part that adds about
+        # 0.008 lambda v^2; the contacts are read with their stale impulses taken out,
+        # docs/apparatus.md, "Contact impulses corrected")
         T_up = float(np.mean(-Fu[max(k - 2, 0):min(k + 3, len(Fu)), 0])) / scale
-        near = pivots[max(k - 2, 0):k + 3] if pivots is not None else np.empty(0)
-        if len(near) and np.all(np.isfinite(near)):
-            # the solver's pivot forces there: the sums above pass through the pick-up
-            # roller's contacts, whose reported impulses are stale for contacts that
-            # touch again (docs/apparatus.md, "Contact impulses")
-            T_up = float(np.mean(near)) / scale
     else:
         T_up = at(xu + 6 * L, app.y_up)
     if app.fold_guided:
@@ -433,7 +430,8 @@ def report(sim, rec, t0: float, t1: float) -> dict:
                 "rel_error_paper": v / paper["v_steady"] - 1.0
                 if paper["v_steady"] == paper["v_steady"] else math.nan,
                 "p_from_balance": T0 - xi2 * kH - G * uc,
-                "formula": "v^2 = (g*(H + floor_depth - xi2*H) - G*F_uc/lambda)/p",
+                "formula": "v^2 = (g*(H + floor_depth - xi2*H) - G*F_uc/lambda)/p; rig: "
+                           "p = p_inf + R/(lambda v^2), R the roller's rolling resistance",
             }
     if app.variant == "open":
         # non-stationary: M(t) dv/dt = lambda*g*(y_up - y_lo) + F_pull - T_exit(v), the

@@ -115,9 +115,8 @@ class Recorder:
             roller = (app.upper.x, app.upper.speed, lo.x if lo else float("nan"),
                       lo.speed if lo else float("nan"))
             pivots = None
-            if app.fold_guided or app.plate_mode == "groove":
-                # joint force sizes: the lower guide's correction ('fold') and the pick-up
-                # exit tension on the grooved plate (no contact impulse involved)
+            if app.fold_guided:
+                # joint force sizes: the lower guide's correction (no contact involved)
                 pivots = np.array([abs(lk.up_joint.impulse) if lk.up_joint is not None
                                    else np.nan for lk in sim.chain.links]) / sim.dt
             self._raw.append(("apparatus", sim.time, pre.velocity, post, contacts, roller,
