@@ -453,10 +453,12 @@ class RigResult:
     v_roller: np.ndarray
     alpha: np.ndarray
     pivot_force: np.ndarray = field(default_factory=lambda: np.zeros(0))
-    """The same joints' force from the solver's pivot impulses (N). Unlike :attr:`force`
-    it involves no contact impulse: pymunk reports a stale accumulated impulse for a
-    contact that touches again within its persistence window (``docs/apparatus.md``,
-    "Contact impulses"), which biases :attr:`force` when a cart presses the roller."""
+    """The size of the same joints' force from the solver's pivot impulses (N). It
+    involves no contact impulse. :attr:`force` is summed through the contacts, with the
+    stale impulses of contacts that touch again taken out (:meth:`ChainReader.arm`;
+    until the twenty-second session they biased it when a cart pressed the roller,
+    ``docs/apparatus.md``, "Contact impulses"); it is the component along the chain, so
+    where the strand goes slack for a moment it is below this size."""
 
     @property
     def speed(self) -> float:
