@@ -110,9 +110,10 @@ class ChainReader:
         """Capture, during the next step only, the impulses that re-touching contacts
         start from (see the module docstring); :meth:`contact_impulses` then reports
         the impulses that step applied. Costs one Python call per touching pair in
-        that step; the physics is not changed (the callback only reads)."""
+        that step; the physics is not changed (the callback only reads). Does nothing
+        for a chain without shapes (no contacts to read)."""
         self._stale.clear()
-        if not self._armed:
+        if not self._armed and self.chain.shapes:
             self.space.on_collision(pre_solve=self._capture)
             self._armed = True
 
