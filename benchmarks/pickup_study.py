@@ -48,25 +48,35 @@ def one(mode: str, alpha_deg: float, f_bar: float = 0.0, L: float = 0.01) -> Rig
     return run_rig(cfg, duration=0.6, settle=0.25)
 
 
+def config_2cm(mode: str, v: float, f: float, iterations: int = 10,
+               rest_length: float | None = None) -> RigConfig:
+    """Rig at the apparatus presets' scale: 2 cm rod links, friction 0.6, dt 0.5 ms, cart
+    force ``f*lambda*v**2`` (pick-up: the rope-tied cart's mass ``F/(g sin 30 deg)`` on the
+    20 g carriage)."""
+    from chainfountain.sim.config import SolverConfig
+
+    ch = ChainConfig(link_length=0.02, linear_density=LAM, friction=0.6, link_radius=0.002)
+    sol = SolverConfig(dt=0.0005, iterations=iterations, joint_error_bias=1e-10,
+                       collision_slop=1e-4)
+    F = f * LAM * v * v
+    extra: dict = {"carriage_mass": 0.02 + F / (9.81 * 0.5)} if mode == "pickup" else {}
+    if rest_length is not None:
+        extra["rest_length"] = rest_length
+    return RigConfig(mode=mode, speed=v, cart_force=F, chain=ch, solver=sol, **extra)
+
+
 def rig_2cm(mode: str, forces: tuple[float, ...], v: float = 3.0, iterations: int = 10,
             duration: float = 3.0, fit_from: float = 0.0) -> int:
     """Pick-up (alpha = 0) or put-down rig at the apparatus presets' scale (2 cm links,
     dt 0.5 ms); prints a table and the fit ``Tbar = intercept + G*Fbar_c`` over
     ``Fbar_c >= fit_from``."""
-    from chainfountain.sim.config import SolverConfig
-
     word = "exit" if mode == "pickup" else "entry"
     print(f"| Fbar_c | chain speed m/s | v_R/v | Tbar {word} (pivots) | halves | "
           "from contacts |")
     print("|---|---|---|---|---|---|")
     fit = []
-    ch = ChainConfig(link_length=0.02, linear_density=LAM, friction=0.6, link_radius=0.002)
-    sol = SolverConfig(dt=0.0005, iterations=iterations, joint_error_bias=1e-10,
-                       collision_slop=1e-4)
     for f in forces:
-        F = f * LAM * v * v
-        extra = {"carriage_mass": 0.02 + F / (9.81 * 0.5)} if mode == "pickup" else {}
-        cfg = RigConfig(mode=mode, speed=v, cart_force=F, chain=ch, solver=sol, **extra)
+        cfg = config_2cm(mode, v, f, iterations)
         r = run_rig(cfg, duration=duration, settle=0.25 if mode == "pickup" else 0.5)
         h = len(r.t) // 2
         halves = [float(np.mean(r.pivot_force[s])) / (LAM * float(np.mean(np.abs(r.v[s]))) ** 2)
@@ -90,23 +100,17 @@ LAW_RUNS = ([(2.6, f) for f in (0.0, 0.1, 0.2, 0.3)] + [(2.75, f) for f in (0.0,
 
 def law_2cm(duration: float = 6.0) -> int:
     """The pick-up rig law for the presets' chain: table of runs and weighted fit."""
-    from chainfountain.sim.config import SolverConfig
-
-    ch = ChainConfig(link_length=0.02, linear_density=LAM, friction=0.6, link_radius=0.002)
-    sol = SolverConfig(dt=0.0005, iterations=10, joint_error_bias=1e-10, collision_slop=1e-4)
     print("| v m/s | Fbar_c | chain speed m/s | v_R/v | Tbar exit | s.e. | pivots |")
     print("|---|---|---|---|---|---|---|")
     rows = []
     t0 = time.perf_counter()
     for v, f in LAW_RUNS:
-        F = f * LAM * v * v
-        cfg = RigConfig(mode="pickup", speed=v, cart_force=F, chain=ch, solver=sol,
-                        carriage_mass=0.02 + F / (9.81 * 0.5), rest_length=2.0 * duration)
+        cfg = config_2cm("pickup", v, f, rest_length=2.0 * duration)
         r = run_rig(cfg, duration=duration + 0.25, settle=0.25)
         lv2 = LAM * r.speed**2
         blocks = [float(np.mean(b)) / lv2 for b in np.array_split(r.force, 6)]
         se = float(np.std(blocks, ddof=1) / math.sqrt(len(blocks)))
-        rows.append((r.speed, F / lv2, r.force_bar, se))
+        rows.append((r.speed, cfg.cart_force / lv2, r.force_bar, se))
         print(f"| {v:g} | {f:g} | {r.speed:.3f} | {r.roller_ratio:.3f} | {r.force_bar:.4f} | "
               f"{se:.4f} | {r.pivot_bar:.4f} |", flush=True)
     v, f, T, se = (np.array(c) for c in zip(*rows, strict=True))
