@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import copy
 import math
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
 import pymunk
@@ -25,6 +25,14 @@ from chainfountain.sim.reference import LaunchReference
 
 if TYPE_CHECKING:
     from chainfountain.sim.recorder import Recorder
+
+
+class Probe(Protocol):
+    """Read-only measurement around a physics step (:attr:`Simulation.probe`)."""
+
+    def before(self) -> None: ...
+
+    def after(self) -> None: ...
 
 
 class Simulation:
@@ -50,6 +58,9 @@ class Simulation:
                              "(supported: 'feed', 'apparatus')")
         self.config = copy.deepcopy(config)
         self.recorder: Recorder | None = None
+        self.probe: Probe | None = None
+        """Optional measurement called around each physics step (read only), e.g.
+        :class:`chainfountain.sim.budget.EnergyBudget`."""
         self._build()
 
     # ------------------------------------------------------------------ building
@@ -145,7 +156,12 @@ class Simulation:
             self.apparatus.before_step()
         else:
             self.feed.before_step()
+        probe = self.probe
+        if probe is not None:
+            probe.before()
         self.space.step(dt)
+        if probe is not None:
+            probe.after()
         self.steps += 1
         self.time = self.steps * dt
         if pre is not None and rec is not None:

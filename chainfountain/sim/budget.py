@@ -1,0 +1,201 @@
+"""Where the apparatus's chain loses energy: an exact impulse sweep, by region.
+
+The paper's apparatus is loss-free apart from the unfolding and folding; the simulated
+one also loses energy in its frictionless guides, because a velocity-level constraint
+on a discrete, curved path is not energy-neutral. This module measures that loss
+without reading any single joint's tension (docs/apparatus.md, "Energy budget").
+
+For every sampled step the sweep starts at the free end (a 'floor' apparatus with the
+absorbing end) and walks upstream to the last link held in the upper plate's groove.
+Each link has three unknowns: its upstream pivot impulse ``J`` (2) and, if a guide or
+groove holds it, that constraint's impulse along the constraint's known normal (1,
+applied at the link centre, so no torque). Its momentum and angular momentum changes
+over the step give three equations, so the sweep is exact. (For a free link the
+rotation equation is left over: its residual checks the sweep, ``rotation_residual``.)
+Since ``m (v1**2 - v0**2)/2 = (m dv) . (v0 + v1)/2`` per body, the work of each impulse
+at the mid-step velocity of its anchor splits the chain's energy change exactly:
+
+- a pivot between links ``i`` and ``i+1`` does ``J . (u_back_i - u_front_i+1)``, the
+  solver's own dissipation at that joint;
+- a guide or groove impulse ``g n`` does ``g n . v_i``; a frictionless path does none
+  in the continuum.
+
+The losses are summed by region (free flight, the upper guide's arcs and straights,
+the plate grooves) and given per unit time in units of ``lambda v**3``, i.e. as the
+tension the steady balance must supply beyond the loss-free one: the speed the rig law
+selects with the loss added to its ``p_inf`` is
+``selected_speed(..., dp=loss)`` (:func:`chainfountain.sim.apparatus.selected_speed`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from chainfountain.sim.world import Simulation
+
+REGIONS = ("flight", "arc", "line", "plate")
+"""Free flight (and the free end); the upper joint guide's arcs and straight lines; the
+upper plate's grooves."""
+
+
+@dataclass
+class BudgetResult:
+    """Time-averaged losses (positive: energy taken out of the chain), per region."""
+
+    v: float
+    """Mean speed of the 40 links nearest the free end (m/s)."""
+    seconds: float
+    """Simulated time the averages cover (sampled steps times ``dt``)."""
+    steps: int
+    pivots: dict[str, float] = field(default_factory=dict)
+    """Loss in the pivots whose downstream link is in the region (``lambda v**3``)."""
+    guides: dict[str, float] = field(default_factory=dict)
+    """Loss in the region's guide or groove joints (``lambda v**3``)."""
+    rotation_residual: float = 0.0
+    """Largest |angular momentum residual| of a free link (N m s): the sweep's check."""
+
+    @property
+    def total(self) -> float:
+        """All losses between the plate's upstream end and the free end (``lambda v**3``)."""
+        return sum(self.pivots.values()) + sum(self.guides.values())
+
+    def region(self, name: str) -> float:
+        return self.pivots.get(name, 0.0) + self.guides.get(name, 0.0)
+
+
+class EnergyBudget:
+    """Attach to a 'floor' :class:`~chainfountain.sim.world.Simulation` with the upper
+    joint guide and plate grooves; sampled steps from ``start`` (s), every ``every``-th.
+
+    ``sim.probe`` is set to this object; the simulation calls :meth:`before` and
+    :meth:`after` around each physics step. Physics is unchanged (only reads).
+    """
+
+    def __init__(self, sim: Simulation, start: float = 0.0, every: int = 1) -> None:
+        app = sim.apparatus
+        if app is None or app.variant != "floor" or app.end_mode != "absorbing":
+            raise ValueError("EnergyBudget needs an apparatus of variant 'floor' with the "
+                             "absorbing end (the sweep starts at the free end)")
+        if app.plate_mode != "groove":
+            raise ValueError("EnergyBudget needs apparatus.plate = 'groove' (the sweep ends "
+                             "at the plate's last grooved link)")
+        if every < 1:
+            raise ValueError(f"every must be >= 1 (got {every})")
+        self.sim, self.app = sim, app
+        self.start, self.every = float(start), int(every)
+        self._work = {f"{r}:{k}": 0.0 for r in REGIONS for k in ("pivot", "guide")}
+        self._steps = 0
+        self._vsum = 0.0
+        self._resid = 0.0
+        self._pending: tuple | None = None
+        sim.probe = self
+
+    # ------------------------------------------------------------------ hooks
+    def before(self) -> None:
+        """Called after the apparatus's ``before_step``, before the physics step."""
+        sim, app = self.sim, self.app
+        self._pending = None
+        if sim.time < self.start - 1e-12 or (sim.steps + 1) % self.every:
+            return
+        links = app.chain.links
+        kind: dict[int, tuple[str, np.ndarray, bool]] = {}
+        for el, q in zip(app.up_guide, app._uq, strict=True):
+            if el.kind == "arc":
+                c = np.array(el.a, dtype=float)
+                for lk, _ in q:
+                    kind[id(lk.body)] = ("arc", c, True)
+            else:
+                (ax, ay), (bx, by) = el.a, el.b
+                t = np.array([bx - ax, by - ay], dtype=float)
+                t /= np.hypot(*t)
+                n = np.array([-t[1], t[0]])
+                for lk, _ in q:
+                    kind[id(lk.body)] = ("line", n, False)
+        up = np.array([0.0, 1.0])
+        for lk, _ in app._grooves:
+            kind[id(lk.body)] = ("plate", up, False)
+        last = -1
+        for i, lk in enumerate(links):
+            k = kind.get(id(lk.body))
+            if k is not None and k[0] == "plate":
+                last = i
+        if last < 1:
+            return
+        bodies = [lk.body for lk in links[:last + 1]]
+        v0 = np.array([tuple(b.velocity) for b in bodies])
+        w0 = np.array([b.angular_velocity for b in bodies])
+        self._pending = (bodies, [kind.get(id(b)) for b in bodies], v0, w0)
+
+    def after(self) -> None:
+        """Called after the physics step, before the apparatus's ``after_step``."""
+        if self._pending is None:
+            return
+        bodies, kinds, v0, w0 = self._pending
+        self._pending = None
+        sim, app = self.sim, self.app
+        dt, g = sim.dt, sim.g
+        m, I, h = app.chain.mass, app.chain.moment, 0.5 * app.L
+        v1 = np.array([tuple(b.velocity) for b in bodies])
+        w1 = np.array([b.angular_velocity for b in bodies])
+        P = np.array([tuple(b.position) for b in bodies])
+        th = np.array([b.angle for b in bodies])
+        u = np.column_stack((np.cos(th), np.sin(th)))
+        wv = np.column_stack((-u[:, 1], u[:, 0]))
+        vm, om = 0.5 * (v0 + v1), 0.5 * (w0 + w1)
+        back = vm - (om * h)[:, None] * wv   # velocity of the anchor at -h u
+        front = vm + (om * h)[:, None] * wv  # ... at +h u
+        dp = m * (v1 - v0)
+        dp[:, 1] += m * g * dt
+        dL = I * (w1 - w0)
+        work = self._work
+        Jx = Jy = 0.0  # upstream pivot impulse of the previous (downstream) link
+        n = len(bodies)
+        for i in range(n):
+            ux, uy = u[i]
+            # link i gets -J_prev at its front anchor (+h u): torque h*(u x -J_prev)
+            tq = -h * (ux * Jy - uy * Jx)
+            bx, by = dp[i, 0] + Jx, dp[i, 1] + Jy  # = J + g n
+            k = kinds[i]
+            if k is None:
+                jx, jy = bx, by
+                reg = "flight"
+                # rotation: dL = (-h u) x J + tq
+                r = abs(dL[i] - (-h * (ux * jy - uy * jx) + tq))
+                if r > self._resid:
+                    self._resid = r
+            else:
+                reg, a, radial = k
+                nx, ny = (P[i] - a) / np.hypot(*(P[i] - a)) if radial else a
+                jw = -(dL[i] - tq) / h  # J . w from the rotation equation
+                rx, ry = bx - jw * wv[i, 0], by - jw * wv[i, 1]
+                det = ux * ny - uy * nx
+                a_par = (rx * ny - ry * nx) / det
+                gn = (ux * ry - uy * rx) / det
+                jx = a_par * ux + jw * wv[i, 0]
+                jy = a_par * uy + jw * wv[i, 1]
+                work[f"{reg}:guide"] += gn * (nx * vm[i, 0] + ny * vm[i, 1])
+            if i < n - 1:
+                work[f"{reg}:pivot"] += jx * (back[i, 0] - front[i + 1, 0]) + \
+                    jy * (back[i, 1] - front[i + 1, 1])
+            Jx, Jy = jx, jy
+        self._steps += 1
+        k = min(40, n)
+        self._vsum += float(np.mean(np.hypot(v1[:k, 0], v1[:k, 1])))
+
+    # ------------------------------------------------------------------ result
+    def result(self) -> BudgetResult:
+        """Averages so far (nan speed if nothing was sampled)."""
+        if not self._steps:
+            return BudgetResult(v=float("nan"), seconds=0.0, steps=0)
+        v = self._vsum / self._steps
+        secs = self._steps * self.sim.dt
+        scale = -1.0 / (secs * self.sim.config.chain.linear_density * v ** 3)
+        return BudgetResult(
+            v=v, seconds=secs * self.every, steps=self._steps,
+            pivots={r: self._work[f"{r}:pivot"] * scale + 0.0 for r in REGIONS},
+            guides={r: self._work[f"{r}:guide"] * scale + 0.0 for r in REGIONS},
+            rotation_residual=self._resid)
