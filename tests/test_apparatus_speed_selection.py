@@ -8,22 +8,26 @@ simulation does (``docs/apparatus.md``): the heavy cart selects a clearly lower
 speed, steady; the paper's ``p = 1/2, G = 1`` gives 1.98 m/s. The rig law for these
 links (:data:`~chainfountain.sim.apparatus.PICKUP_RIG_2CM`, ``CART_GAIN_2CM``) predicts
 2.876 +- 0.014 m/s and the chain runs at 2.752 (-4.3 %, a strict expected failure):
-at the measured speed the balance needs 0.026-0.032 ``lambda v^2`` more than the rig
-law with an ideal guide and end give (with or without the treadmill; how it splits
-between the pick-up, the guide and the end moves between runs).
+the energy budget finds 0.0173 ``lambda v**3`` lost between the plate and the free end
+(the guide's arc 0.0092, the flight 0.0049, the grooves 0.0030); with it the law gives
+2.786 m/s, still 1.3 % (2.5 sigma) above the run (strict expected failure): the heavy
+preset's pick-up needs about 0.007 ``lambda v^2`` more than the rig's.
 Until the twenty-second session the rig law, read through biased contacts, happened
 to predict 2.743.
 """
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import pytest
 
 from chainfountain.level import io
 from chainfountain.sim import Recorder, Simulation
+from chainfountain.sim.apparatus import CART_GAIN_2CM, selected_speed
 from chainfountain.sim.apparatus_report import report
+from chainfountain.sim.budget import EnergyBudget
 
 LEVEL = Path(__file__).resolve().parents[1] / "levels" / "apparatus_floor_heavy.toml"
 RUN = 5.0
@@ -37,8 +41,11 @@ pytestmark = pytest.mark.xdist_group("apparatus_speed_selection")
 def rep():
     sim = Simulation(io.load(LEVEL).sim)
     rec = Recorder(sim, profiles=False)
+    budget = EnergyBudget(sim, start=3.0, every=2)
     sim.advance(RUN)
-    return report(sim, rec, 3.0, RUN)
+    out = report(sim, rec, 3.0, RUN)
+    out["energy_budget"] = budget.result()
+    return out
 
 
 def test_heavier_cart_selects_a_lower_speed(rep) -> None:
@@ -52,12 +59,26 @@ def test_heavy_cart_steady(rep) -> None:
 
 
 @pytest.mark.xfail(strict=True, reason="measured 2.752 m/s against the rig law's 2.876 +- "
-                   "0.014 (-4.3 %): the balance needs 0.026-0.032 lambda v^2 more than the "
-                   "rig law with an ideal guide and end; docs/apparatus.md, 'Rig law for "
-                   "the presets' links'")
+                   "0.014 (-4.3 %): the law assumes an ideal guide; the energy budget finds "
+                   "0.0173 lambda v^3 lost in the discrete guide, grooves and flight (next "
+                   "test); docs/apparatus.md, 'Energy budget'")
 def test_heavy_cart_within_two_sigma_of_the_rig_law(rep) -> None:
     sel = rep["speed_selection"]
     assert abs(sel["v_measured"] - sel["v_rig_2cm"]) <= 2.0 * sel["v_rig_2cm_sigma"]
+
+
+@pytest.mark.xfail(strict=True, reason="with the energy budget's losses (0.0173 lambda v^3: "
+                   "arc 0.0092, flight 0.0049, grooves 0.0030) the rig law gives 2.786 m/s; "
+                   "measured 2.751 (-1.3 %, 2.5 sigma): the heavy preset's pick-up needs about "
+                   "0.007 lambda v^2 more than the rig's; docs/apparatus.md, 'Energy budget'")
+def test_heavy_cart_within_two_sigma_of_the_rig_law_with_the_losses(rep) -> None:
+    sel, b = rep["speed_selection"], rep["energy_budget"]
+    lvl = io.load(LEVEL).sim
+    a, cart = lvl.apparatus, lvl.carts[0]
+    F_uc = cart.mass * lvl.gravity * math.sin(cart.incline)
+    v = selected_speed(lvl.gravity, a.drop, a.xi2, F_uc, lvl.chain.linear_density,
+                       gain=CART_GAIN_2CM, dp=b.total)
+    assert abs(sel["v_measured"] - v) <= 2.0 * sel["v_rig_2cm_sigma"]
 
 
 def test_heavy_cart_free_end(rep) -> None:
