@@ -41,7 +41,7 @@ def budget(name: str, radius: float | None, start: float, end: float, every: int
     while sim.time < end - 1e-9:
         sim.advance(min(0.5, end - sim.time))
         print(f"\r  {name}: t = {sim.time:4.1f} / {end:.1f} s", end="", file=sys.stderr)
-    print("\r", end="", file=sys.stderr)
+    print("\r" + " " * 40 + "\r", end="", file=sys.stderr)
     r = eb.result()
     lam, g = cfg.chain.linear_density, cfg.gravity
     F_uc = cfg.carts[0].mass * g * math.sin(cfg.carts[0].incline)
@@ -55,6 +55,9 @@ def budget(name: str, radius: float | None, start: float, end: float, every: int
     print(f"  rig law {v_law:.4f} m/s ({100 * (r.v / v_law - 1):+.2f} %), with the loss "
           f"{v_loss:.4f} m/s ({100 * (r.v / v_loss - 1):+.2f} %); sweep check "
           f"{r.rotation_residual:.1e} N m s")
+    if not r.exact:
+        print("  WARNING: the sweep did not close (a free link touched something the "
+              "sweep does not know); the losses above are not exact")
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -154,7 +154,20 @@ def test_energy_budget_sweep_is_exact(run) -> None:
     _, sim, _, _ = run
     b = sim.probe.result()
     assert b.steps > 2000
-    assert b.rotation_residual < 1e-15
+    assert b.rotation_residual < 1e-15 and b.exact
+
+
+def test_energy_budget_refuses_what_it_cannot_sweep() -> None:
+    """The sweep knows joints and grooves only: a guide of walls (contacts off the link
+    centres) is refused with a message, not measured wrongly."""
+    import dataclasses
+
+    cfg = io.load(LEVEL).sim
+    walls = dataclasses.replace(cfg.apparatus, upper_guide="walls", plate="contact")
+    with pytest.raises(ValueError, match="upper_guide = 'joints'"):
+        EnergyBudget(Simulation(dataclasses.replace(cfg, apparatus=walls)))
+    with pytest.raises(ValueError, match="every must be >= 1"):
+        EnergyBudget(Simulation(cfg), every=0)
 
 
 def test_speed_is_the_rig_law_with_the_measured_losses(run) -> None:

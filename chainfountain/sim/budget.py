@@ -40,6 +40,9 @@ if TYPE_CHECKING:
 REGIONS = ("flight", "arc", "line", "plate")
 """Free flight (and the free end); the upper joint guide's arcs and straight lines; the
 upper plate's grooves."""
+EXACT = 1e-12
+"""Largest free-link rotation residual (N m s) of a sweep that closes (rounding gives
+about 1e-19; a link's angular impulse ``I dw`` is of order 1e-6)."""
 
 
 @dataclass
@@ -57,6 +60,12 @@ class BudgetResult:
     """Loss in the region's guide or groove joints (``lambda v**3``)."""
     rotation_residual: float = 0.0
     """Largest |angular momentum residual| of a free link (N m s): the sweep's check."""
+
+    @property
+    def exact(self) -> bool:
+        """Did the sweep close? A free link that touched anything (a contact the sweep
+        does not know) leaves a rotation residual far above rounding."""
+        return self.steps > 0 and self.rotation_residual < EXACT
 
     @property
     def total(self) -> float:
@@ -80,6 +89,10 @@ class EnergyBudget:
         if app is None or app.variant != "floor" or app.end_mode != "absorbing":
             raise ValueError("EnergyBudget needs an apparatus of variant 'floor' with the "
                              "absorbing end (the sweep starts at the free end)")
+        if not app.upper_guided:
+            raise ValueError("EnergyBudget needs apparatus.upper_guide = 'joints' (with the "
+                             "walls the guide's contacts act off the link centres, which "
+                             "the sweep does not handle)")
         if app.plate_mode != "groove":
             raise ValueError("EnergyBudget needs apparatus.plate = 'groove' (the sweep ends "
                              "at the plate's last grooved link)")
