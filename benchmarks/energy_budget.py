@@ -15,15 +15,13 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import math
 import sys
 import time
 from pathlib import Path
 
 from chainfountain.level import io
 from chainfountain.sim import Simulation
-from chainfountain.sim.apparatus import CART_GAIN_2CM, selected_speed
-from chainfountain.sim.budget import REGIONS, EnergyBudget
+from chainfountain.sim.budget import REGIONS, EnergyBudget, rig_law_speed
 
 LEVELS = Path(__file__).resolve().parents[1] / "levels"
 PRESETS = {"9g": "apparatus_floor", "15g": "apparatus_floor_heavy"}
@@ -43,10 +41,7 @@ def budget(name: str, radius: float | None, start: float, end: float, every: int
         print(f"\r  {name}: t = {sim.time:4.1f} / {end:.1f} s", end="", file=sys.stderr)
     print("\r" + " " * 40 + "\r", end="", file=sys.stderr)
     r = eb.result()
-    lam, g = cfg.chain.linear_density, cfg.gravity
-    F_uc = cfg.carts[0].mass * g * math.sin(cfg.carts[0].incline)
-    v_law = selected_speed(g, a.drop, a.xi2, F_uc, lam, gain=CART_GAIN_2CM)
-    v_loss = selected_speed(g, a.drop, a.xi2, F_uc, lam, gain=CART_GAIN_2CM, dp=r.total)
+    v_law, v_loss = rig_law_speed(cfg), rig_law_speed(cfg, r.total)
     parts = "  ".join(f"{reg} {r.region(reg):.4f} ({r.guides[reg]:.4f} + {r.pivots[reg]:.4f})"
                       for reg in REGIONS)
     print(f"{name} R = {a.channel_radius:.3f} m, {start:.1f}-{end:.1f} s "

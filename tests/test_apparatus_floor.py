@@ -38,9 +38,8 @@ import pytest
 from chainfountain.headless import run_level
 from chainfountain.level import io
 from chainfountain.sim import Recorder, Simulation
-from chainfountain.sim.apparatus import CART_GAIN_2CM, selected_speed
 from chainfountain.sim.apparatus_report import report
-from chainfountain.sim.budget import EnergyBudget
+from chainfountain.sim.budget import EnergyBudget, rig_law_speed
 from chainfountain.sim.guide import PLAY
 
 LEVEL = Path(__file__).resolve().parents[1] / "levels" / "apparatus_floor.toml"
@@ -139,14 +138,6 @@ def test_speed_selects_itself_within_two_sigma(run) -> None:
     assert abs(sel["v_measured"] - sel["v_rig_2cm"]) <= 2.0 * sel["v_rig_2cm_sigma"]
 
 
-def _rig_law_with_loss(sim, loss: float) -> float:
-    cfg = sim.config
-    a, cart = cfg.apparatus, cfg.carts[0]
-    F_uc = cart.mass * cfg.gravity * math.sin(cart.incline)
-    return selected_speed(cfg.gravity, a.drop, a.xi2, F_uc, cfg.chain.linear_density,
-                          gain=CART_GAIN_2CM, dp=loss)
-
-
 def test_energy_budget_sweep_is_exact(run) -> None:
     """The budget's impulse sweep closes: for every free link the angular momentum
     equation left over after the sweep holds to rounding (measured 1.2e-19 N m s against
@@ -180,7 +171,7 @@ def test_speed_is_the_rig_law_with_the_measured_losses(run) -> None:
     sel = report(sim, rec, *STEADY)["speed_selection"]
     loss = sim.probe.result().total
     assert 0.0 < loss < 0.05
-    assert abs(sel["v_measured"] - _rig_law_with_loss(sim, loss)) \
+    assert abs(sel["v_measured"] - rig_law_speed(sim.config, loss)) \
         <= 2.0 * sel["v_rig_2cm_sigma"]
 
 

@@ -29,12 +29,16 @@ selects with the loss added to its ``p_inf`` is
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 import numpy as np
 
+from chainfountain.sim.apparatus import CART_GAIN_2CM, selected_speed
+
 if TYPE_CHECKING:
+    from chainfountain.sim.config import SimConfig
     from chainfountain.sim.world import Simulation
 
 REGIONS = ("flight", "arc", "line", "plate")
@@ -212,3 +216,14 @@ class EnergyBudget:
             pivots={r: self._work[f"{r}:pivot"] * scale + 0.0 for r in REGIONS},
             guides={r: self._work[f"{r}:guide"] * scale + 0.0 for r in REGIONS},
             rotation_residual=self._resid)
+
+
+def rig_law_speed(cfg: SimConfig, loss: float = 0.0) -> float:
+    """Speed (m/s) the rig law selects for a 'floor' level ``cfg`` (its first cart is the
+    upper cart) with ``loss`` (``lambda v**3``, e.g. :attr:`BudgetResult.total`) added to
+    the pick-up's ``p_inf``: :func:`~chainfountain.sim.apparatus.selected_speed` with
+    ``dp = loss`` and the rig's cart gain."""
+    a, cart = cfg.apparatus, cfg.carts[0]
+    F_uc = cart.mass * cfg.gravity * math.sin(cart.incline)
+    return selected_speed(cfg.gravity, a.drop, a.xi2, F_uc, cfg.chain.linear_density,
+                          gain=CART_GAIN_2CM, dp=loss)
