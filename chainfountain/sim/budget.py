@@ -116,6 +116,9 @@ class EnergyBudget:
         """Called after the apparatus's ``before_step``, before the physics step."""
         sim, app = self.sim, self.app
         self._pending = None
+        if sim.apparatus is not app:
+            raise RuntimeError("EnergyBudget: the simulation was rebuilt (reset); attach a "
+                               "new EnergyBudget to measure the new run")
         if sim.time < self.start - 1e-12 or (sim.steps + 1) % self.every:
             return
         links = app.chain.links
