@@ -122,22 +122,22 @@ class EnergyBudget:
         if sim.time < self.start - 1e-12 or (sim.steps + 1) % self.every:
             return
         links = app.chain.links
-        kind: dict[int, tuple[str, np.ndarray, bool]] = {}
+        kind: dict[int, tuple[str, np.ndarray]] = {}  # arc: centre; line, plate: normal
         for el, q in zip(app.up_guide, app._uq, strict=True):
             if el.kind == "arc":
                 c = np.array(el.a, dtype=float)
                 for lk, _ in q:
-                    kind[id(lk.body)] = ("arc", c, True)
+                    kind[id(lk.body)] = ("arc", c)
             else:
                 (ax, ay), (bx, by) = el.a, el.b
                 t = np.array([bx - ax, by - ay], dtype=float)
                 t /= np.hypot(*t)
                 n = np.array([-t[1], t[0]])
                 for lk, _ in q:
-                    kind[id(lk.body)] = ("line", n, False)
+                    kind[id(lk.body)] = ("line", n)
         up = np.array([0.0, 1.0])
         for lk, _ in app._grooves:
-            kind[id(lk.body)] = ("plate", up, False)
+            kind[id(lk.body)] = ("plate", up)
         last = -1
         for i, lk in enumerate(links):
             k = kind.get(id(lk.body))
@@ -145,24 +145,24 @@ class EnergyBudget:
                 last = i
         if last < 1:
             return
-        bodies = [lk.body for lk in links[:last + 1]]
-        v0 = np.array([tuple(b.velocity) for b in bodies])
-        w0 = np.array([b.angular_velocity for b in bodies])
-        self._pending = (bodies, [kind.get(id(b)) for b in bodies], v0, w0)
+        pre = sim.reader.read()  # the chain does not change during the physics step
+        n = last + 1
+        self._pending = ([kind.get(id(lk.body)) for lk in links[:n]],
+                         pre.velocity[:n].copy(), pre.angular_velocity[:n].copy())
 
     def after(self) -> None:
         """Called after the physics step, before the apparatus's ``after_step``."""
         if self._pending is None:
             return
-        bodies, kinds, v0, w0 = self._pending
+        kinds, v0, w0 = self._pending
         self._pending = None
         sim, app = self.sim, self.app
         dt, g = sim.dt, sim.g
         m, I, h = app.chain.mass, app.chain.moment, 0.5 * app.L
-        v1 = np.array([tuple(b.velocity) for b in bodies])
-        w1 = np.array([b.angular_velocity for b in bodies])
-        P = np.array([tuple(b.position) for b in bodies])
-        th = np.array([b.angle for b in bodies])
+        n = len(kinds)
+        post = sim.reader.read()
+        v1, w1 = post.velocity[:n], post.angular_velocity[:n]
+        P, th = post.position[:n], post.angle[:n]
         u = np.column_stack((np.cos(th), np.sin(th)))
         wv = np.column_stack((-u[:, 1], u[:, 0]))
         vm, om = 0.5 * (v0 + v1), 0.5 * (w0 + w1)
@@ -173,7 +173,6 @@ class EnergyBudget:
         dL = I * (w1 - w0)
         work = self._work
         Jx = Jy = 0.0  # upstream pivot impulse of the previous (downstream) link
-        n = len(bodies)
         for i in range(n):
             ux, uy = u[i]
             # link i gets -J_prev at its front anchor (+h u): torque h*(u x -J_prev)
@@ -188,8 +187,8 @@ class EnergyBudget:
                 if r > self._resid:
                     self._resid = r
             else:
-                reg, a, radial = k
-                nx, ny = (P[i] - a) / np.hypot(*(P[i] - a)) if radial else a
+                reg, a = k
+                nx, ny = (P[i] - a) / np.hypot(*(P[i] - a)) if reg == "arc" else a
                 jw = -(dL[i] - tq) / h  # J . w from the rotation equation
                 rx, ry = bx - jw * wv[i, 0], by - jw * wv[i, 1]
                 det = ux * ny - uy * nx
