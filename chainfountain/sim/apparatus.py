@@ -136,6 +136,13 @@ def pickup_rig_2cm_drag(v: float, lam: float) -> float:
     return 2.0 * PICKUP_RIG_2CM[0] * lam * v
 
 
+def rig_exit_tension(v: float, lam: float, F_uc: float) -> float:
+    """Pick-up exit tension (N) the 2 cm rig law gives at chain speed ``v`` (m/s), linear
+    density ``lam`` and cart force ``F_uc`` (N): ``p(v) lambda v**2 + G F_uc``
+    (:func:`pickup_rig_2cm`, :data:`CART_GAIN_2CM`; paper ``(1/2 + Tbar_uc) lambda v**2``)."""
+    return pickup_rig_2cm(v) * lam * v * v + CART_GAIN_2CM * F_uc
+
+
 def selected_speed(g: float, H: float, xi2: float, F_uc: float, lam: float,
                    p: float | None = None, gain: float = 1.0, dp: float = 0.0) -> float:
     """Speed a free-ended ('floor', Tbar_E = 0) apparatus selects.
@@ -740,6 +747,14 @@ class Apparatus:
     def end_pull(self) -> float:
         """Constant pull on the downstream end link in ``+x`` (N; 'open' only)."""
         return float(self.cfg.end_pull) if self.variant == "open" else 0.0
+
+    @property
+    def open_drive(self) -> float:
+        """'open': the constant force (N) driving the moving chain, the weight of the drop
+        from the upper plate to the tail's plate plus the end pull,
+        ``lambda g (y_up - y_lo) + F_pull``."""
+        lam = self.sim_cfg.chain.linear_density
+        return lam * self.g * (self.y_up - self.y_lo) + self.end_pull
 
     def before_step(self) -> None:
         """Apply the cart forces (constant, along the track, on the carriage) and the

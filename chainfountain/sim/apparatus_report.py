@@ -23,6 +23,7 @@ from chainfountain.sim.apparatus import (
     PUTDOWN_RIG_2CM,
     Apparatus,
     pickup_rig_2cm,
+    rig_exit_tension,
     selected_speed,
 )
 from chainfountain.theory.design import MEASURED_CART_GAIN
@@ -438,10 +439,10 @@ def report(sim, rec, t0: float, t1: float) -> dict:
         # moving mass growing at lambda*v/2; mouth tension = weight hanging in the turn
         drop = app.guide_radius * (1.0 - math.cos(app.alphaE)) if app.guided else math.nan
         M = app.moving_mass(0.5)
-        drive = lam * g * (app.y_up - app.y_lo) + app.end_pull
+        drive = app.open_drive
         T_ex = T_up * lam * v * v
         G = CART_GAIN_2CM
-        T_rig = pickup_rig_2cm(v) * lam * v * v + G * app.upper.force
+        T_rig = rig_exit_tension(v, lam, app.upper.force)
         out["open"] = {
             "TE_bar_predicted": (lam * g * drop + app.end_pull) / (lam * v * v),
             "drive_N": drive, "exit_tension_N": T_ex, "exit_tension_rig_N": T_rig,

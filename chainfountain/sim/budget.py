@@ -6,7 +6,8 @@ on a discrete, curved path is not energy-neutral. This module measures that loss
 without reading any single joint's tension (docs/apparatus.md, "Energy budget").
 
 For every sampled step the sweep starts at the free end (a 'floor' apparatus with the
-absorbing end) and walks upstream to the last link held in the upper plate's groove.
+absorbing end, or the 'open' one's lumped tail end, whose end pull is an external
+force) and walks upstream to the last link held in the upper plate's groove.
 Each link has three unknowns: its upstream pivot impulse ``J`` (2) and, if a guide or
 groove holds it, that constraint's impulse along the constraint's known normal (1,
 applied at the link centre, so no torque). Its momentum and angular momentum changes
@@ -21,10 +22,14 @@ at the mid-step velocity of its anchor splits the chain's energy change exactly:
   in the continuum.
 
 The losses are summed by region (free flight, the upper guide's arcs and straights,
-the plate grooves) and given per unit time in units of ``lambda v**3``, i.e. as the
-tension the steady balance must supply beyond the loss-free one: the speed the rig law
-selects with the loss added to its ``p_inf`` is
-``selected_speed(..., dp=loss)`` (:func:`chainfountain.sim.apparatus.selected_speed`).
+the plate grooves; for 'open' also the turn after landing and the tail's grooves) and
+given per unit time in units of ``lambda v**3``, i.e. as the tension the steady balance
+must supply beyond the loss-free one: the speed the rig law selects with the loss added
+to its ``p_inf`` is ``selected_speed(..., dp=loss)``
+(:func:`chainfountain.sim.apparatus.selected_speed`). For the non-stationary 'open'
+variant the loss enters the momentum law of the moving chain as a force
+(:func:`open_windows`): the paper's use for such runs, "to quantify dissipative
+influences".
 """
 
 from __future__ import annotations
@@ -35,15 +40,18 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from chainfountain.sim.apparatus import CART_GAIN_2CM, selected_speed
+from chainfountain.sim.apparatus import CART_GAIN_2CM, rig_exit_tension, selected_speed
 
 if TYPE_CHECKING:
     from chainfountain.sim.config import SimConfig
     from chainfountain.sim.world import Simulation
 
-REGIONS = ("flight", "arc", "line", "plate")
+REGIONS = ("flight", "arc", "line", "plate", "turn", "tail")
 """Free flight (and the free end); the upper joint guide's arcs and straight lines; the
-upper plate's grooves."""
+upper plate's grooves; 'open' only: the turn after landing (slide joints to its centre)
+and the tail's grooves on the lower plate (with the lumped end link)."""
+_RADIAL = ("arc", "turn")
+"""Regions whose joints push along the radius from a centre (the others: a fixed normal)."""
 EXACT = 1e-12
 """Largest free-link rotation residual (N m s) of a sweep that closes (rounding gives
 about 1e-19; a link's angular impulse ``I dw`` is of order 1e-6)."""
@@ -81,8 +89,9 @@ class BudgetResult:
 
 
 class EnergyBudget:
-    """Attach to a 'floor' :class:`~chainfountain.sim.world.Simulation` with the upper
-    joint guide and plate grooves; sampled steps from ``start`` (s), every ``every``-th.
+    """Attach to a 'floor' (absorbing end) or 'open' (joint turn, lumped tail)
+    :class:`~chainfountain.sim.world.Simulation` with the upper joint guide and plate
+    grooves; sampled steps from ``start`` (s), every ``every``-th.
 
     ``sim.probe`` is set to this object; the simulation calls :meth:`before` and
     :meth:`after` around each physics step. Physics is unchanged (only reads).
@@ -90,9 +99,11 @@ class EnergyBudget:
 
     def __init__(self, sim: Simulation, start: float = 0.0, every: int = 1) -> None:
         app = sim.apparatus
-        if app is None or app.variant != "floor" or app.end_mode != "absorbing":
+        floor = app is not None and app.variant == "floor" and app.end_mode == "absorbing"
+        if not (floor or (app is not None and app.variant == "open" and app.guided)):
             raise ValueError("EnergyBudget needs an apparatus of variant 'floor' with the "
-                             "absorbing end (the sweep starts at the free end)")
+                             "absorbing end, or 'open' with plate = 'groove' (the sweep "
+                             "starts at the free end)")
         if not app.upper_guided:
             raise ValueError("EnergyBudget needs apparatus.upper_guide = 'joints' (with the "
                              "walls the guide's contacts act off the link centres, which "
@@ -138,6 +149,12 @@ class EnergyBudget:
         up = np.array([0.0, 1.0])
         for lk, _ in app._grooves:
             kind[id(lk.body)] = ("plate", up)
+        if app.variant == "open":
+            c = np.array(app.guide_centre, dtype=float)
+            for lk, _ in app._arc:
+                kind[id(lk.body)] = ("turn", c)
+            for lk in links[:app._lo_n]:
+                kind[id(lk.body)] = ("tail", up)
         last = -1
         for i, lk in enumerate(links):
             k = kind.get(id(lk.body))
@@ -147,19 +164,24 @@ class EnergyBudget:
             return
         pre = sim.reader.read()  # the chain does not change during the physics step
         n = last + 1
+        end = links[0].body  # the lumped tail's end link is heavier ('open')
         self._pending = ([kind.get(id(lk.body)) for lk in links[:n]],
-                         pre.velocity[:n].copy(), pre.angular_velocity[:n].copy())
+                         pre.velocity[:n].copy(), pre.angular_velocity[:n].copy(),
+                         end.mass, end.moment)
 
     def after(self) -> None:
         """Called after the physics step, before the apparatus's ``after_step``."""
         if self._pending is None:
             return
-        kinds, v0, w0 = self._pending
+        kinds, v0, w0, m_end, I_end = self._pending
         self._pending = None
         sim, app = self.sim, self.app
         dt, g = sim.dt, sim.g
-        m, I, h = app.chain.mass, app.chain.moment, 0.5 * app.L
+        h = 0.5 * app.L
         n = len(kinds)
+        m = np.full(n, app.chain.mass)
+        I = np.full(n, app.chain.moment)
+        m[0], I[0] = m_end, I_end
         post = sim.reader.read()
         v1, w1 = post.velocity[:n], post.angular_velocity[:n]
         P, th = post.position[:n], post.angle[:n]
@@ -168,8 +190,9 @@ class EnergyBudget:
         vm, om = 0.5 * (v0 + v1), 0.5 * (w0 + w1)
         back = vm - (om * h)[:, None] * wv   # velocity of the anchor at -h u
         front = vm + (om * h)[:, None] * wv  # ... at +h u
-        dp = m * (v1 - v0)
+        dp = m[:, None] * (v1 - v0)
         dp[:, 1] += m * g * dt
+        dp[0, 0] -= app.end_pull * dt  # external ('open'), on the end link's centre
         dL = I * (w1 - w0)
         work = self._work
         Jx = Jy = 0.0  # upstream pivot impulse of the previous (downstream) link
@@ -188,7 +211,7 @@ class EnergyBudget:
                     self._resid = r
             else:
                 reg, a = k
-                nx, ny = (P[i] - a) / np.hypot(*(P[i] - a)) if reg == "arc" else a
+                nx, ny = (P[i] - a) / np.hypot(*(P[i] - a)) if reg in _RADIAL else a
                 jw = -(dL[i] - tq) / h  # J . w from the rotation equation
                 rx, ry = bx - jw * wv[i, 0], by - jw * wv[i, 1]
                 det = ux * ny - uy * nx
@@ -229,3 +252,63 @@ def rig_law_speed(cfg: SimConfig, loss: float = 0.0) -> float:
     F_uc = cart.mass * cfg.gravity * math.sin(cart.incline)
     return selected_speed(cfg.gravity, a.drop, a.xi2, F_uc, cfg.chain.linear_density,
                           gain=CART_GAIN_2CM, dp=loss)
+
+
+@dataclass(frozen=True)
+class OpenWindow:
+    """One window of an 'open' run: the measured acceleration of the chain against the
+    momentum law of the moving chain, ``M dv/dt = F_drive - T_exit(v) - D/v``."""
+
+    t0: float
+    t1: float
+    v: float
+    """Mean speed of the upper plate's strand (m/s)."""
+    mass: float
+    """Mean moving mass (kg; links faster than 0.5 m/s and the lumped tail)."""
+    budget: BudgetResult
+    a_measured: float
+    """Slope of the strand speed over the window (m/s^2)."""
+    a_law: float
+    """``(F_drive - T_exit(v))/M`` with the rig law's exit tension (m/s^2): loss-free."""
+    a_law_loss: float
+    """The same with the budget's loss ``D/v = loss lambda v_end**3 / v`` taken off."""
+
+
+def open_windows(sim: Simulation, start: float, end: float, width: float,
+                 every: int = 1) -> list[OpenWindow]:
+    """Advance an 'open' :class:`~chainfountain.sim.world.Simulation` (joint guides, plate
+    grooves) from ``start`` to ``end`` (s) in windows of ``width`` (s), with an
+    :class:`EnergyBudget` over each, and compare the chain's acceleration with the
+    momentum law (docs/apparatus.md, "Open variant: where the drive goes").
+
+    The moving chain (roller exit to the lumped tail's end) on its fixed path obeys
+    ``M(t) dv/dt = lambda g (y_up - y_lo) + F_pull - T_exit(v) - D/v``, where ``T_exit``
+    is the rig law (:func:`~chainfountain.sim.apparatus.rig_exit_tension`) and ``D`` the
+    power the budget finds lost between the plate and the free end."""
+    app = sim.apparatus
+    if app is None or app.variant != "open":
+        raise ValueError("open_windows needs an apparatus of variant 'open'")
+    if not (width > 0 and sim.time <= start + 1e-9 and start < end):
+        raise ValueError(f"open_windows: need time {sim.time:g} <= start {start:g} < end "
+                         f"{end:g} and width {width:g} > 0")
+    lam = sim.config.chain.linear_density
+    sim.advance(start - sim.time)
+    out = []
+    t = start
+    while t < end - 1e-9:
+        t1 = min(end, t + width)
+        eb = EnergyBudget(sim, start=t, every=every)
+        rows = []
+        while sim.time < t1 - 1e-9:
+            sim.advance(min(0.01, t1 - sim.time))
+            rows.append((sim.time, app.strand_speed, app.moving_mass(0.5)))
+        sim.probe = None
+        r = eb.result()
+        a = np.array(rows)
+        v, M = float(a[:, 1].mean()), float(a[:, 2].mean())
+        base = app.open_drive - rig_exit_tension(v, lam, app.upper.force)
+        loss = r.total * lam * r.v ** 3 / v
+        out.append(OpenWindow(t, t1, v, M, r, float(np.polyfit(a[:, 0], a[:, 1], 1)[0]),
+                              base / M, (base - loss) / M))
+        t = t1
+    return out
