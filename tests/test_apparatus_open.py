@@ -15,6 +15,12 @@ horizontally. Over the first 0.8 s (the run later loses its catch, see the docs)
   and the speed does not change: ``M(t) dv/dt = lambda g (y_up - y_lo) - T_exit(v)``
   vanishes at the selected speed, which depends on the drop and the cart only,
   so it is the floor preset's (same drop 0.35 m, same cart).
+
+With the upper joint guide the energy budget (:func:`~chainfountain.sim.budget.open_windows`,
+an exact impulse sweep from the lumped tail's end to the upper plate) finds where the
+drive goes: the turn after landing loses a growing share, and the chain's acceleration
+is the momentum law's with that loss taken off (docs/apparatus.md, "Open variant: where
+the drive goes"). The loss-free law misses it.
 """
 
 from __future__ import annotations
@@ -29,6 +35,7 @@ import pytest
 from chainfountain.level import io
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import report
+from chainfountain.sim.budget import open_windows
 
 LEVEL = Path(__file__).resolve().parents[1] / "levels" / "apparatus_floor.toml"
 RUN = 2.2
@@ -41,17 +48,22 @@ pytestmark = pytest.mark.xdist_group("apparatus_open")
 """The module-scoped run is computed once, on one worker (``--dist loadgroup``)."""
 
 
-@pytest.fixture(scope="module")
-def run():
+def open_sim(upper_guide: str) -> Simulation:
+    """The floor preset's chain and cart in the 'open' arrangement."""
     cfg = io.load(LEVEL).sim
     # xi2 raised so that the drop to the guide's exit equals the floor preset's drop to
     # its floor (0.35 m): same driving, same cart, same speed
     # (measured with the channel's walls and the 2.92 m/s start, as FLOOR_SPEED: the
     # floor preset now uses the joint guide, which runs 2 % faster, and starts at 2.98)
     a = dataclasses.replace(cfg.apparatus, variant="open", xi2=0.546, end_tension=0.144,
-                            plate_links=0, upper_guide="walls", speed=2.92,
+                            plate_links=0, upper_guide=upper_guide, speed=2.92,
                             duration=2.6)
-    sim = Simulation(dataclasses.replace(cfg, apparatus=a))
+    return Simulation(dataclasses.replace(cfg, apparatus=a))
+
+
+@pytest.fixture(scope="module")
+def run():
+    sim = open_sim("walls")
     rec = Recorder(sim, profiles=False)
     masses = []
     while sim.time < RUN - 1e-9:
@@ -101,8 +113,57 @@ def test_open_speed_is_the_floor_presets(run) -> None:
 
 
 @pytest.mark.xfail(strict=True, reason="speed drift -1.7 %/s (the momentum balance with the "
-                   "measured exit tension predicts +2.2 %/s; docs/apparatus.md)")
+                   "measured exit tension predicts +2.2 %/s): the turn after landing loses "
+                   "a growing share of the drive (budget tests below; docs/apparatus.md)")
 def test_open_speed_steady(run) -> None:
     sim, rec, _ = run
     m = report(sim, rec, 0.1, RUN)["measured"]
     assert abs(m["speed_drift_per_s"]) <= 0.01
+
+
+BUDGET_WINDOWS = (0.6, 1.4, 0.4)
+"""Start, end and width (s) of the budget's windows: after the start-up (over 0.2-0.6 s
+the chain gains 0.044 m/s^2 more than the law with the loss says, not understood; docs),
+before the fountain leaves the catch (about 2 s with the joint guide)."""
+A_FIT_SIGMA = 0.015
+"""Standard error (m/s^2) of a 0.4-s window's speed slope: the strand speed's residual
+about the fit is 9-12 mm/s with a correlation time of about 10 ms (scratch run sampled
+every 2 ms), so about 40 independent samples over 0.115 s of spread in time."""
+
+
+@pytest.fixture(scope="module")
+def budget_run():
+    sim = open_sim("joints")
+    return sim, open_windows(sim, *BUDGET_WINDOWS)
+
+
+def test_open_budget_sweep_is_exact(budget_run) -> None:
+    """The sweep closes through the lumped tail (its end link heavier), the turn's slide
+    joints and the grooves: the free links' rotation residual stays at rounding."""
+    _, windows = budget_run
+    assert len(windows) == 2
+    for w in windows:
+        assert w.budget.steps > 300 and w.budget.exact
+
+
+def test_open_deceleration_is_the_measured_loss(budget_run) -> None:
+    """``M dv/dt = F_drive - T_exit(v) - D/v`` with the rig law's exit tension and the
+    budget's loss ``D`` gives the measured acceleration within two sigma in each window
+    (measured -0.022 / -0.161 m/s^2 against -0.043 / -0.150); sigma combines the slope's
+    error and the rig law's single-run scatter (0.0065 ``lambda v**2``). The loss-free
+    law (+0.032 / +0.036) misses by more than that: the chain slows because of the loss."""
+    sim, windows = budget_run
+    lam = sim.config.chain.linear_density
+    for w in windows:
+        sigma = math.hypot(A_FIT_SIGMA, 0.0065 * lam * w.v**2 / w.mass)
+        assert abs(w.a_measured - w.a_law_loss) <= 2.0 * sigma
+        assert w.a_law - w.a_measured > 2.0 * sigma
+
+
+def test_open_turn_takes_a_growing_loss(budget_run) -> None:
+    """The turn after landing loses most, and more as the run goes on (measured 0.046 of
+    0.067, then 0.146 of 0.189 ``lambda v**3``): its loss lowers the mouth tension, the
+    fountain widens and lands further into the turn, off its circle (docs)."""
+    _, (w1, w2) = budget_run
+    assert w2.budget.region("turn") > 2.0 * w1.budget.region("turn")
+    assert w2.budget.region("turn") > 0.5 * w2.budget.total
