@@ -88,6 +88,53 @@ class BudgetResult:
         return self.pivots.get(name, 0.0) + self.guides.get(name, 0.0)
 
 
+def sweep(kinds: list, position: np.ndarray, angle: np.ndarray, dp: np.ndarray,
+          dL: np.ndarray, h: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
+    """The exact impulse sweep over links ``0 .. n-1`` from the free end (module docstring).
+
+    ``kinds[i]`` is None for a free link, else ``(region, a)``: a joint through the link
+    centre pushing along the radius from centre ``a`` (regions in ``arc``, ``turn``) or
+    along the fixed normal ``a``. ``dp`` is each link's momentum change plus its weight's
+    impulse less any external impulse (``m dv + m g dt - F dt``), ``dL`` its angular
+    momentum change, ``h`` half the link length.
+
+    Returns ``J`` (n, 2), the impulse link ``i+1`` applies to link ``i`` at its back
+    anchor (``-h u``); ``gn`` (n), each joint's impulse along its normal ``nrm`` (n, 2;
+    zero rows for free links); and the largest rotation residual of a free link."""
+    n = len(kinds)
+    u = np.column_stack((np.cos(angle), np.sin(angle)))
+    wv = np.column_stack((-u[:, 1], u[:, 0]))
+    J = np.zeros((n, 2))
+    gn = np.zeros(n)
+    nrm = np.zeros((n, 2))
+    resid = 0.0
+    Jx = Jy = 0.0  # upstream pivot impulse of the previous (downstream) link
+    for i in range(n):
+        ux, uy = u[i]
+        # link i gets -J_prev at its front anchor (+h u): torque h*(u x -J_prev)
+        tq = -h * (ux * Jy - uy * Jx)
+        bx, by = dp[i, 0] + Jx, dp[i, 1] + Jy  # = J + g n
+        k = kinds[i]
+        if k is None:
+            jx, jy = bx, by
+            # rotation: dL = (-h u) x J + tq
+            resid = max(resid, abs(dL[i] - (-h * (ux * jy - uy * jx) + tq)))
+        else:
+            reg, a = k
+            nx, ny = (position[i] - a) / np.hypot(*(position[i] - a)) if reg in _RADIAL \
+                else a
+            jw = -(dL[i] - tq) / h  # J . w from the rotation equation
+            rx, ry = bx - jw * wv[i, 0], by - jw * wv[i, 1]
+            det = ux * ny - uy * nx
+            a_par = (rx * ny - ry * nx) / det
+            gn[i] = (ux * ry - uy * rx) / det
+            nrm[i] = nx, ny
+            jx = a_par * ux + jw * wv[i, 0]
+            jy = a_par * uy + jw * wv[i, 1]
+        J[i] = Jx, Jy = jx, jy
+    return J, gn, nrm, float(resid)
+
+
 class EnergyBudget:
     """Attach to a 'floor' (absorbing end) or 'open' (joint turn, lumped tail)
     :class:`~chainfountain.sim.world.Simulation` with the upper joint guide and plate
@@ -193,37 +240,17 @@ class EnergyBudget:
         dp = m[:, None] * (v1 - v0)
         dp[:, 1] += m * g * dt
         dp[0, 0] -= app.end_pull * dt  # external ('open'), on the end link's centre
-        dL = I * (w1 - w0)
+        J, gn, nrm, resid = sweep(kinds, P, th, dp, I * (w1 - w0), h)
+        self._resid = max(self._resid, resid)
         work = self._work
-        Jx = Jy = 0.0  # upstream pivot impulse of the previous (downstream) link
-        for i in range(n):
-            ux, uy = u[i]
-            # link i gets -J_prev at its front anchor (+h u): torque h*(u x -J_prev)
-            tq = -h * (ux * Jy - uy * Jx)
-            bx, by = dp[i, 0] + Jx, dp[i, 1] + Jy  # = J + g n
-            k = kinds[i]
-            if k is None:
-                jx, jy = bx, by
-                reg = "flight"
-                # rotation: dL = (-h u) x J + tq
-                r = abs(dL[i] - (-h * (ux * jy - uy * jx) + tq))
-                if r > self._resid:
-                    self._resid = r
-            else:
-                reg, a = k
-                nx, ny = (P[i] - a) / np.hypot(*(P[i] - a)) if reg in _RADIAL else a
-                jw = -(dL[i] - tq) / h  # J . w from the rotation equation
-                rx, ry = bx - jw * wv[i, 0], by - jw * wv[i, 1]
-                det = ux * ny - uy * nx
-                a_par = (rx * ny - ry * nx) / det
-                gn = (ux * ry - uy * rx) / det
-                jx = a_par * ux + jw * wv[i, 0]
-                jy = a_par * uy + jw * wv[i, 1]
-                work[f"{reg}:guide"] += gn * (nx * vm[i, 0] + ny * vm[i, 1])
+        guide = gn * np.einsum("ij,ij->i", nrm, vm)
+        pivot = np.einsum("ij,ij->i", J[:-1], back[:-1] - front[1:])
+        for i, k in enumerate(kinds):
+            reg = "flight" if k is None else k[0]
+            if k is not None:
+                work[f"{reg}:guide"] += guide[i]
             if i < n - 1:
-                work[f"{reg}:pivot"] += jx * (back[i, 0] - front[i + 1, 0]) + \
-                    jy * (back[i, 1] - front[i + 1, 1])
-            Jx, Jy = jx, jy
+                work[f"{reg}:pivot"] += pivot[i]
         self._steps += 1
         k = min(40, n)
         self._vsum += float(np.mean(np.hypot(v1[:k, 0], v1[:k, 1])))
