@@ -588,7 +588,6 @@ class Apparatus:
         self._lo_joints: list[pymunk.GrooveJoint] = []
         self.tail_mass = 0.0
         """'open': mass (kg) of the tail links lumped into the end link (see _lump_tail)."""
-        self._lump_hist: list[tuple[float, float]] = []
         self._t = 0.0
         self._back_t = 0.0
         """How long (s) the folding roller has been rolling backwards without a break."""
@@ -703,14 +702,6 @@ class Apparatus:
         n = sum(1 for lk in self.chain.links if lk.body.velocity.length > v_min)
         return n * self.chain.mass + self.tail_mass
 
-    def tail_mass_at(self, t: float) -> float:
-        """Mass lumped into the end link at time ``t`` ('open'; kg)."""
-        h = self._lump_hist
-        if not h or t < h[0][0]:
-            return 0.0
-        i = int(np.searchsorted([x[0] for x in h], t + 1e-12, side="right")) - 1
-        return h[i][1]
-
     def _lump_tail(self) -> int:
         """'open' with the joint guide: keep at most ``_TAIL_KEEP`` links in the plate
         grooves; the far end link beyond is removed and its mass added to the next one
@@ -735,8 +726,6 @@ class Apparatus:
             self._lo_n -= 1
             self.tail_mass = nxt.mass - self.chain.mass
             n += 1
-        if n:
-            self._lump_hist.append((self._t, self.tail_mass))
         return n
 
     def set_speed(self, v: float) -> None:
@@ -1056,24 +1045,6 @@ class Apparatus:
         self._fly_next -= 2
         self._g_next -= 2
         self.cut += 2
-
-    def lo_grooved(self, position: np.ndarray) -> int:
-        """Number of leading links (chain order) on the lower plate line past the end
-        channel in a recorded state: the links the grooves hold ('open'; samples are
-        analysed after the run, so this is read from the positions)."""
-        if self.variant != "open" or self.plate_mode != "groove":
-            return 0
-        on = (position[:, 0] > self.x_plate_lo_start) & \
-            (np.abs(position[:, 1] - self.y_lo) < 2.0 * self.rho)
-        if self.guided:
-            cx, cy = self.guide_centre
-            d = np.hypot(position[:, 0] - cx, position[:, 1] - cy)
-            th = np.arctan2(position[:, 1] - cy, position[:, 0] - cx)
-            th_mouth = math.atan2(-math.cos(self.alphaE), -math.sin(self.alphaE))
-            on |= (th >= th_mouth - _CAPTURE[1]) & (th <= -0.5 * math.pi + 0.05) & \
-                (np.abs(d - self.guide_radius) < _CAPTURE[0])
-        off = np.flatnonzero(~on)
-        return int(off[0]) if len(off) else len(on)
 
     def _update_lo_grooves(self) -> None:
         """'open': the tail leaving the end channel runs in a frictionless groove joint per

@@ -57,22 +57,28 @@ class ApparatusSample:
     channel_force_x: float
     """Net contact force of the end channel on the chain, x (N; 'fold', 'open')."""
     channel_force_y: float
+    tail_reaction: float = math.nan
+    """'open' with the joint turn: upward force of the lower plate's grooves on the tail
+    (N), the lumped end included: the supported weight of the chain moving away, which
+    grows as ``lambda g v`` per second (the paper's "reaction force change ... exactly
+    known over time")."""
 
 
 def _guided_impulses(app: Apparatus, pre_vel: np.ndarray, post, dt: float,
-                     k: int, t: float, start: tuple[int, float] | None = None) -> np.ndarray:
-    """'open': 'contact' impulses for the first ``k`` links, which the lower guide joints
+                     k: int, start: tuple[int, float]) -> np.ndarray:
+    """'fold': 'contact' impulses for the first ``k`` links, which the lower guide joints
     hold (their impulses are not among the contacts), such that the momentum balance
     summed from the end gives, at joint ``k-1``, the tension of the guided chain.
 
     The guide forces are normal to the path (frictionless grooves, slide joints to
-    the turn's centre), so each guided link's balance along its own axis ``u_i``
-    gives the tension recursively from the free end (shear neglected, end pull
-    included): ``T_i (e_i.u_i) = T_{i-1} (e_{i-1}.u_i) - m (dv_i/dt + g y).u_i
-    + F_pull x.u_i`` with ``e_j`` the joint direction as in ``signed_tension``.
-    The returned rows make the summed force at joint ``k-1`` equal ``-T_{k-1} e_{k-1}``.
-    ``start = (i, T_i)`` ('fold'): the recursion starts from a known tension at joint
-    ``i`` (on the lower plate, from the horizontal joint force) instead of the free end.
+    the turns' centres), so each guided link's balance along its own axis ``u_i``
+    gives the tension recursively (shear neglected):
+    ``T_i (e_i.u_i) = T_{i-1} (e_{i-1}.u_i) - m (dv_i/dt + g y).u_i`` with ``e_j`` the
+    joint direction as in ``signed_tension``, starting from a known tension
+    ``start = (i, T_i)`` at joint ``i`` (on the lower plate, from the horizontal joint
+    force). The returned rows make the summed force at joint ``k-1`` equal
+    ``-T_{k-1} e_{k-1}``. (:func:`_pivot_offset` corrects what the neglected shear
+    misses; 'open' is read exactly, :func:`_open_guide_impulses`.)
     """
     m, g = app.chain.mass, app.g
     ang = post.angle
@@ -83,22 +89,15 @@ def _guided_impulses(app: Apparatus, pre_vel: np.ndarray, post, dt: float,
     e /= np.linalg.norm(e, axis=1)[:, None]
     acc = (post.velocity[:kk] - pre_vel[:kk]) / dt
     acc[:, 1] += g
-    T = 0.0
-    m0 = m + app.tail_mass_at(t)  # the end link carries the lumped tail
-    i_first = 0
+    i_first, T = start[0] + 1, start[1]
     # the recursion in plain floats: numpy's per-call cost on 2-vectors made this loop
     # 40 % of a sample's analysis (0.4 ms at 30 guided links)
     ul, el, al = u[:kk].tolist(), e.tolist(), acc.tolist()
-    epx = epy = 0.0
-    if start is not None:
-        i_first, T = start[0] + 1, start[1]
-        epx, epy = el[start[0]]
+    epx, epy = el[start[0]]
     for i in range(i_first, kk):
         ux, uy = ul[i]
         ax, ay = al[i]
-        rhs = T * (epx * ux + epy * uy) - (m0 if i == 0 else m) * (ax * ux + ay * uy)
-        if i == 0:
-            rhs += app.end_pull * ux
+        rhs = T * (epx * ux + epy * uy) - m * (ax * ux + ay * uy)
         ex, ey = el[i]
         T = rhs / (ex * ux + ey * uy)
         epx, epy = ex, ey
@@ -108,6 +107,44 @@ def _guided_impulses(app: Apparatus, pre_vel: np.ndarray, post, dt: float,
     if kk:
         target[kk - 1] = -T * e[kk - 1] * dt
     return raw - target
+
+
+def _open_guide_impulses(app: Apparatus, pre_vel: np.ndarray, pre_w: np.ndarray, post,
+                         dt: float, lower: tuple[int, int, float, float]
+                         ) -> tuple[np.ndarray, float]:
+    """'open' with the joint turn: the external impulses on the first ``k`` links (the
+    tail's grooves, the turn's slide joints), exactly, as 'contact' rows for
+    :func:`~chainfountain.sim.measure.joint_forces`.
+
+    ``lower = (n_tail, n_turn, m_end, I_end)`` is the guide's state at the step (links
+    ``0 .. n_tail-1`` in the lower plate's grooves, the next ``n_turn`` on the turn; the
+    end link's mass and moment with the lumped tail). The energy budget's impulse sweep
+    (:func:`chainfountain.sim.budget.sweep`) gives each joint's impulse along its known
+    normal from the links' momentum and angular momentum changes, so nothing is
+    neglected (the earlier reconstruction took the guide forces normal to each link's
+    axis and neglected the shear). Each row also carries what ``joint_forces`` does not
+    know: the end pull and the lumped mass beyond one link's on the end link. Also
+    returns the grooves' summed impulse on the tail (N s, upward)."""
+    from chainfountain.sim.budget import sweep
+
+    n_tail, n_turn, m_end, I_end = lower
+    k = min(n_tail + n_turn, len(post.angle))
+    up = np.array([0.0, 1.0])
+    centre = np.array(app.guide_centre, dtype=float)
+    kinds = [("tail", up) if i < n_tail else ("turn", centre) for i in range(k)]
+    m, g = app.chain.mass, app.g
+    mass = np.full(k, m)
+    moment = np.full(k, app.chain.moment)
+    mass[0], moment[0] = m_end, I_end
+    dv = post.velocity[:k] - pre_vel[:k]
+    dv[:, 1] += g * dt  # momentum change and weight, per unit mass
+    dp = mass[:, None] * dv
+    dp[0, 0] -= app.end_pull * dt
+    _, gn, nrm, _ = sweep(kinds, post.position[:k], post.angle[:k], dp,
+                          moment * (post.angular_velocity[:k] - pre_w[:k]), 0.5 * app.L)
+    rows = gn[:, None] * nrm  # the guides' impulses
+    rows[0] += np.array([app.end_pull * dt, 0.0]) - (m_end - m) * dv[0]
+    return rows, float(np.sum(gn[:n_tail] * nrm[:n_tail, 1]))
 
 
 def _pivot_offset(F: np.ndarray, pivots: np.ndarray, free: np.ndarray) -> np.ndarray | None:
@@ -144,7 +181,9 @@ def _pivot_offset(F: np.ndarray, pivots: np.ndarray, free: np.ndarray) -> np.nda
 def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.ndarray,
             dt: float, lam: float,
             roller: tuple[float, float, float, float],
-            pivots: np.ndarray | None = None) -> tuple[ApparatusSample, dict]:
+            pivots: np.ndarray | None = None, pre_w: np.ndarray | None = None,
+            lower: tuple[int, int, float, float] | None = None
+            ) -> tuple[ApparatusSample, dict]:
     """Measure one sampled step: signed tension from the exact momentum balance summed
     from the downstream end (:func:`chainfountain.sim.measure.joint_forces`, all contact
     impulses of floor, channels, plates, rollers and tables subtracted), located on
@@ -152,15 +191,17 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
 
     ``pivots`` ('fold'): the size of every chain joint's force in this step from the
     solver's pivot impulses (N). They correct the lower guide's reconstruction by
-    :func:`_pivot_offset`."""
+    :func:`_pivot_offset`. ``pre_w`` and ``lower`` ('open' with the joint turn): the
+    links' angular velocities before the step and the lower guide's state
+    (:func:`_open_guide_impulses`)."""
     from chainfountain.sim.measure import ChainState, joint_forces, signed_tension, vertex_of
 
     chain = app.chain
     n = len(post.angle)
     pre = ChainState(position=post.position, angle=post.angle, velocity=pre_vel,
                      angular_velocity=post.angular_velocity)
-    k = app.lo_grooved(post.position) if app._lo_n or app._arc else 0
-    T_lo_fold = math.nan
+    k = min(lower[0] + lower[1], n) if lower is not None else 0
+    T_lo_fold = tail_reaction = math.nan
     if app.fold_guided:
         # tension on the lower plate from the horizontal joint force (grooves add none),
         # then along the guided links' axes up to the mouth
@@ -169,14 +210,16 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
             F1 = joint_forces(pre, post, chain.mass, dt, app.g, n - 1, contacts)
             T_lo_fold = float(-np.mean(F1[ip - 2:ip + 3, 0]))
             contacts = contacts.copy()
-            contacts[:k] = _guided_impulses(app, pre_vel, post, dt, k, t,
+            contacts[:k] = _guided_impulses(app, pre_vel, post, dt, k,
                                             start=(ip, float(-F1[ip, 0])))
         else:
             k = 0
     elif app.end_pull or k:
         contacts = contacts.copy()
         if k:
-            contacts[:k] = _guided_impulses(app, pre_vel, post, dt, k, t)
+            contacts[:k], tail_imp = _open_guide_impulses(app, pre_vel, pre_w, post, dt,
+                                                          lower)
+            tail_reaction = tail_imp / dt
         else:  # external force on the end link, like a contact
             contacts[0, 0] += app.end_pull * dt
     F = joint_forces(pre, post, chain.mass, dt, app.g, n - 1, contacts)
@@ -268,7 +311,8 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
         TE_bar=TE / scale, T_up_bar=T_up, T_lo_bar=T_lo, uc_bar=uc, lc_bar=lc,
         vertex_x=xv, vertex_y=yv, end_x=end_x, end_y=end_y,
         n_flight=len(links), stretch=float(gaps.sum() / (n * L)),
-        channel_force_x=end_contacts[0], channel_force_y=end_contacts[1])
+        channel_force_x=end_contacts[0], channel_force_y=end_contacts[1],
+        tail_reaction=tail_reaction)
     prof = {"tension_bar": ten[jE:j0 + 1][::-1] / scale, "x": flight[::-1, 0].copy(),
             "y": flight[::-1, 1].copy(), "speed": speed[::-1].copy()}
     return s, prof
@@ -443,7 +487,13 @@ def report(sim, rec, t0: float, t1: float) -> dict:
         T_ex = T_up * lam * v * v
         G = CART_GAIN_2CM
         T_rig = rig_exit_tension(v, lam, app.upper.force)
+        R = np.array([s.tail_reaction for s in S], dtype=float)
+        ok = np.isfinite(R)
         out["open"] = {
+            "tail_reaction_N": [float(R[ok][0]), float(R[ok][-1])] if ok.any() else None,
+            "tail_reaction_rate_N_per_s": float(np.polyfit(t[ok], R[ok], 1)[0])
+            if ok.sum() > 2 else math.nan,
+            "tail_reaction_rate_predicted": lam * g * v,
             "TE_bar_predicted": (lam * g * drop + app.end_pull) / (lam * v * v),
             "drive_N": drive, "exit_tension_N": T_ex, "exit_tension_rig_N": T_rig,
             "moving_mass_kg_end": M, "moving_mass_rate_predicted": 0.5 * lam * v,
@@ -452,7 +502,7 @@ def report(sim, rec, t0: float, t1: float) -> dict:
             "v_selected_rig": selected_speed(g, app.y_up - app.y_lo + app.end_pull / (lam * g),
                                              0.0, app.upper.force, lam, gain=G),
             "formula": "M(t) dv/dt = lambda g (y_up - y_lo) + F_pull - T_exit(v), "
-                       "dM/dt = lambda v/2",
+                       "dM/dt = lambda v/2; tail reaction d/dt = lambda g v",
         }
     if fold:
         # whole moving chain (upper roller exit to folding roller entry) on its fixed

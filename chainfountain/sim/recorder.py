@@ -119,8 +119,12 @@ class Recorder:
                 # joint force sizes: the lower guide's correction (no contact involved)
                 pivots = np.array([abs(lk.up_joint.impulse) if lk.up_joint is not None
                                    else np.nan for lk in sim.chain.links]) / sim.dt
+            lower = None
+            if app.guided:  # 'open': which links the tail's grooves and the turn hold
+                end = sim.chain.links[0].body
+                lower = (app._lo_n, len(app._arc), end.mass, end.moment)
             self._raw.append(("apparatus", sim.time, pre.velocity, post, contacts, roller,
-                              pivots))
+                              pivots, pre.angular_velocity, lower))
             return
         end_force = sim.feed.end_force
         if end_force is not None:  # the floor's pull is an external force on link 0
@@ -159,12 +163,13 @@ class Recorder:
 
     def _analyse_apparatus(self, t: float, pre_vel: np.ndarray, post: ChainState,
                            contacts: np.ndarray, roller: tuple,
-                           pivots: np.ndarray | None) -> None:
+                           pivots: np.ndarray | None, pre_w: np.ndarray,
+                           lower: tuple | None) -> None:
         from chainfountain.sim.apparatus_report import analyse
 
         sim = self.sim
         s, prof = analyse(sim.apparatus, t, pre_vel, post, contacts, sim.dt,
-                          sim.chain.cfg.linear_density, roller, pivots)
+                          sim.chain.cfg.linear_density, roller, pivots, pre_w, lower)
         self._ap_samples.append(s)
         sp = prof["speed"]
         self._samples.append(Sample(
