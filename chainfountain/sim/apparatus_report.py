@@ -125,13 +125,11 @@ def _open_guide_impulses(app: Apparatus, pre_vel: np.ndarray, pre_w: np.ndarray,
     axis and neglected the shear). Each row also carries what ``joint_forces`` does not
     know: the end pull and the lumped mass beyond one link's on the end link. Also
     returns the grooves' summed impulse on the tail (N s, upward)."""
-    from chainfountain.sim.budget import sweep
+    from chainfountain.sim.budget import lower_kinds, sweep
 
     n_tail, n_turn, m_end, I_end = lower
     k = min(n_tail + n_turn, len(post.angle))
-    up = np.array([0.0, 1.0])
-    centre = np.array(app.guide_centre, dtype=float)
-    kinds = [("tail", up) if i < n_tail else ("turn", centre) for i in range(k)]
+    kinds = lower_kinds(app, n_tail, n_turn)[:k]
     m, g = app.chain.mass, app.g
     mass = np.full(k, m)
     moment = np.full(k, app.chain.moment)

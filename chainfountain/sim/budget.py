@@ -40,7 +40,12 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from chainfountain.sim.apparatus import CART_GAIN_2CM, rig_exit_tension, selected_speed
+from chainfountain.sim.apparatus import (
+    CART_GAIN_2CM,
+    Apparatus,
+    rig_exit_tension,
+    selected_speed,
+)
 
 if TYPE_CHECKING:
     from chainfountain.sim.config import SimConfig
@@ -86,6 +91,15 @@ class BudgetResult:
 
     def region(self, name: str) -> float:
         return self.pivots.get(name, 0.0) + self.guides.get(name, 0.0)
+
+
+def lower_kinds(app: Apparatus, n_tail: int, n_turn: int) -> list:
+    """:func:`sweep` kinds of an 'open' chain's first ``n_tail + n_turn`` links: the tail in
+    the lower plate's grooves (normal up), then the links the turn's slide joints hold
+    (radial from the turn's centre). The guide always holds the chain's leading links."""
+    up = np.array([0.0, 1.0])
+    centre = np.array(app.guide_centre, dtype=float)
+    return [("tail", up)] * n_tail + [("turn", centre)] * n_turn
 
 
 def sweep(kinds: list, position: np.ndarray, angle: np.ndarray, dp: np.ndarray,
@@ -196,12 +210,6 @@ class EnergyBudget:
         up = np.array([0.0, 1.0])
         for lk, _ in app._grooves:
             kind[id(lk.body)] = ("plate", up)
-        if app.variant == "open":
-            c = np.array(app.guide_centre, dtype=float)
-            for lk, _ in app._arc:
-                kind[id(lk.body)] = ("turn", c)
-            for lk in links[:app._lo_n]:
-                kind[id(lk.body)] = ("tail", up)
         last = -1
         for i, lk in enumerate(links):
             k = kind.get(id(lk.body))
@@ -211,9 +219,12 @@ class EnergyBudget:
             return
         pre = sim.reader.read()  # the chain does not change during the physics step
         n = last + 1
+        kinds = [kind.get(id(lk.body)) for lk in links[:n]]
+        if app.variant == "open":
+            low = lower_kinds(app, app._lo_n, len(app._arc))
+            kinds[:len(low)] = low
         end = links[0].body  # the lumped tail's end link is heavier ('open')
-        self._pending = ([kind.get(id(lk.body)) for lk in links[:n]],
-                         pre.velocity[:n].copy(), pre.angular_velocity[:n].copy(),
+        self._pending = (kinds, pre.velocity[:n].copy(), pre.angular_velocity[:n].copy(),
                          end.mass, end.moment)
 
     def after(self) -> None:
