@@ -7,7 +7,13 @@ Outputs (all written atomically into the output folder):
 - ``tensions.csv``: time, joint index, arc length, x, y, signed tension (N),
   scaled tension, decimated to at most ``MAX_TENSION_SAMPLES`` time samples;
 - ``speed.csv``: one row per recorded sample (speed, vertex, stretch, ...);
-- ``snapshot.png``: the chain at the end with the predicted catenary (metres).
+- ``snapshot.png``: the chain at the end with the predicted catenary (metres);
+- apparatus levels: ``apparatus.csv``, one row per recorded apparatus sample (roller
+  speeds, end tensions, cart forces, the lower plate's reaction, ...);
+- the 'open' arrangement: ``reaction.png``, the lower plate's reaction against time
+  with the paper's rate.
+
+``summary.json`` lists the files written under ``outputs``.
 """
 
 from __future__ import annotations
@@ -37,6 +43,8 @@ MAX_PROFILES = 2000
 """Per-link profiles kept in memory by a headless run (thinned evenly beyond; 40 s at 50 Hz)."""
 DEFAULT_DURATION = 8.0
 """Simulated seconds of a headless run when none is given."""
+DEFAULT_OUTPUTS = ("summary.json", "tensions.csv", "speed.csv", "snapshot.png")
+"""What every run writes (``summary.json`` lists its own files under ``outputs``)."""
 LOG_PROGRESS_EVERY = 30.0
 """Wall seconds between progress lines when stderr is not a terminal (a log file)."""
 
@@ -255,14 +263,60 @@ def _write_tensions(path: Path, rec: Recorder, lam: float) -> None:
     atomic.write_text(path, buf.getvalue())
 
 
-def _write_speed(path: Path, rec: Recorder) -> None:
+def _write_samples(path: Path, samples: list) -> None:
+    """One row per recorded sample (a dataclass), one column per field."""
     buf = _io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
-    cols = [f.name for f in dataclasses.fields(rec.samples[0])] if rec.samples else ["t"]
+    cols = [f.name for f in dataclasses.fields(samples[0])] if samples else ["t"]
     w.writerow(cols)
-    for smp in rec.samples:
+    for smp in samples:
         w.writerow([f"{getattr(smp, c):.6g}" for c in cols])
     atomic.write_text(path, buf.getvalue())
+
+
+def _write_speed(path: Path, rec: Recorder) -> None:
+    _write_samples(path, rec.samples)
+
+
+def write_reaction_figure(path: Path, rec: Recorder, summary: dict[str, Any],
+                          lam: float, g: float, title: str) -> None:
+    """'open' arrangement: the lower plate's reaction force against time, with the
+    paper's rate ``lambda g v`` integrated over the measured speed from the first sample
+    (the paper: "the reaction force change is exactly known over time")."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    S = rec.apparatus_samples
+    t = np.array([x.t for x in S], dtype=float)
+    R = np.array([x.tail_reaction for x in S], dtype=float)
+    v = np.array([x.v for x in S], dtype=float)
+    ok = np.isfinite(R) & np.isfinite(v)
+    t, R, v = t[ok], R[ok], v[ok]
+    fig, ax = plt.subplots(figsize=(6.4, 4.2), dpi=100)
+    ax.plot(t, R, ".", ms=3, color="#333333", label="measured (each sample)")
+    if len(t) > 1:
+        dist = np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(t))])
+        ax.plot(t, R[0] + lam * g * dist, "--", color="#d62728", lw=1.4,
+                label="lambda g v (paper), from the first sample")
+    o = (summary.get("apparatus") or {}).get("open") or {}
+    rate, pred = o.get("tail_reaction_rate_N_per_s"), o.get("tail_reaction_rate_predicted")
+    if rate is not None and pred is not None:
+        w0, w1 = summary["apparatus"]["window"]
+        ax.text(0.02, 0.97, f"rate over {w0:.2g}-{w1:.2g} s: {rate:.3f} N/s measured "
+                f"(Theil-Sen), {pred:.3f} N/s = lambda g v ({100 * (rate / pred - 1):+.1f} %)",
+                transform=ax.transAxes, va="top", fontsize=8)
+    ax.set_xlabel("t (s)")
+    ax.set_ylabel("lower plate reaction (N)")
+    ax.grid(alpha=0.3)
+    ax.set_ylim(bottom=0.0)
+    ax.set_title(title, fontsize=10)
+    ax.legend(loc="lower right", fontsize=8, framealpha=0.9)
+    fig.tight_layout()
+    with atomic.atomic_path(path) as tmp:
+        fig.savefig(tmp, format="png")
+    plt.close(fig)
 
 
 def write_snapshot(path: Path, sim: Simulation, summary: dict[str, Any], title: str) -> None:
@@ -340,6 +394,15 @@ def run_level(level: Level, out_dir: Path, duration: float | None = None, *,
              + ("" if summary["steady"] else " (not steady)")
              + ("" if ended is None else " - ended early"))
     write_snapshot(out_dir / "snapshot.png", sim, summary, title)
+    outputs = list(DEFAULT_OUTPUTS)
+    if app is not None:
+        _write_samples(out_dir / "apparatus.csv", rec.apparatus_samples)
+        outputs.append("apparatus.csv")
+        if app.variant == "open":
+            write_reaction_figure(out_dir / "reaction.png", rec, summary, lam,
+                                  level.sim.gravity, title)
+            outputs.append("reaction.png")
+    summary["outputs"] = outputs
     path = out_dir / "summary.json"
     atomic.write_text(path, json.dumps(summary, indent=2) + "\n")
     return path
@@ -359,7 +422,7 @@ def describe_outputs(summary_path: Path) -> str:
     steady = (f"steady since {s['steady_since_s']:.2f} s" if s["steady"]
               else "never steady (compare with care)")
     lines = [
-        f"wrote {out}/summary.json, tensions.csv, speed.csv, snapshot.png",
+        f"wrote {out}/" + ", ".join(s.get("outputs") or DEFAULT_OUTPUTS),
         f"  {s['links']} links, {s['steps']} steps, real-time factor "
         f"{s['realtime_factor']:.2f}, {steady}",
     ]

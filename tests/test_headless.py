@@ -111,11 +111,30 @@ def test_run_that_ends_early_writes_its_part_and_exits_3(tmp_path):
     assert s["duration_s"] == ended["t_s"]
     assert "ENDED EARLY" in r.stdout and "Traceback" not in r.stderr
     assert (tmp_path / "snapshot.png").exists() and (tmp_path / "speed.csv").exists()
+    assert s["outputs"][-1] == "apparatus.csv" and (tmp_path / "apparatus.csv").exists()
     # the reason (about 600 characters here) is wrapped for the terminal, not one line
     out = r.stdout.splitlines()
     i = next(k for k, ln in enumerate(out) if "ENDED EARLY" in ln)
     assert len(out) - i > 3 and all(len(ln) <= 100 for ln in out[i:])
     assert " ".join(ln.strip() for ln in out[i:]).count("folding roller rolls backwards") == 1
+
+
+def test_open_arrangement_writes_its_reaction(tmp_path):
+    """The 'open' preset: apparatus.csv carries the lower plate's reaction per sample, it
+    grows, reaction.png draws it, and summary.json and the terminal list both files."""
+    from chainfountain.headless import describe_outputs
+    from chainfountain.level import library
+
+    path = run_level(io.load(library.resolve("apparatus_open")), tmp_path, 0.6,
+                     progress=False)
+    s = json.loads(path.read_text())
+    assert s["outputs"][-2:] == ["apparatus.csv", "reaction.png"]
+    assert all((tmp_path / f).exists() for f in s["outputs"])
+    assert "apparatus.csv, reaction.png" in describe_outputs(path).splitlines()[0]
+    rows = list(csv.DictReader((tmp_path / "apparatus.csv").open()))
+    R = [float(r["tail_reaction"]) for r in rows]
+    assert len(R) > 50 and sum(R[-5:]) > 3.0 * sum(R[:5]) > 0.0
+    assert (tmp_path / "reaction.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
 def test_full_run_is_not_marked_ended_early(tmp_path, quick_level):

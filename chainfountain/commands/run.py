@@ -21,7 +21,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "run",
         help="run a level headless and write summary.json, CSVs and a snapshot",
         description="Run LEVEL (a .toml path or a level name from levels/) without a window. "
-        "Writes summary.json, tensions.csv, speed.csv and snapshot.png into --out. Exit "
+        "Writes summary.json, tensions.csv, speed.csv and snapshot.png into --out (apparatus "
+        "levels also apparatus.csv; the 'open' arrangement reaction.png). Exit "
         "status 0; 2 for bad input; 3 if the run ended early (an apparatus table used up, "
         "the fold collapsed): the outputs then cover the part simulated.",
         allow_abbrev=False,
