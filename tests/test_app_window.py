@@ -270,3 +270,31 @@ def test_status_keeps_a_long_stop_reason_from_its_head():
     # not stopped: the newest messages' last 6 rows, as before
     rows = status_rows(["a " * 200, "b"], None, wrap)
     assert len(rows) == 6 and rows[-1] == "b"
+
+
+def test_open_arrangement_plots_the_plate_reaction(tmp_path, monkeypatch):
+    """'open' (the paper's non-stationary arrangement): the third plot is the lower
+    plate's reaction force, growing, with the paper's rate drawn beside it."""
+    import numpy as np
+
+    from chainfountain.level import library
+
+    monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
+    app = App(Session(io.load(library.resolve("apparatus_open"))), offscreen=True)
+    try:
+        for _ in range(20):
+            app.run_frame()
+        hist = app.session.history.arrays()
+        r = hist["reaction"][np.isfinite(hist["reaction"])]
+        assert len(r) > 10 and r[-5:].mean() > 2.0 * r[:5].mean() > 0.0
+        surf = app._render_plots(app.session.readout(), pygame.Rect(0, 0, 380, 600))
+        arr = pygame.surfarray.array3d(surf).astype(int)
+        third = arr[:, 2 * 600 // 3:, :]
+        for colour in (render.CHAIN, render.THEORY):
+            assert (abs(third - colour).sum(axis=2) < 30).sum() > 40, colour
+    finally:
+        app.finish()
+    # a level with a fold has no reaction series: its third plot stays the end tensions
+    s = Session(io.load(library.resolve("apparatus_special")))
+    s.advance(0.05)
+    assert len(s.history.t) > 0 and not np.isfinite(s.history.arrays()["reaction"]).any()

@@ -118,18 +118,22 @@ class History:
         """Apparatus: chain speed at the pick-up (twice the roller speed; nan otherwise)."""
         self.speed_out: list[float] = []
         """Apparatus with a fold: chain speed at the folding roller (nan otherwise)."""
+        self.reaction: list[float] = []
+        """Apparatus 'open': the lower plate's reaction force, N (nan otherwise)."""
 
     def _lists(self) -> tuple[list[float], ...]:
         return (self.t, self.speed, self.T0, self.TE, self.vertex_y, self.landing_x,
-                self.speed_in, self.speed_out)
+                self.speed_in, self.speed_out, self.reaction)
 
     def clear(self) -> None:
         for lst in self._lists():
             lst.clear()
 
     def append(self, t: float, speed: float, T0: float, TE: float, vy: float, lx: float,
-               speed_in: float = math.nan, speed_out: float = math.nan) -> None:
-        for lst, x in zip(self._lists(), (t, speed, T0, TE, vy, lx, speed_in, speed_out),
+               speed_in: float = math.nan, speed_out: float = math.nan,
+               reaction: float = math.nan) -> None:
+        for lst, x in zip(self._lists(),
+                          (t, speed, T0, TE, vy, lx, speed_in, speed_out, reaction),
                           strict=True):
             lst.append(x)
         if len(self.t) > 64 and self.t[-1] - self.t[0] > 1.1 * self.span:
@@ -143,6 +147,7 @@ class History:
             "T0": np.asarray(self.T0), "TE": np.asarray(self.TE),
             "vertex_y": np.asarray(self.vertex_y), "landing_x": np.asarray(self.landing_x),
             "speed_in": np.asarray(self.speed_in), "speed_out": np.asarray(self.speed_out),
+            "reaction": np.asarray(self.reaction),
         }
 
 
@@ -453,13 +458,14 @@ class Session:
             te = math.nan
             if i < len(profiles) and len(profiles[i].tension_bar):
                 te = float(profiles[i].tension_bar[-1])
-            v_in = v_out = math.nan
+            v_in = v_out = reaction = math.nan
             if i < len(ap):
                 v_in = 2.0 * ap[i].v_roller_up
                 if self.sim.apparatus.lower is not None:
                     v_out = 2.0 * ap[i].v_roller_lo
+                reaction = ap[i].tail_reaction
             self.history.append(s.t, s.speed_mean, s.T0_bar, te, s.vertex_y, s.landing_x,
-                                v_in, v_out)
+                                v_in, v_out, reaction)
         self._consumed = len(samples)
         keep = max(64, int(2.0 * rec.cfg.window / rec.cfg.sample_interval))
         if len(samples) > 2 * keep:

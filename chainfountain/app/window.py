@@ -764,8 +764,13 @@ class App:
         hi = max(float(vals.max()) if len(vals) else fs, fs) * 1.03
         render.draw_plot(surf, r2, "speed (m/s)", "time (s)", sp, xlim=(t0, max(t1, t0 + 1)),
                          ylim=(lo, hi))
-        # 3. end tensions against time with the paper's ranges
+        # 3. end tensions against time with the paper's ranges; the 'open' arrangement's
+        # point is its lower plate's reaction force instead (paper: "exactly known over time")
         n = max(1, round(0.1 / s.recorder.cfg.sample_interval))
+        if np.isfinite(hist["reaction"][sel]).any():
+            self._reaction_plot(surf, r3, t[sel], hist["reaction"][sel], hist["speed"][sel],
+                                (t0, max(t1, t0 + 1)), n)
+            return surf
         ts = [render.Series(t[sel], _smooth(hist["T0"][sel], n), render.T0_COL, "Tbar_0"),
               render.Series(t[sel], _smooth(hist["TE"][sel], n), render.TE_COL, "Tbar_E")]
         render.draw_plot(surf, r3, "end tensions (0.1 s mean)", "time (s)", ts,
@@ -773,6 +778,30 @@ class App:
                          bands=((0.5, 1.0, render.T0_COL, "paper: Tbar_0 in (1/2, 1)"),
                                 (0.0, 0.5, render.TE_COL, "paper: Tbar_E in [0, 1/2)")))
         return surf
+
+    def _reaction_plot(self, surf: pygame.Surface, rect: pygame.Rect, t: np.ndarray,
+                       reaction: np.ndarray, speed: np.ndarray, xlim: tuple[float, float],
+                       n: int) -> None:
+        """The lower plate's reaction force against time, with the paper's rate: it carries
+        the chain sliding away, so it grows at ``lambda*g*v`` (drawn from the first
+        plotted sample, integrating the measured speed)."""
+        ok = np.isfinite(reaction) & np.isfinite(speed)
+        t, reaction, speed = t[ok], reaction[ok], speed[ok]
+        cfg = self.session.sim.config
+        lam, g = cfg.chain.linear_density, cfg.gravity
+        series = []
+        hi = 1.0
+        if len(t):
+            dist = np.concatenate([[0.0], np.cumsum(0.5 * (speed[1:] + speed[:-1])
+                                                     * np.diff(t))])
+            measured = _smooth(reaction, n)
+            predicted = reaction[0] + lam * g * dist
+            series = [render.Series(t, measured, render.CHAIN, "measured"),
+                      render.Series(t, predicted, render.THEORY, "lambda g v (paper)",
+                                    width=1, dashed=True)]
+            hi = max(hi, 1.1 * float(max(measured.max(), predicted.max())))
+        render.draw_plot(surf, rect, "lower plate reaction (N, 0.1 s mean)", "time (s)",
+                         series, xlim=xlim, ylim=(0.0, hi))
 
     def _draw_help(self) -> None:
         scr = self.screen
