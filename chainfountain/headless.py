@@ -37,6 +37,7 @@ from chainfountain.errors import RunEnded
 from chainfountain.level.io import Level
 from chainfountain.sim.recorder import Recorder
 from chainfountain.sim.world import Simulation
+from chainfountain.theory.apparatus import plate_reaction
 
 MAX_TENSION_SAMPLES = 200
 MAX_PROFILES = 2000
@@ -297,8 +298,7 @@ def write_reaction_figure(path: Path, rec: Recorder, summary: dict[str, Any],
     fig, ax = plt.subplots(figsize=(6.4, 4.2), dpi=100)
     ax.plot(t, R, ".", ms=3, color="#333333", label="measured (each sample)")
     if len(t) > 1:
-        dist = np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(t))])
-        ax.plot(t, R[0] + lam * g * dist, "--", color="#d62728", lw=1.4,
+        ax.plot(t, plate_reaction(t, v, float(R[0]), lam, g), "--", color="#d62728", lw=1.4,
                 label="lambda g v (paper), from the first sample")
     o = (summary.get("apparatus") or {}).get("open") or {}
     rate, pred = o.get("tail_reaction_rate_N_per_s"), o.get("tail_reaction_rate_predicted")

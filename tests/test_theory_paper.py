@@ -146,3 +146,17 @@ def test_solver_vectorised_and_exact_on_grid():
 def test_solve_q_rejects_bad_geometry(bad):
     with pytest.raises(ValueError):
         th.solve_q(*bad)
+
+
+def test_plate_reaction_grows_at_lambda_g_v():
+    """Non-stationary arrangement: at a constant speed the reaction grows linearly at
+    ``lambda*g*v``; a speed ramp gives the integral (the trapezoid is exact for it)."""
+    from chainfountain.theory.apparatus import plate_reaction
+
+    t = np.linspace(0.0, 2.0, 201)
+    R = plate_reaction(t, np.full_like(t, 3.0), 0.2, 0.05, 9.81)
+    assert R[0] == 0.2 and R[-1] == pytest.approx(0.2 + 0.05 * 9.81 * 3.0 * 2.0, rel=1e-12)
+    R = plate_reaction(t, 3.0 - 0.1 * t, 0.0, 0.05, 9.81)
+    assert R[-1] == pytest.approx(0.05 * 9.81 * (6.0 - 0.2), rel=1e-12)
+    with pytest.raises(ValueError, match="one length"):
+        plate_reaction(t, t[:-1], 0.0, 0.05)

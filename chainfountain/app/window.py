@@ -37,6 +37,7 @@ from chainfountain.app.capture import BackgroundSaver, ClipRecorder, mp4_availab
 from chainfountain.app.capture import unique_path as _unique
 from chainfountain.app.controls import SLIDER_STEPS, FieldSpec, control_fields
 from chainfountain.app.session import Session, paused_message
+from chainfountain.theory.apparatus import plate_reaction
 
 LEFT_W = 300
 RIGHT_W = 390
@@ -792,10 +793,8 @@ class App:
         series = []
         hi = 1.0
         if len(t):
-            dist = np.concatenate([[0.0], np.cumsum(0.5 * (speed[1:] + speed[:-1])
-                                                     * np.diff(t))])
             measured = _smooth(reaction, n)
-            predicted = reaction[0] + lam * g * dist
+            predicted = plate_reaction(t, speed, float(reaction[0]), lam, g)
             series = [render.Series(t, measured, render.CHAIN, "measured"),
                       render.Series(t, predicted, render.THEORY, "lambda g v (paper)",
                                     width=1, dashed=True)]

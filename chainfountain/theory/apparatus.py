@@ -159,3 +159,24 @@ def cart_step_speed(t: float | np.ndarray, dF: float, mass: float, gain: float =
     else:
         out = -(gain * dF / drag) * -np.expm1(-drag * t / mass)
     return float(out) if out.ndim == 0 else out
+
+
+def plate_reaction(t: np.ndarray, v: np.ndarray, R0: float, lam: float,
+                   g: float = G0) -> np.ndarray:
+    """Reaction force of the horizontal plate under the non-stationary arrangement's tail.
+
+    Paper, section "Generating Steady-State Chain Fountains", the arrangement with "no
+    deceleration ... in which the reaction force change is exactly known over time": the
+    plate carries the chain that has slid onto it, so its reaction grows by ``lambda*g``
+    per metre of chain arriving, ``R(t) = R0 + lambda*g*integral(v dt)``, i.e. at the rate
+    ``lambda*g*v``. ``t`` and ``v`` are sampled times and chain speeds (the integral by
+    the trapezoidal rule from ``t[0]``, where ``R = R0``).
+    """
+    t = np.asarray(t, dtype=float)
+    v = np.asarray(v, dtype=float)
+    if t.shape != v.shape or t.ndim != 1:
+        raise ValueError(f"t and v must be 1-d arrays of one length, got {t.shape} and {v.shape}")
+    if len(t) == 0:
+        return np.zeros(0)
+    dist = np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(t))])
+    return R0 + lam * g * dist
