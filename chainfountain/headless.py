@@ -275,10 +275,6 @@ def _write_samples(path: Path, samples: list) -> None:
     atomic.write_text(path, buf.getvalue())
 
 
-def _write_speed(path: Path, rec: Recorder) -> None:
-    _write_samples(path, rec.samples)
-
-
 def write_reaction_figure(path: Path, rec: Recorder, summary: dict[str, Any],
                           lam: float, g: float, title: str) -> None:
     """'open' arrangement: the lower plate's reaction force against time, with the
@@ -389,7 +385,7 @@ def run_level(level: Level, out_dir: Path, duration: float | None = None, *,
         summary["ended_early"]["last_mouth_entry_s"] = _f(app.last_mouth_entry)
     lam = level.sim.chain.linear_density
     _write_tensions(out_dir / "tensions.csv", rec, lam)
-    _write_speed(out_dir / "speed.csv", rec)
+    _write_samples(out_dir / "speed.csv", rec.samples)
     title = (f"{level.meta.name}: t = {sim.time:.2f} s, v = {summary['speed_mean'] or 0:.3f} m/s"
              + ("" if summary["steady"] else " (not steady)")
              + ("" if ended is None else " - ended early"))
