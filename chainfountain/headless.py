@@ -307,12 +307,7 @@ def write_reaction_figure(path: Path, rec: Recorder, summary: dict[str, Any],
     ax.set_ylabel("lower plate reaction (N)")
     ax.grid(alpha=0.3)
     ax.set_ylim(bottom=0.0)
-    ax.set_title(title, fontsize=10)
-    ax.legend(loc="lower right", fontsize=8, framealpha=0.9)
-    fig.tight_layout()
-    with atomic.atomic_path(path) as tmp:
-        fig.savefig(tmp, format="png")
-    plt.close(fig)
+    _save_png(fig, ax, path, title, legend="lower right")
 
 
 def write_snapshot(path: Path, sim: Simulation, summary: dict[str, Any], title: str) -> None:
@@ -361,8 +356,15 @@ def write_snapshot(path: Path, sim: Simulation, summary: dict[str, Any], title: 
     else:
         xs = np.concatenate([pts[:, 0], [fx0, fx1]]) if ref is None else pts[:, 0]
         ax.set_xlim(min(xs.min(), -0.2) - 0.1, max(xs.max(), 0.2) + 0.1)
+    _save_png(fig, ax, path, title)
+
+
+def _save_png(fig, ax, path: Path, title: str, legend: str = "best") -> None:
+    """Title and legend, then the figure as PNG, atomically; closes it."""
+    import matplotlib.pyplot as plt
+
     ax.set_title(title, fontsize=10)
-    ax.legend(loc="best", fontsize=8, framealpha=0.9)
+    ax.legend(loc=legend, fontsize=8, framealpha=0.9)
     fig.tight_layout()
     with atomic.atomic_path(path) as tmp:
         fig.savefig(tmp, format="png")
