@@ -419,6 +419,14 @@ def describe_outputs(summary_path: Path) -> str:
 
     steady = (f"steady since {s['steady_since_s']:.2f} s" if s["steady"]
               else "never steady (compare with care)")
+    o = (s.get("apparatus") or {}).get("open")
+    if o:
+        # the paper's non-stationary arrangement: its measurement is the reaction's rate
+        rate, pred = o.get("tail_reaction_rate_N_per_s"), o.get("tail_reaction_rate_predicted")
+        steady = "non-stationary by design"
+        if rate is not None and pred:
+            steady += (f"; lower plate reaction grows at {rate:.3f} N/s, lambda g v "
+                       f"{pred:.3f} N/s ({pct(rate / pred - 1.0)})")
     lines = [
         f"wrote {out}/" + ", ".join(s.get("outputs") or DEFAULT_OUTPUTS),
         f"  {s['links']} links, {s['steps']} steps, real-time factor "

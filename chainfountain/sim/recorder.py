@@ -222,13 +222,18 @@ class Recorder:
 
     def steady_from(self, window: float | None = None) -> float | None:
         """Time from which vertex height and mean speed stay within the steady tolerance
-        (``None`` if they never do); ``window`` as in :meth:`summary`."""
+        (``None`` if they never do, or for less than the level's averaging window
+        ``recording.window``, as the window's "steady" readout asks: a run that settles
+        in its last samples is not steady); ``window`` as in :meth:`summary`."""
         window = self.cfg.window if window is None else window
         t = self.series("t")
         tol, smooth = self.cfg.steady_tolerance, self.cfg.smoothing
         ts = steady_time(t, self.series("vertex_y"), tol, smooth, window)
         tv = steady_time(t, self.series("speed_mean"), tol, smooth, window)
-        return None if ts is None or tv is None else max(ts, tv)
+        if ts is None or tv is None:
+            return None
+        since = max(ts, tv)
+        return since if float(t[-1]) - since >= self.cfg.window - 1e-9 else None
 
     def summary(self, window: float | None = None, t_end: float | None = None) -> Summary:
         """Time averages over the last ``window`` seconds (ending at ``t_end``)."""
