@@ -157,7 +157,8 @@ class RecordingConfig:
         min_inclusive=False,
     )
     window: float = param(
-        2.0, unit="s", doc="Averaging window at the end of a run", min=0.01, max=1e4
+        2.0, unit="s", doc="Averaging window at the end of a run; a run is steady only "
+        "if it stays in the steady band for at least this long", min=0.01, max=1e4
     )
     steady_tolerance: float = param(
         0.01, unit="1", doc="Relative band for steady-state detection (vertex height, speed)",
