@@ -366,12 +366,24 @@ class Session:
         for _ in range(n):
             step()
 
-    def step_frame(self, frame_time: float = 1.0 / 60.0) -> int:
-        """Single step: advance by one frame of simulated time (whole physics steps)."""
+    def step_frame(self, frame_time: float = 1.0 / 60.0, budget: float = 0.25) -> int:
+        """Single step: advance by one frame of simulated time (whole physics steps), or
+        by as many steps as fit in ``budget`` wall seconds when a frame costs more (a
+        fine chain at a tiny step), so the window never freezes. Returns the steps taken."""
         n = max(1, int(round(frame_time / self.sim.dt)))
-        self._step(n)
+        t0 = self.clock()
+        done = 0
+        while done < n and self.stopped is None:
+            m = min(32, n - done)
+            self._step(m)
+            done += m
+            if self.clock() - t0 > budget:
+                break
+        if done < n and self.stopped is None:
+            self.say(f"one frame is {n} physics steps here; stepped {done} "
+                     f"({done * self.sim.dt * 1e3:.2g} ms) to keep the window responsive")
         self._consume()
-        return n
+        return done
 
     def step_physics(self) -> None:
         """Advance by exactly one physics step ``dt``."""

@@ -399,7 +399,7 @@ class App:
             self.request_quit()
             return
         if ev.type == pygame.VIDEORESIZE and not self.offscreen:
-            self._resize((max(900, ev.w), max(560, ev.h)))
+            self.resize((ev.w, ev.h))
             return
         consumed = self.ui.process_events(ev)
         t = ev.type
@@ -565,7 +565,9 @@ class App:
                 s.release()
             self._drag_mode = None
 
-    def _resize(self, size: tuple[int, int]) -> None:
+    def resize(self, size: tuple[int, int]) -> None:
+        """Resize the window (at least 900 x 560 pixels) and refit the view."""
+        size = (max(900, int(size[0])), max(560, int(size[1])))
         self.close_dialogs()
         self.screen = pygame.display.set_mode(size, pygame.RESIZABLE)
         self.size = self.screen.get_size()

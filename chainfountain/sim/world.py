@@ -22,6 +22,7 @@ from chainfountain.sim.config import SimConfig
 from chainfountain.sim.feed import Feed
 from chainfountain.sim.measure import ChainReader, ChainState, link_ends, polyline
 from chainfountain.sim.reference import LaunchReference
+from chainfountain.sim.watchdog import CHECK_INTERVAL, Limits, Watchdog
 
 if TYPE_CHECKING:
     from chainfountain.sim.recorder import Recorder
@@ -73,6 +74,9 @@ class Simulation:
         space.damping = 1.0
         self.space = space
         self._dt = float(cfg.solver.dt)
+        self._check_every = max(1, int(round(CHECK_INTERVAL / self._dt)))
+        self.watchdog = Watchdog(space, self._limits())
+        """Stops the run when it diverges (:mod:`chainfountain.sim.watchdog`)."""
         self.apparatus: Apparatus | None = None
         if cfg.kind == "apparatus":
             self._build_apparatus()
@@ -131,6 +135,19 @@ class Simulation:
         if self.recorder is not None:
             self.recorder.clear()
 
+    def _limits(self) -> Limits:
+        """Watchdog limits from the level's speed and size (see :meth:`Limits.for_level`)."""
+        cfg = self.config
+        g = float(cfg.gravity)
+        if cfg.kind == "apparatus":
+            a = cfg.apparatus
+            v = float(a.speed)
+            size = a.drop * (1.0 + a.xi2 + a.xi3) + a.floor_depth + v * a.duration
+        else:
+            v = float(cfg.feed.speed)
+            size = cfg.feed.drop + cfg.feed.chain_length
+        return Limits.for_level(v, size + v * v / max(g, 1e-9), g)
+
     def reset(self) -> None:
         """Rebuild from the current configuration (time back to 0, recorder cleared)."""
         self._build()
@@ -145,7 +162,12 @@ class Simulation:
         return float(self.config.gravity)
 
     def step(self) -> None:
-        """Advance by one fixed physics step ``dt``."""
+        """Advance by one fixed physics step ``dt``.
+
+        Raises :class:`~chainfountain.sim.watchdog.Diverged` when the run has left
+        physics (checked every :data:`~chainfountain.sim.watchdog.CHECK_INTERVAL`), and
+        an apparatus's :class:`~chainfountain.errors.RunEnded` when the machine cannot
+        go on."""
         rec = self.recorder
         dt = self._dt
         pre: ChainState | None = None
@@ -166,6 +188,8 @@ class Simulation:
         self.time = self.steps * dt
         if pre is not None and rec is not None:
             rec.take(pre, self.reader.read())
+        if self.steps % self._check_every == 0:
+            self.watchdog.check(self.time)
         self.feed.after_step(dt)
 
     def advance(self, seconds: float) -> int:
@@ -180,6 +204,7 @@ class Simulation:
     def set_feed_speed(self, v: float) -> None:
         """Change the feed speed live (m/s); the reference is recomputed."""
         self.feed.set_speed(v)
+        self.watchdog.limits = self._limits()
         try:
             self.reference = LaunchReference.from_launch(
                 v, self.config.feed.launch_angle, self.config.feed.drop, self.g,
