@@ -8,7 +8,7 @@ from collections.abc import Sequence
 from chainfountain import __version__
 from chainfountain.commands import design, figures, levels, play, run, theory
 from chainfountain.commands.args import OneLineParser
-from chainfountain.errors import UserError
+from chainfountain.errors import OutputError, UserError
 
 _COMMANDS = [play, theory, design, levels, run, figures]
 
@@ -46,6 +46,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         if args.command is None:
             return default_job()
         return int(args.func(args) or 0)
+    except OutputError as exc:
+        print(f"chainfountain: error: {exc}", file=sys.stderr)
+        return 4
     except UserError as exc:
         print(f"chainfountain: error: {exc}", file=sys.stderr)
         return 2

@@ -14,3 +14,8 @@ class RunEnded(UserError):
     collapsed). Not bad input: ``chainfountain run`` writes its outputs for the part
     that was simulated, marks ``summary.json`` ``ended_early`` and exits with status 3;
     the window pauses and shows the message."""
+
+
+class OutputError(UserError):
+    """An output file could not be written (a full disk, a folder made read-only). The
+    CLI prints it as one line and exits with status 4; outputs already written stay."""

@@ -18,22 +18,27 @@ Outputs (all written atomically into the output folder):
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import dataclasses
 import io as _io
 import json
 import math
 import shutil
+import signal
 import sys
 import textwrap
+import threading
 import time
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from chainfountain import atomic
-from chainfountain.errors import RunEnded
+from chainfountain.errors import OutputError, RunEnded, UserError
 from chainfountain.level.io import Level
 from chainfountain.sim.recorder import Recorder
 from chainfountain.sim.world import Simulation
@@ -42,6 +47,8 @@ from chainfountain.theory.apparatus import plate_reaction
 MAX_TENSION_SAMPLES = 200
 MAX_PROFILES = 2000
 """Per-link profiles kept in memory by a headless run (thinned evenly beyond; 40 s at 50 Hz)."""
+MAX_SAMPLES = 100_000
+"""Scalar samples kept by a headless run (thinned evenly beyond: 1000 s at 100 Hz)."""
 DEFAULT_DURATION = 8.0
 """Simulated seconds of a headless run when none is given."""
 DEFAULT_OUTPUTS = ("summary.json", "tensions.csv", "speed.csv", "snapshot.png")
@@ -106,24 +113,84 @@ def _progress(total: float, enabled: bool, label: str = "run"):
                 file=sys.stderr, leave=False)
 
 
+class Interrupted(Exception):
+    """SIGINT (Ctrl-C) or SIGTERM arrived while a headless run was simulating."""
+
+    def __init__(self, signum: int) -> None:
+        super().__init__(signal.Signals(signum).name)
+        self.signum = signum
+
+
+@dataclass
+class Ending:
+    """Why a run stopped before its duration."""
+
+    cause: str
+    """``"machine"`` (the apparatus cannot go on), ``"diverged"`` (the watchdog) or
+    ``"interrupted"`` (a signal)."""
+    reason: str
+    signum: int | None = None
+
+
+@contextlib.contextmanager
+def _signals_raise() -> Iterator[None]:
+    """While simulating, SIGINT and SIGTERM raise :class:`Interrupted` (main thread only)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def handler(signum: int, frame: object) -> None:
+        raise Interrupted(signum)
+
+    old = {sig: signal.signal(sig, handler) for sig in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        yield
+    finally:
+        for sig, h in old.items():
+            signal.signal(sig, h)
+
+
+@contextlib.contextmanager
+def _signals_deferred(received: list[int]) -> Iterator[None]:
+    """While the outputs are written, a signal is noted in ``received`` (and said), not
+    obeyed, so no output is left half-written; the caller exits afterwards."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def handler(signum: int, frame: object) -> None:
+        received.append(signum)
+        print(f"chainfountain: {signal.Signals(signum).name}: finishing the outputs first",
+              file=sys.stderr, flush=True)
+
+    old = {sig: signal.signal(sig, handler) for sig in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        yield
+    finally:
+        for sig, h in old.items():
+            signal.signal(sig, h)
+
+
 def simulate(level: Level, duration: float, *, seed: int | None = None,
-             progress: bool = True) -> tuple[Simulation, Recorder, float, str | None]:
+             progress: bool = True) -> tuple[Simulation, Recorder, float, Ending | None]:
     """Build and run a level for ``duration`` simulated seconds.
 
-    Returns sim, recorder, wall seconds and why the run ended early (the message of a
-    :class:`~chainfountain.errors.RunEnded`: a table used up, the fold collapsed), or
-    None if it ran for the whole ``duration``."""
+    Returns sim, recorder, wall seconds and why the run ended early (a
+    :class:`~chainfountain.errors.RunEnded`: a table used up, the fold collapsed, the
+    watchdog; or SIGINT/SIGTERM), or None if it ran for the whole ``duration``."""
+    from chainfountain.sim.watchdog import Diverged
+
     sim_cfg = level.sim
     if seed is not None:
         sim_cfg = dataclasses.replace(
             sim_cfg, initial=dataclasses.replace(sim_cfg.initial, seed=int(seed)))
     sim = Simulation(sim_cfg)
-    rec = Recorder(sim, max_profiles=MAX_PROFILES)
+    rec = Recorder(sim, max_profiles=MAX_PROFILES, max_samples=MAX_SAMPLES)
     n_steps = int(round(duration / sim.dt))
     chunk = max(1, int(round(0.05 / sim.dt)))
     t0 = time.perf_counter()
-    ended: str | None = None
-    with _progress(duration, progress, level.meta.name) as bar:
+    ended: Ending | None = None
+    with _progress(duration, progress, level.meta.name) as bar, _signals_raise():
         done = 0
         step = sim.step
         try:
@@ -135,8 +202,14 @@ def simulate(level: Level, duration: float, *, seed: int | None = None,
                 bar.update(m * sim.dt)
                 if done % (20 * chunk) < chunk:  # analyse as we go: raw states are large
                     rec.samples  # noqa: B018 - property access processes the raw samples
+        except Diverged as exc:
+            ended = Ending("diverged", str(exc))
         except RunEnded as exc:
-            ended = str(exc)
+            ended = Ending("machine", str(exc))
+        except (Interrupted, KeyboardInterrupt) as exc:
+            signum = exc.signum if isinstance(exc, Interrupted) else signal.SIGINT
+            ended = Ending("interrupted", f"interrupted by {signal.Signals(signum).name} at "
+                           f"t = {sim.time:.3f} s", signum)
     wall = time.perf_counter() - t0
     return sim, rec, wall, ended
 
@@ -149,12 +222,31 @@ def _f(x: Any) -> Any:
     return x if math.isfinite(x) else None
 
 
+def _attempt(failed: dict[str, str], name: str, fn: Callable[..., Any], *args: Any,
+             default: Any = None) -> Any:
+    """``fn(*args)``, or ``default`` with the failure noted under ``name``: an analysis
+    after the simulation must never lose the run."""
+    try:
+        return fn(*args)
+    except Exception as exc:  # noqa: BLE001 - reported by name in summary.json
+        failed[name] = f"{type(exc).__name__}: {exc}"
+        return default
+
+
 def summarize(level: Level, sim: Simulation, rec: Recorder, duration: float,
               wall: float) -> dict[str, Any]:
-    """The ``summary.json`` object."""
-    steady = rec.steady_from(window=duration)
+    """The ``summary.json`` object. Analyses that fail are listed under
+    ``analysis_failed`` (name: reason) and their figures are null."""
+    failed: dict[str, str] = {}
+    steady = _attempt(failed, "steady-state detection", rec.steady_from, duration)
     window_start = steady if steady is not None else max(0.0, sim.time - rec.cfg.window)
-    s = rec.summary(window=sim.time - window_start)
+    s = _attempt(failed, "window averages", rec.summary, sim.time - window_start)
+    if s is None:
+        return {"level": level.meta.name, "kind": level.sim.kind, "duration_s": _f(sim.time),
+                "requested_duration_s": _f(duration), "steps": sim.steps,
+                "links": sim.n_links, "dt": sim.dt, "wall_s": _f(wall), "steady": False,
+                "theory": None, "analysis_failed": failed}
+    failed.update(s.failed)
     ref = sim.reference
     tb = s.extras.get("tension_bar")
     TE_bar = float(tb[-1]) if tb is not None and len(tb) else float("nan")
@@ -222,9 +314,11 @@ def summarize(level: Level, sim: Simulation, rec: Recorder, duration: float,
     if app is not None:
         from chainfountain.sim.apparatus_report import report
 
-        rep = report(sim, rec, s.t0, s.t1)
-        out["TE_bar"] = _f(rep["measured"]["TE_bar"])
-        out["apparatus"] = _json_safe(rep)
+        rep = _attempt(failed, "apparatus report", report, sim, rec, s.t0, s.t1)
+        if rep is not None:
+            out["TE_bar"] = _f(rep["measured"]["TE_bar"])
+            out["apparatus"] = _json_safe(rep)
+    out["analysis_failed"] = failed
     return out
 
 
@@ -371,38 +465,111 @@ def _save_png(fig, ax, path: Path, title: str, legend: str = "best") -> None:
     plt.close(fig)
 
 
+EXIT_STATUS = {None: 0, "machine": 3, "diverged": 3}
+"""Exit status of ``chainfountain run`` by :attr:`Ending.cause` (see :func:`exit_status`)."""
+
+
+def exit_status(summary: dict[str, Any]) -> int:
+    """0 for a complete run; 3 if it ended early (the machine stopped, the run diverged);
+    128 + the signal's number (130 for Ctrl-C, 143 for SIGTERM) if it was interrupted;
+    4 if an output could not be written. The outputs cover the part simulated."""
+    if summary.get("write_failed"):
+        return 4
+    ended = summary.get("ended_early")
+    if not ended:
+        return 0
+    if ended.get("cause") == "interrupted":
+        return 128 + int(ended.get("signal_number") or signal.SIGINT)
+    return EXIT_STATUS.get(ended.get("cause"), 3)
+
+
+def prepare_out_dir(out_dir: Path, option: str = "--out") -> Path:
+    """Create ``out_dir`` and make sure a file can be written there, before any simulating:
+    a folder that cannot be written is bad input (one line naming ``option``)."""
+    out_dir = Path(out_dir)
+    try:
+        out_dir.mkdir(parents=True, exist_ok=True)
+        with atomic.atomic_path(out_dir / ".write-test") as tmp:
+            tmp.write_bytes(b"")
+        (out_dir / ".write-test").unlink()
+    except OSError as exc:
+        raise UserError(f"{option}: cannot write to {str(out_dir)!r} "
+                        f"({exc.strerror or exc}); allowed: a folder you can write to") from None
+    return out_dir
+
+
 def run_level(level: Level, out_dir: Path, duration: float | None = None, *,
               seed: int | None = None, progress: bool = True) -> Path:
-    """Run ``level`` headless and write the outputs into ``out_dir``; returns summary.json."""
+    """Run ``level`` headless and write the outputs into ``out_dir``; returns summary.json.
+
+    Raw outputs (the CSVs) are written before the analyses that could fail (figures,
+    fits); a failed analysis is named in ``summary.json`` (``analysis_failed``) and the
+    rest is still written. SIGINT or SIGTERM while simulating ends the run like a
+    stopped machine: its part is written completely (a second signal while writing is
+    noted, not obeyed). :func:`exit_status` gives the command's status. Raises
+    :class:`OutputError` when ``summary.json`` itself cannot be written."""
     duration = default_duration(level) if duration is None else float(duration)
-    out_dir = Path(out_dir)
-    out_dir.mkdir(parents=True, exist_ok=True)
+    out_dir = prepare_out_dir(out_dir)
     sim, rec, wall, ended = simulate(level, duration, seed=seed, progress=progress)
-    summary = summarize(level, sim, rec, duration, wall)
-    summary["ended_early"] = None if ended is None else {"t_s": _f(sim.time), "reason": ended}
-    app = sim.apparatus
-    if ended is not None and app is not None and app.fold_guided:
-        # when the fountain last landed in the end guide's mouth (a lost catch comes about
-        # 1 s before the fold's collapse; docs/apparatus.md, "Seventeenth session")
-        summary["ended_early"]["last_mouth_entry_s"] = _f(app.last_mouth_entry)
+    received: list[int] = []
+    with _signals_deferred(received):
+        path = _write_outputs(level, out_dir, duration, sim, rec, wall, ended)
+    return path
+
+
+def _write_outputs(level: Level, out_dir: Path, duration: float, sim: Simulation,
+                   rec: Recorder, wall: float, ended: Ending | None) -> Path:
+    """Every output of a finished (or stopped) run, raw data first; see :func:`run_level`."""
     lam = level.sim.chain.linear_density
-    _write_tensions(out_dir / "tensions.csv", rec, lam)
-    _write_samples(out_dir / "speed.csv", rec.samples)
-    title = (f"{level.meta.name}: t = {sim.time:.2f} s, v = {summary['speed_mean'] or 0:.3f} m/s"
-             + ("" if summary["steady"] else " (not steady)")
-             + ("" if ended is None else " - ended early"))
-    write_snapshot(out_dir / "snapshot.png", sim, summary, title)
-    outputs = list(DEFAULT_OUTPUTS)
+    app = sim.apparatus
+    written: list[str] = []
+    write_failed: dict[str, str] = {}
+    analysis_failed: dict[str, str] = {}
+
+    def put(name: str, writer: Callable[..., None], *args: Any) -> None:
+        try:
+            writer(out_dir / name, *args)
+            written.append(name)
+        except OSError as exc:
+            write_failed[name] = exc.strerror or str(exc)
+        except Exception as exc:  # noqa: BLE001 - an analysis behind the file failed
+            analysis_failed[name] = f"{type(exc).__name__}: {exc}"
+
+    put("speed.csv", _write_samples, _attempt(analysis_failed, "samples",
+                                              lambda: rec.samples, default=[]))
     if app is not None:
-        _write_samples(out_dir / "apparatus.csv", rec.apparatus_samples)
-        outputs.append("apparatus.csv")
-        if app.variant == "open":
-            write_reaction_figure(out_dir / "reaction.png", rec, summary, lam,
-                                  level.sim.gravity, title)
-            outputs.append("reaction.png")
-    summary["outputs"] = outputs
+        put("apparatus.csv", _write_samples, _attempt(
+            analysis_failed, "apparatus samples", lambda: rec.apparatus_samples, default=[]))
+    put("tensions.csv", _write_tensions, rec, lam)
+    summary = summarize(level, sim, rec, duration, wall)
+    summary["ended_early"] = None
+    if ended is not None:
+        summary["ended_early"] = {"t_s": _f(sim.time), "cause": ended.cause,
+                                  "reason": ended.reason}
+        if ended.signum is not None:
+            summary["ended_early"]["signal_number"] = int(ended.signum)
+        if ended.cause == "machine" and app is not None and app.fold_guided:
+            # when the fountain last landed in the end guide's mouth (a lost catch comes
+            # about 1 s before the fold's collapse)
+            summary["ended_early"]["last_mouth_entry_s"] = _f(app.last_mouth_entry)
+    title = (f"{level.meta.name}: t = {sim.time:.2f} s, "
+             f"v = {summary.get('speed_mean') or 0:.3f} m/s"
+             + ("" if summary.get("steady") else " (not steady)")
+             + ("" if ended is None else " - ended early"))
+    if "vertex" in summary:
+        put("snapshot.png", write_snapshot, sim, summary, title)
+    if app is not None and app.variant == "open" and "apparatus" in summary:
+        put("reaction.png", write_reaction_figure, rec, summary, lam, level.sim.gravity, title)
+    summary["analysis_failed"].update(analysis_failed)
+    order = ["summary.json", *DEFAULT_OUTPUTS[1:], "apparatus.csv", "reaction.png"]
+    summary["outputs"] = sorted(["summary.json", *written], key=order.index)
+    summary["write_failed"] = write_failed
     path = out_dir / "summary.json"
-    atomic.write_text(path, json.dumps(summary, indent=2) + "\n")
+    try:
+        atomic.write_text(path, json.dumps(summary, indent=2) + "\n")
+    except OSError as exc:
+        raise OutputError(f"cannot write {path} ({exc.strerror or exc}); the run's other "
+                          f"outputs: {', '.join(written) or 'none'}") from None
     return path
 
 
@@ -417,7 +584,7 @@ def describe_outputs(summary_path: Path) -> str:
     def pct(x: float | None) -> str:
         return "n/a" if x is None else f"{100 * x:+.2f} %"
 
-    steady = (f"steady since {s['steady_since_s']:.2f} s" if s["steady"]
+    steady = (f"steady since {s['steady_since_s']:.2f} s" if s.get("steady")
               else "never steady (compare with care)")
     o = (s.get("apparatus") or {}).get("open")
     if o:
@@ -430,8 +597,12 @@ def describe_outputs(summary_path: Path) -> str:
     lines = [
         f"wrote {out}/" + ", ".join(s.get("outputs") or DEFAULT_OUTPUTS),
         f"  {s['links']} links, {s['steps']} steps, real-time factor "
-        f"{s['realtime_factor']:.2f}, {steady}",
+        f"{s.get('realtime_factor') or 0:.2f}, {steady}",
     ]
+    for name, why in (s.get("write_failed") or {}).items():
+        lines.append(f"  NOT WRITTEN: {name} ({why})")
+    for name, why in (s.get("analysis_failed") or {}).items():
+        lines.append(f"  analysis failed: {name} ({why}); its figures are null")
     ended = s.get("ended_early")
     if ended:
         # the reason runs to several sentences (a fold's collapse: about 900 characters):
@@ -441,7 +612,7 @@ def describe_outputs(summary_path: Path) -> str:
             f"ENDED EARLY (of {s['requested_duration_s']:g} s asked for): {ended['reason']}",
             width=width, initial_indent="  ", subsequent_indent="    ",
             break_on_hyphens=False))
-    if th:
+    if th and s.get("h") is not None and s.get("l") is not None:
         lines.append(
             f"  vertex height {s['h']:.4f} m (theory {th['h']:.4f}, {pct(err.get('h'))}), "
             f"landing {s['l']:.4f} m (theory {th['l']:.4f}, {pct(err.get('l'))}), "

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import os
 import sys
 from pathlib import Path
@@ -81,11 +82,11 @@ def run_headless(level: Level, reason: str, out_dir: Path | None = None,
     out = out_dir or default_out_dir(level)
     print(f"chainfountain: no display ({reason}); running level {level.meta.name!r} "
           f"headless, writing to {out}", file=sys.stderr)
-    from chainfountain.headless import describe_outputs, run_level
+    from chainfountain.headless import describe_outputs, exit_status, run_level
 
     summary = run_level(level, out, duration=duration, progress=True)
     print(describe_outputs(summary))
-    return 0
+    return exit_status(json.loads(summary.read_text()))
 
 
 def run_default(level: Level | None = None, source: Path | None = None,

@@ -10,10 +10,11 @@ from pathlib import Path
 from chainfountain.commands.args import integer, number
 from chainfountain.errors import UserError
 
-ENDED_EARLY = 3
-"""Exit status of a run that ended before its duration (an apparatus table used up, the
-fold collapsed): its outputs are written for the part simulated and marked
-``ended_early`` in summary.json."""
+EXIT_HELP = ("Exit status: 0 a complete run; 2 bad input (one line naming it; nothing "
+             "run); 3 the run ended early (an apparatus table used up, the fold collapsed, "
+             "the simulation diverged); 4 an output could not be written (a full disk); 130 "
+             "or 143 interrupted by Ctrl-C or SIGTERM. Whenever a run has started, its outputs "
+             "cover the part simulated and summary.json says why it ended (ended_early).")
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -22,9 +23,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         help="run a level headless and write summary.json, CSVs and a snapshot",
         description="Run LEVEL (a .toml path or a level name from levels/) without a window. "
         "Writes summary.json, tensions.csv, speed.csv and snapshot.png into --out (apparatus "
-        "levels also apparatus.csv; the 'open' arrangement reaction.png). Exit "
-        "status 0; 2 for bad input; 3 if the run ended early (an apparatus table used up, "
-        "the fold collapsed): the outputs then cover the part simulated.",
+        "levels also apparatus.csv; the 'open' arrangement reaction.png). " + EXIT_HELP,
         allow_abbrev=False,
     )
     p.add_argument("level", metavar="LEVEL", help="level file or name (e.g. paper_tall)")
@@ -47,6 +46,8 @@ def run(args: argparse.Namespace) -> int:
         default_duration,
         default_out_dir,
         describe_outputs,
+        exit_status,
+        prepare_out_dir,
         run_level,
     )
     from chainfountain.level import io, library
@@ -58,12 +59,10 @@ def run(args: argparse.Namespace) -> int:
             f"{level.sim.kind!r}: the apparatus lays its chain along its own path; to start a "
             "perturbed run, change apparatus.speed slightly); allowed: only with kind 'feed' "
             "levels")
-    out = args.out or default_out_dir(level)
+    out = prepare_out_dir(args.out or default_out_dir(level))
     duration = args.duration or default_duration(level)
     print(f"running {level.meta.name} headless for {duration:g} simulated s ...",
           file=sys.stderr)
     path = run_level(level, out, duration, seed=args.seed, progress=not args.quiet)
     print(describe_outputs(path))
-    if json.loads(path.read_text()).get("ended_early"):
-        return ENDED_EARLY
-    return 0
+    return exit_status(json.loads(path.read_text()))

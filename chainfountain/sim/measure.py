@@ -356,6 +356,8 @@ class Summary:
     """RMS over the free chain of (time-averaged Tbar - reference Tbar(y)); nan if no reference."""
     steady_from: float | None
     extras: dict = field(default_factory=dict)
+    failed: dict[str, str] = field(default_factory=dict)
+    """Analyses that failed on this window's data (name: reason); their figures are nan."""
 
     def errors(self, ref) -> dict[str, float]:
         """Relative errors against a :class:`~chainfountain.sim.reference.LaunchReference`."""

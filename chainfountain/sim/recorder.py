@@ -52,17 +52,28 @@ class Recorder:
         keeps its profile, so they stay evenly spaced in time. ``None`` keeps
         all (then ``profiles[i]`` belongs to ``samples[i]``; with a bound, use
         :attr:`Profiles.t`).
+    max_samples:
+        Bound on the kept scalar samples: when exceeded, every other sample is
+        dropped and from then on the recorder samples half as often, so the
+        samples stay evenly spaced in time and the memory stays bounded however
+        long the run. ``None`` keeps all.
     """
 
     def __init__(self, sim: Simulation, cfg: RecordingConfig | None = None, *,
-                 profiles: bool = True, max_profiles: int | None = None) -> None:
+                 profiles: bool = True, max_profiles: int | None = None,
+                 max_samples: int | None = None) -> None:
         self.sim = sim
         self.cfg = cfg if cfg is not None else sim.config.recording
         self.every = max(1, int(round(self.cfg.sample_interval / sim.dt)))
         self.keep_profiles = profiles
         if max_profiles is not None and max_profiles < 2:
             raise ValueError(f"max_profiles = {max_profiles}: at least 2 (or None)")
+        if max_samples is not None and max_samples < 2:
+            raise ValueError(f"max_samples = {max_samples}: at least 2 (or None)")
         self.max_profiles = max_profiles
+        self.max_samples = max_samples
+        self._stride = 1
+        """Samples are taken at every ``every * _stride``-th step (doubles when thinned)."""
         self._profile_stride = 1
         self._n_analysed = 0
         self._samples: list[Sample] = []
@@ -73,7 +84,9 @@ class Recorder:
 
     def wants(self, step_index: int) -> bool:
         """True when step number ``step_index`` (1-based) is to be sampled."""
-        return step_index % self.every == 0
+        if step_index % self.every:
+            return False
+        return self._stride == 1 or (step_index // self.every - 1) % self._stride == 0
 
     def clear(self) -> None:
         """Forget all samples."""
@@ -81,6 +94,7 @@ class Recorder:
         self._profiles.clear()
         self._raw.clear()
         self._ap_samples.clear()
+        self._stride = 1
         self._profile_stride = 1
         self._n_analysed = 0
 
@@ -153,6 +167,16 @@ class Recorder:
                 self._analyse_apparatus(*rec[1:])
             else:
                 self._analyse(*rec)
+        self._thin()
+
+    def _thin(self) -> None:
+        """Keep at most ``max_samples`` samples (see the class docstring)."""
+        if self.max_samples is None or len(self._samples) <= self.max_samples:
+            return
+        del self._samples[1::2]
+        if len(self._ap_samples) > len(self._samples):
+            del self._ap_samples[1::2]
+        self._stride *= 2
 
     @property
     def apparatus_samples(self) -> list:
@@ -254,6 +278,7 @@ class Recorder:
         q_fit = float("nan")
         uniform = float("nan")
         extras: dict = {}
+        failed: dict[str, str] = {}
         if self.keep_profiles and self.profiles:
             lo, hi = float(t[sel[0]]), float(t[sel[-1]])
             profs = [p for p in self.profiles if lo - 1e-12 <= p.t <= hi + 1e-12]
@@ -270,7 +295,10 @@ class Recorder:
             pts = np.column_stack((xa, ya))
             xv0, yv0 = vertex_of(pts)
             q0 = self.sim.reference.q if self.sim.reference is not None else 1.0
-            _, _, q_fit = fit_catenary(pts, xv0, yv0, q0)
+            try:
+                _, _, q_fit = fit_catenary(pts, xv0, yv0, q0)
+            except (np.linalg.LinAlgError, ValueError, FloatingPointError) as exc:
+                failed["catenary fit"] = f"{type(exc).__name__}: {exc}"
             ref = self.sim.reference
             if ref is not None:
                 resid = tb - ref.tension_bar(ya)
@@ -285,4 +313,5 @@ class Recorder:
             speed_spread_inst=float(np.mean(spread[sel])),
             stretch_max=float(np.max(self.series("stretch")[sel])),
             T0_bar=mean("T0_bar"), tension_rms=tension_rms, steady_from=steady, extras=extras,
+            failed=failed,
         )
