@@ -41,6 +41,12 @@ def _hanging_chain(n: int, *, floor_y: float | None = None, tilt: float = 1e-3,
     return space, chain, hook
 
 
+def _pymunk_step() -> float:
+    """The default solver's pymunk step (a time step ``dt`` is ``substeps`` of them)."""
+    solver = SolverConfig()
+    return solver.dt / solver.substeps
+
+
 def _mean_tension(space, chain, dt: float, steps: int, settle: float):
     reader = ChainReader(space, chain)
     for _ in range(int(round(settle / dt))):
@@ -61,7 +67,7 @@ def _mean_tension(space, chain, dt: float, steps: int, settle: float):
 def test_hanging_chain_tension_is_weight_below() -> None:
     """T(s) = lambda*g*(L - s) at every joint, within 1 % (physics.md section 3)."""
     n = 100
-    dt = SolverConfig().dt
+    dt = _pymunk_step()
     space, chain, _ = _hanging_chain(n)
     tension, _ = _mean_tension(space, chain, dt, steps=400, settle=2.0)
     expected = chain.mass * G * np.arange(1, n + 1)  # joint j carries links 0..j
@@ -77,7 +83,7 @@ def test_contact_impulses_are_subtracted() -> None:
     to every joint above.
     """
     n = 60
-    dt = SolverConfig().dt
+    dt = _pymunk_step()
     L = ChainConfig().link_length
     drop = 15 * L
     floor_y = -n * L - 0.005  # just below the hanging chain's lower end

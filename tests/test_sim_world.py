@@ -6,6 +6,7 @@ import dataclasses
 import math
 
 import numpy as np
+import pymunk
 import pytest
 
 from chainfountain.sim import (
@@ -84,7 +85,16 @@ def test_live_commands_and_reset() -> None:
     assert all(lk.up_spring is not None for lk in sim.chain.links if lk.up_joint is not None)
     sim.advance(0.05)
     sim.set_bending(stiffness=0.0, damping=0.0)
-    assert all(lk.up_spring is None for lk in sim.chain.links)
+    # only the wave damper stays, on joints between two moving links
+    d_wave = sim.chain.wave_damping
+    assert d_wave > 0.0
+    for lk, up in zip(sim.chain.links, sim.chain.links[1:], strict=False):
+        both = {lk.body.body_type, up.body.body_type} == {pymunk.Body.DYNAMIC}
+        if lk.up_spring is None:
+            assert not both
+        else:
+            assert both and lk.up_spring.stiffness == 0.0
+            assert lk.up_spring.damping == pytest.approx(d_wave)
     sim.set_iterations(12)
     assert sim.space.iterations == 12
     sim.reset()

@@ -10,7 +10,11 @@ removes exactly its own constraints.
 
 The rotary spring ``c`` and damper ``d`` are the joint resistance of the
 paper's angular momentum balance (section "Equations of Motion"); ``c = d = 0``
-gives the string model whose steady solution is the inverted catenary.
+gives the string model whose steady solution is the inverted catenary. A joint
+between two dynamic links also gets the numerical damper ``wave_damping``
+(N*m*s/rad, see :attr:`chainfountain.sim.config.SolverConfig.wave_damping`): it
+stops a link-scale bending wave that the discrete chain otherwise grows where the
+scaled tension exceeds 1/2, and leaves smooth bending alone.
 """
 
 from __future__ import annotations
@@ -54,15 +58,20 @@ class Chain:
     shapes:
         Give links collision shapes (needed for floors, rollers, carts; costs
         about 70 % more per step, so fountains over an absorbing floor go without).
+    wave_damping:
+        Numerical damper (N*m*s/rad) on joints between two dynamic links, added to
+        ``chain.bending_damping`` (see the module docstring).
     """
 
     def __init__(
-        self, space: pymunk.Space, chain: ChainConfig, solver: SolverConfig, *, shapes: bool
+        self, space: pymunk.Space, chain: ChainConfig, solver: SolverConfig, *, shapes: bool,
+        wave_damping: float = 0.0,
     ) -> None:
         self.space = space
         self.cfg = chain
         self.solver = solver
         self.shapes = shapes
+        self.wave_damping = float(wave_damping)
         self.L = float(chain.link_length)
         self.mass = float(chain.linear_density) * self.L
         self.moment = self.mass * self.L**2 / 12.0
@@ -112,13 +121,37 @@ class Chain:
         joint.collide_bodies = False
         down.up_joint = joint
         self.space.add(joint)
-        if self.cfg.bending_stiffness > 0.0 or self.cfg.bending_damping > 0.0:
-            spring = pymunk.DampedRotarySpring(
-                down.body, up.body, 0.0, self.cfg.bending_stiffness, self.cfg.bending_damping
-            )
+        self._fit_spring(down, up)
+
+    def _fit_spring(self, down: Link, up: Link) -> None:
+        """Give the joint from ``down`` to ``up`` the spring and damper it needs now:
+        ``c`` and ``d`` of the chain, plus :attr:`wave_damping` when both links are
+        dynamic; no spring object when both are zero."""
+        c = self.cfg.bending_stiffness
+        d = self.cfg.bending_damping
+        if (self.wave_damping > 0.0 and down.body.body_type == pymunk.Body.DYNAMIC
+                and up.body.body_type == pymunk.Body.DYNAMIC):
+            d += self.wave_damping
+        spring = down.up_spring
+        if c == 0.0 and d == 0.0:
+            if spring is not None:
+                self.space.remove(spring)
+                down.up_spring = None
+            return
+        if spring is None:
+            spring = pymunk.DampedRotarySpring(down.body, up.body, 0.0, c, d)
             spring.collide_bodies = False
             down.up_spring = spring
             self.space.add(spring)
+        else:
+            spring.stiffness = c
+            spring.damping = d
+
+    def refit_spring(self, i: int) -> None:
+        """Refit the spring of the joint from link ``i`` to link ``i + 1`` (after one of them
+        changed type, e.g. a guide link released into the fountain)."""
+        if 0 <= i < len(self.links) - 1 and self.links[i].up_joint is not None:
+            self._fit_spring(self.links[i], self.links[i + 1])
 
     def append(self, link: Link) -> None:
         """Add ``link`` at the upstream end and connect it to the current last link."""
@@ -232,23 +265,9 @@ class Chain:
             self.cfg.bending_stiffness = float(stiffness)
         if damping is not None:
             self.cfg.bending_damping = float(damping)
-        c, d = self.cfg.bending_stiffness, self.cfg.bending_damping
         for i, link in enumerate(self.links[:-1]):
-            if link.up_joint is None:
-                continue
-            if link.up_spring is None:
-                if c > 0.0 or d > 0.0:
-                    up = self.links[i + 1]
-                    spring = pymunk.DampedRotarySpring(link.body, up.body, 0.0, c, d)
-                    spring.collide_bodies = False
-                    link.up_spring = spring
-                    self.space.add(spring)
-            elif c == 0.0 and d == 0.0:
-                self.space.remove(link.up_spring)
-                link.up_spring = None
-            else:
-                link.up_spring.stiffness = c
-                link.up_spring.damping = d
+            if link.up_joint is not None:
+                self._fit_spring(link, self.links[i + 1])
 
     def set_error_bias(self, error_bias: float) -> None:
         """Change the pivot joints' ``error_bias`` live."""

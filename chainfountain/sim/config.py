@@ -112,13 +112,24 @@ class FeedConfig:
 
 @dataclass
 class SolverConfig:
-    """Integrator and constraint solver settings (pymunk / Chipmunk2D)."""
+    """Integrator and constraint solver settings (pymunk / Chipmunk2D).
+
+    Each step ``dt`` is made of ``substeps`` pymunk steps of ``dt/substeps``; the feed's
+    bookkeeping, the recorder and the divergence watchdog run once per ``dt``. Too few
+    iterations leave a long strand's tension wrong: a chain of 100 (300) links hanging
+    at rest needs 6 (10) iterations at a 62.5-us pymunk step, and 5 read its tension
+    42 % low (``tests/test_sim_tension.py``)."""
 
     dt: float = param(
-        2.5e-4, unit="s", doc="Fixed physics time step", min=1e-6, max=0.02, min_inclusive=False
+        2.5e-4, unit="s", doc="Time step of the simulation's bookkeeping and samples (the "
+        "pymunk step is dt/substeps)", min=1e-6, max=0.02, min_inclusive=False
+    )
+    substeps: int = param(
+        1, unit="1", doc="pymunk steps per time step dt", min=1, max=64,
     )
     iterations: int = param(
-        25, unit="1", doc="Constraint solver iterations per step", min=1, max=1000, live=True
+        25, unit="1", doc="Constraint solver iterations per pymunk step", min=1, max=1000,
+        live=True
     )
     joint_error_bias: float = param(
         1e-10, unit="1", doc="Fraction of pivot-joint error left uncorrected after 1 s "
@@ -126,6 +137,13 @@ class SolverConfig:
     )
     collision_slop: float = param(
         1e-4, unit="m", doc="Allowed contact overlap", min=0.0, max=0.01, live=True
+    )
+    wave_damping: float = param(
+        1e-3, unit="1", doc="Damping D of link-scale bending waves: every joint between two "
+        "moving links gets a rotary damper D*lambda*v*L**2 (v the level's speed, L the link "
+        "length) besides chain.bending_damping. Without it a wave about 2.4 links long grows "
+        "near the vertex wherever the scaled tension exceeds 1/2; 1e-3 stops it and moves "
+        "the fountain's shape by at most 0.02 % (docs/convergence.md)", min=0.0, max=1.0,
     )
 
 

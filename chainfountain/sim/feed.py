@@ -52,6 +52,10 @@ class Feed:
         """Unit direction of the floor's pull (the predicted landing tangent)."""
         self.end_force: tuple[float, float] | None = None
         """World force the floor applied to the end link (link 0) in the last step."""
+        self.launch_omega = 0.0
+        """Angular velocity (rad/s) a link gets when it leaves the guide: the catenary's
+        ``alpha' * v = -q v cos(alpha0)**2`` at the launch point, so the released link turns
+        with the curve it enters instead of being bent into it by its neighbours."""
 
     # ------------------------------------------------------------------ geometry
     @property
@@ -145,6 +149,8 @@ class Feed:
             i_front = n - self.n_guide
             front = chain.links[i_front]
             chain.make_dynamic(front)
+            front.body.angular_velocity = self.launch_omega
+            chain.refit_spring(i_front - 1)
             self.n_guide -= 1
             if self.n_guide > 0:
                 chain.join(i_front)
@@ -171,18 +177,21 @@ class Feed:
             d = self.offset - (j + 0.5) * L
             links[n - self.n_guide + j].body.position = (d * ux, d * uy)
 
-    def aim_end_force(self, ref: LaunchReference | None) -> None:
-        """Point the floor's pull along the predicted landing tangent of ``ref``.
+    def set_reference(self, ref: LaunchReference | None) -> None:
+        """Take the predicted fountain ``ref``: it aims the floor's pull and sets the
+        released links' turning rate (:attr:`launch_omega`).
 
-        A dead load in a fixed direction: a force that turned with the end link
-        (a follower force) destabilises narrow fountains (measured: the paper's
-        fountain D flew apart), while in the steady state both coincide.
+        The pull is a dead load along the predicted landing tangent: a force that turned
+        with the end link (a follower force) destabilises narrow fountains (the paper's
+        fountain D flew apart with one), while in the steady state both coincide.
         """
         if ref is None:
             self.end_dir = (0.0, -1.0)
+            self.launch_omega = 0.0
             return
         c = 1.0 / (1.0 + ref.q * (ref.h + ref.H))  # cos(alpha_E), section "Inverted Catenary"
         self.end_dir = (c, -math.sqrt(max(0.0, 1.0 - c * c)))
+        self.launch_omega = -ref.v * ref.q * math.cos(ref.alpha0) ** 2
 
     def before_step(self) -> None:
         """Apply the floor's pull ``Tbar_E*lambda*v^2`` to the chain end (absorbing floor only).

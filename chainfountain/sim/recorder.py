@@ -111,8 +111,9 @@ class Recorder:
             self._profile_stride *= 2
 
     # ------------------------------------------------------------------ sampling
-    def take(self, pre: ChainState, post: ChainState) -> None:
-        """Record the states before and after the last step (analysed lazily).
+    def take(self, pre: ChainState, post: ChainState, contacts: np.ndarray | None = None) -> None:
+        """Record the states before and after the last time step ``dt`` and the contact
+        impulses on each link summed over its pymunk steps (analysed lazily).
 
         Only the raw arrays are stored here (the batch reads are fresh copies),
         so recording costs little more than the two batch reads; the derived
@@ -122,7 +123,6 @@ class Recorder:
         n = sim.n_free
         if n < 2:
             return
-        contacts = sim.reader.contact_impulses() if sim.chain.shapes else None
         app = getattr(sim, "apparatus", None)
         if app is not None:
             lo = app.lower
@@ -132,7 +132,7 @@ class Recorder:
             if app.fold_guided:
                 # joint force sizes: the lower guide's correction (no contact involved)
                 pivots = np.array([abs(lk.up_joint.impulse) if lk.up_joint is not None
-                                   else np.nan for lk in sim.chain.links]) / sim.dt
+                                   else np.nan for lk in sim.chain.links]) / sim.h
             lower = None
             if app.guided:  # 'open': which links the tail's grooves and the turn hold
                 end = sim.chain.links[0].body

@@ -74,6 +74,8 @@ class Simulation:
         space.damping = 1.0
         self.space = space
         self._dt = float(cfg.solver.dt)
+        self._substeps = int(cfg.solver.substeps)
+        self._h = self._dt / self._substeps
         self._check_every = max(1, int(round(CHECK_INTERVAL / self._dt)))
         self.watchdog = Watchdog(space, self._limits())
         """Stops the run when it diverges (:mod:`chainfountain.sim.watchdog`)."""
@@ -83,7 +85,8 @@ class Simulation:
             return
         needs_shapes = (cfg.feed.floor == "solid" or bool(cfg.rollers) or bool(cfg.carts)
                         or cfg.chain.self_collision)
-        self.chain = Chain(space, cfg.chain, cfg.solver, shapes=needs_shapes)
+        self.chain = Chain(space, cfg.chain, cfg.solver, shapes=needs_shapes,
+                           wave_damping=self._wave_damping(cfg.feed.speed))
         self.floor: Floor | None = None
         if cfg.feed.floor == "solid":
             w = cfg.feed.floor_width
@@ -100,7 +103,7 @@ class Simulation:
             self.reference = None
         self.feed = Feed(self.chain, cfg.feed)
         self.feed.initialise(cfg.initial, self.reference)
-        self.feed.aim_end_force(self.reference)
+        self.feed.set_reference(self.reference)
         self.reader = ChainReader(space, self.chain)
         self.time = 0.0
         self.steps = 0
@@ -119,7 +122,8 @@ class Simulation:
         (the apparatus chooses its speed; see ``apparatus.fountain`` for the layout)."""
         cfg = self.config
         space = self.space
-        self.chain = Chain(space, cfg.chain, cfg.solver, shapes=True)
+        self.chain = Chain(space, cfg.chain, cfg.solver, shapes=True,
+                           wave_damping=self._wave_damping(cfg.apparatus.speed))
         self.apparatus = Apparatus(space, self.chain, cfg)
         self.feed = self.apparatus  # type: ignore[assignment]
         self.floor = None
@@ -134,6 +138,13 @@ class Simulation:
         self._grabbed = None
         if self.recorder is not None:
             self.recorder.clear()
+
+    def _wave_damping(self, speed: float) -> float:
+        """The numerical joint damper ``D*lambda*v*L**2`` (N*m*s/rad) at chain speed ``v``
+        (:attr:`chainfountain.sim.config.SolverConfig.wave_damping`)."""
+        cfg = self.config
+        L = float(cfg.chain.link_length)
+        return float(cfg.solver.wave_damping) * cfg.chain.linear_density * abs(speed) * L * L
 
     def _limits(self) -> Limits:
         """Watchdog limits from the level's speed and size (see :meth:`Limits.for_level`)."""
@@ -155,42 +166,53 @@ class Simulation:
     # ------------------------------------------------------------------ stepping
     @property
     def dt(self) -> float:
+        """Time step (s) of the bookkeeping, the samples and :meth:`step`."""
         return float(self.config.solver.dt)
+
+    @property
+    def h(self) -> float:
+        """pymunk's step (s): ``dt / solver.substeps``."""
+        return self._h
 
     @property
     def g(self) -> float:
         return float(self.config.gravity)
 
     def step(self) -> None:
-        """Advance by one fixed physics step ``dt``.
+        """Advance by one time step ``dt``: ``solver.substeps`` pymunk steps of :attr:`h`
+        (external forces applied before each), then the bookkeeping.
 
         Raises :class:`~chainfountain.sim.watchdog.Diverged` when the run has left
         physics (checked every :data:`~chainfountain.sim.watchdog.CHECK_INTERVAL`), and
         an apparatus's :class:`~chainfountain.errors.RunEnded` when the machine cannot
         go on."""
         rec = self.recorder
-        dt = self._dt
-        pre: ChainState | None = None
-        if rec is not None and rec.wants(self.steps + 1):
-            pre = self.reader.read()
-            self.reader.arm()  # the recorder reads this step's contact impulses
-        if self.apparatus is not None:
-            self.apparatus.before_step()
-        else:
-            self.feed.before_step()
+        sample = rec is not None and rec.wants(self.steps + 1)
+        pre: ChainState | None = self.reader.read() if sample else None
+        read_contacts = sample and self.chain.shapes
+        contacts: np.ndarray | None = None
+        before = self.feed.before_step
         probe = self.probe
-        if probe is not None:
-            probe.before()
-        self.space.step(dt)
-        if probe is not None:
-            probe.after()
+        space_step, h = self.space.step, self._h
+        for _ in range(self._substeps):
+            before()
+            if read_contacts:
+                self.reader.arm()  # this pymunk step's contact impulses, stale ones out
+            if probe is not None:
+                probe.before()
+            space_step(h)
+            if probe is not None:
+                probe.after()
+            if read_contacts:
+                c = self.reader.contact_impulses()
+                contacts = c if contacts is None else contacts + c
         self.steps += 1
-        self.time = self.steps * dt
+        self.time = self.steps * self._dt
         if pre is not None and rec is not None:
-            rec.take(pre, self.reader.read())
+            rec.take(pre, self.reader.read(), contacts)
         if self.steps % self._check_every == 0:
             self.watchdog.check(self.time)
-        self.feed.after_step(dt)
+        self.feed.after_step(self._dt)
 
     def advance(self, seconds: float) -> int:
         """Step for ``seconds`` of simulated time (rounded to whole steps); returns steps taken."""
@@ -201,6 +223,22 @@ class Simulation:
         return n
 
     # ------------------------------------------------------------------ commands
+    def nudge(self, seed: int | tuple[int, ...], rel: float = 1e-12) -> None:
+        """Change every moving body's velocity by about ``rel`` of itself (seeded).
+
+        Far below anything physical, as another machine or library build changes the
+        last bits of a run: runs of one level nudged with different seeds sample the
+        spread of its chaotic quantities (ensembles in the tests and studies). Call it
+        right after building or resetting; the same seed gives the same run.
+        """
+        rng = np.random.default_rng(seed)
+        for body in self.space.bodies:
+            if body.body_type == pymunk.Body.DYNAMIC:
+                vx, vy = body.velocity
+                scale = rel * (abs(vx) + abs(vy) + 1e-3)
+                body.velocity = (vx + scale * rng.standard_normal(),
+                                 vy + scale * rng.standard_normal())
+
     def set_feed_speed(self, v: float) -> None:
         """Change the feed speed live (m/s); the reference is recomputed."""
         self.feed.set_speed(v)
@@ -211,7 +249,9 @@ class Simulation:
                 TE_bar=self.config.feed.end_tension)
         except ValueError:
             self.reference = None
-        self.feed.aim_end_force(self.reference)
+        self.feed.set_reference(self.reference)
+        self.chain.wave_damping = self._wave_damping(v)
+        self.chain.set_bending()  # refits every damper to the new speed
 
     def set_bending(self, stiffness: float | None = None, damping: float | None = None) -> None:
         """Change the joint spring ``c`` (N*m/rad) and/or damper ``d`` (N*m*s/rad) live."""
