@@ -56,9 +56,10 @@ class CartStepRun:
 
 
 def run(cfg: SimConfig, mass: float | None, t_switch: float, window: float,
-        every: int = 2) -> CartStepRun:
+        every: int = 2, seed: int = 0) -> CartStepRun:
     """Run ``cfg`` to ``t_switch``, set ``carts[0].mass`` to ``mass`` (``None``: leave it)
-    and sample every ``every`` steps for ``window`` s."""
+    and sample every ``every`` steps for ``window`` s. ``seed > 0`` nudges the start
+    (:meth:`Simulation.nudge`)."""
     a = cfg.apparatus
     if cfg.kind != "apparatus" or a is None or a.variant != "floor" or a.plate != "groove":
         raise ValueError("a cart step needs an apparatus level with variant = 'floor' and "
@@ -66,6 +67,8 @@ def run(cfg: SimConfig, mass: float | None, t_switch: float, window: float,
     if not cfg.carts:
         raise ValueError("a cart step needs an upper cart ([[carts]])")
     sim = Simulation(copy.deepcopy(cfg))  # a live cart change must not reach the caller's cfg
+    if seed:
+        sim.nudge(seed)
     app = sim.apparatus
     sim.advance(t_switch)
     F0 = app.upper.force
@@ -174,9 +177,10 @@ class CartStep:
 
 
 def cart_step(cfg: SimConfig, mass: float, t_switch: float = 1.0, window: float = 0.6,
-              every: int = 2) -> CartStep:
+              every: int = 2, seed: int = 0) -> CartStep:
     """Run ``cfg`` twice, with the upper cart switched to ``mass`` at ``t_switch`` and
-    without, and compare them over ``window`` s."""
-    base = run(cfg, None, t_switch, window, every)
-    step = run(cfg, mass, t_switch, window, every)
+    without, and compare them over ``window`` s (both runs from the same start, nudged by
+    ``seed`` if it is not 0)."""
+    base = run(cfg, None, t_switch, window, every, seed)
+    step = run(cfg, mass, t_switch, window, every, seed)
     return CartStep(base=base, step=step, lam=cfg.chain.linear_density)
