@@ -101,7 +101,8 @@ class FeedConfig:
         choices=("absorbing", "solid"),
     )
     floor_width: float = param(
-        6.0, unit="m", doc="Length of the solid floor segment, centred under the fountain",
+        6.0, unit="m", doc="Length of the floor, centred on the launch point (a solid floor "
+        "must reach past the landing point)",
         min=0.1, max=100.0,
     )
     guide_links: int = param(
@@ -361,7 +362,8 @@ class SimConfig:
 
     kind: str = param("feed", unit="", doc="Level kind", choices=KINDS)
     name: str = param("", unit="", doc="Short name of the level")
-    gravity: float = param(9.81, unit="m/s^2", doc="Gravitational acceleration g", min=0.0)
+    gravity: float = param(9.81, unit="m/s^2", doc="Gravitational acceleration g", min=0.01,
+                           max=1000.0)
     chain: ChainConfig = field(default_factory=ChainConfig)
     feed: FeedConfig = field(default_factory=FeedConfig)
     apparatus: ApparatusConfig = field(default_factory=ApparatusConfig)

@@ -47,8 +47,10 @@ class Simulation:
     space, chain, feed, floor, rollers, carts:
         The pymunk objects; read them, change them through the methods here.
     reference:
-        The paper's prediction for this feed (``None`` when the feed is too slow
-        for a tensile fountain, ``k*H >= 1``).
+        The paper's prediction for this feed. ``None`` for an apparatus level, and
+        for a configuration that has no fountain (``Tbar_E + k*H >= 1``), which the level
+        check (:func:`chainfountain.level.io.check_consistency`) refuses: a feed level
+        that passed it always has a reference.
     time, steps:
         Simulated time (s) and number of physics steps since the last build.
     """
