@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 import tomllib
 import typing
 from dataclasses import dataclass
@@ -73,6 +74,10 @@ def _fail(where: str, field: str, msg: str) -> typing.NoReturn:
     raise LevelError(f"{where}: {field}: {msg}")
 
 
+_PLAIN_KEY = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+"""A key shown as it is in messages; any other key is shown quoted (``repr``)."""
+
+
 def _hints(cls: type) -> dict[str, Any]:
     return typing.get_type_hints(cls)
 
@@ -104,7 +109,10 @@ def _convert_scalar(value: Any, tp: Any, meta: dict[str, Any], where: str, field
     if tp is float:
         if isinstance(value, bool) or not isinstance(value, int | float):
             _fail(where, field, f"{shown} is not allowed; allowed: {allowed_text(meta)}")
-        value = float(value)
+        try:
+            value = float(value)
+        except OverflowError:  # an integer beyond the largest float
+            _fail(where, field, f"{value} is out of range; allowed: {allowed_text(meta)}")
         if not in_range(value, meta):
             _fail(where, field, f"{value!r} is out of range; allowed: {allowed_text(meta)}")
         return value
@@ -121,7 +129,9 @@ def from_mapping(cls: type, data: Any, where: str, prefix: str = "", skip: froze
     unknown = sorted(set(data) - set(fields))
     if unknown:
         known = ", ".join(sorted(fields))
-        _fail(where, prefix + unknown[0], f"unknown key; allowed keys here: {known}")
+        key = unknown[0]
+        shown = key if _PLAIN_KEY.fullmatch(key) else repr(key)  # one line, whatever it holds
+        _fail(where, prefix + shown, f"unknown key; allowed keys here: {known}")
     kwargs: dict[str, Any] = {}
     for name, f in fields.items():
         tp = hints[name]
@@ -236,6 +246,30 @@ def _check_size(where: str, speed_field: str, flight: float, extra_links: float,
           f"speed <= {v_fit:.4g} m/s (or stronger gravity, a lower launch angle)")
 
 
+def _check_blocks_in_scene(sim: SimConfig, where: str) -> None:
+    """Rollers and carts of a feed level lie inside the scene the divergence watchdog
+    allows (:func:`chainfountain.sim.watchdog.limits_for`): a body beyond it would stop the
+    run at once as diverged."""
+    from chainfountain.sim.watchdog import limits_for
+
+    reach = limits_for(sim).radius
+    for i, r in enumerate(sim.rollers):
+        d = math.hypot(r.x, r.y) + r.radius
+        if d >= reach:
+            _fail(where, f"rollers[{i}].x",
+                  f"{r.x!r} m (with y = {r.y:g} m) puts the roller {d:.4g} m from the launch "
+                  f"point, outside this level's scene; allowed: rollers within {reach:.4g} m "
+                  "of the launch point")
+    for i, c in enumerate(sim.carts):
+        half = 0.5 * c.track_length + 0.5 * math.hypot(c.width, c.height)
+        d = math.hypot(c.x, c.y) + half
+        if d >= reach:
+            _fail(where, f"carts[{i}].x",
+                  f"{c.x!r} m (with y = {c.y:g} m and a {c.track_length:g} m track) lets the "
+                  f"cart reach {d:.4g} m from the launch point, outside this level's scene; "
+                  f"allowed: carts and their tracks within {reach:.4g} m of the launch point")
+
+
 def _check_feed(level: Level, where: str) -> None:
     """Feed cross-field checks (paper: ``Tbar_E + k*H < 1`` for the launch)."""
     sim = level.sim
@@ -282,6 +316,7 @@ def _check_feed(level: Level, where: str) -> None:
               f"point, short of where the fountain lands ({f.l:.4g} m), so the chain would "
               f"fall past the solid floor's end; allowed: a width > 2*l = {2.0 * f.l:.4g} m "
               "(the floor is centred on the launch point)")
+    _check_blocks_in_scene(sim, where)
     init, default_init = sim.initial, InitialConfig()
     if init.mode == "catenary" and init.stub_length != default_init.stub_length:
         _fail(where, "initial.stub_length",
@@ -442,6 +477,17 @@ def parse_level(data: dict[str, Any], where: str = "<level>") -> Level:
     return level
 
 
+def _parse_toml(text: str, where: str) -> dict[str, Any]:
+    """The TOML document in ``text``; :class:`LevelError` (one line) when it is not one."""
+    try:
+        return tomllib.loads(text)
+    except ValueError as exc:  # TOMLDecodeError, and an integer of more than 4300 digits
+        raise LevelError(f"{where}: not valid TOML ({exc})") from None
+    except RecursionError:
+        raise LevelError(f"{where}: not valid TOML (arrays or tables nested too deeply)") \
+            from None
+
+
 def load(path: str | Path) -> Level:
     """Read and validate a level file. Raises :class:`LevelError` with one clear line."""
     p = Path(path)
@@ -458,11 +504,7 @@ def load(path: str | Path) -> Level:
         text = raw.decode("utf-8")
     except UnicodeDecodeError:
         raise LevelError(f"{where}: not a UTF-8 text file") from None
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise LevelError(f"{where}: not valid TOML ({exc})") from None
-    return parse_level(data, where)
+    return parse_level(_parse_toml(text, where), where)
 
 
 # ----------------------------------------------------------------------------- writing
@@ -504,11 +546,7 @@ def dumps(level: Level) -> str:
 
 def loads(text: str, where: str = "<text>") -> Level:
     """Parse level TOML text."""
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise LevelError(f"{where}: not valid TOML ({exc})") from None
-    return parse_level(data, where)
+    return parse_level(_parse_toml(text, where), where)
 
 
 def save(level: Level, path: str | Path) -> Path:
@@ -590,7 +628,9 @@ def schema_markdown() -> str:
         "plus an apparatus's upper plate strand (`apparatus.speed / 2 * apparatus.duration` "
         "long unless `apparatus.plate_links` makes it a treadmill);",
         "- a solid feed floor (`feed.floor = \"solid\"`) reaches past the predicted landing "
-        "point and has `feed.end_tension = 0` (the pull is the absorbing floor's);",
+        "point and has `feed.end_tension = 0` (the pull is the absorbing floor's); the "
+        "rollers and carts of a feed level lie within the scene the divergence watchdog "
+        "allows (ten times the level's size plus 20 m from the launch point);",
         "- settings that would have no effect are refused: the `[apparatus]` table in a feed "
         "level and the `[feed]` table in an apparatus level (other than their defaults), "
         "`initial.stub_length` with `initial.mode = \"catenary\"`; in an apparatus level "

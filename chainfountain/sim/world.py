@@ -22,7 +22,7 @@ from chainfountain.sim.config import SimConfig
 from chainfountain.sim.feed import Feed
 from chainfountain.sim.measure import ChainReader, ChainState, link_ends, polyline
 from chainfountain.sim.reference import LaunchReference
-from chainfountain.sim.watchdog import CHECK_INTERVAL, Limits, Watchdog
+from chainfountain.sim.watchdog import CHECK_INTERVAL, Limits, Watchdog, limits_for
 
 if TYPE_CHECKING:
     from chainfountain.sim.recorder import Recorder
@@ -138,17 +138,8 @@ class Simulation:
             self.recorder.clear()
 
     def _limits(self) -> Limits:
-        """Watchdog limits from the level's speed and size (see :meth:`Limits.for_level`)."""
-        cfg = self.config
-        g = float(cfg.gravity)
-        if cfg.kind == "apparatus":
-            a = cfg.apparatus
-            v = float(a.speed)
-            size = a.drop * (1.0 + a.xi2 + a.xi3) + a.floor_depth + v * a.duration
-        else:
-            v = float(cfg.feed.speed)
-            size = cfg.feed.drop + cfg.feed.chain_length
-        return Limits.for_level(v, size + v * v / max(g, 1e-9), g)
+        """Watchdog limits from the level's speed and size (:func:`limits_for`)."""
+        return limits_for(self.config)
 
     def reset(self) -> None:
         """Rebuild from the current configuration (time back to 0, recorder cleared)."""
