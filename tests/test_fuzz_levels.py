@@ -82,6 +82,8 @@ IMPOSSIBLE = [  # (level text, field, words in the message)
      ["no effect"]),
     (lf.SHIPPED["apparatus_fold"].replace("duration = 3.0", "duration = 600.0")
      .replace("speed = 3.0", "speed = 30.0"), "apparatus.duration", ["treadmill"]),
+    (re.sub(r"^xi3 = .*$", "xi3 = 6.89e-07", lf.SHIPPED["apparatus_limit"], flags=re.M),
+     "apparatus.xi3", ["too little for the end channel", "allowed: 0 or at least"]),
     (lf.SHIPPED["apparatus_fold"].replace("end_tension = 0.17", "end_tension = 0.6"),
      "apparatus.end_tension", ["Tbar_E < 1 - k*H"]),
 ]

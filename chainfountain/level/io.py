@@ -393,6 +393,7 @@ def _check_apparatus(level: Level, where: str) -> None:
               "takes the links from the plate's grooves; allowed: 'walls' with a 'contact' plate")
     _check_apparatus_unused(sim, where)
     _check_apparatus_size(sim, where)
+    _check_end_channel(sim, where)
 
 
 ONLY_FOR_VARIANT: dict[str, tuple[str, ...]] = {
@@ -428,6 +429,26 @@ def _check_apparatus_unused(sim: SimConfig, where: str) -> None:
         _fail(where, f"carts[{n_carts}]",
               f"has no effect with apparatus.variant = {a.variant!r} ({which}); allowed: at "
               f"most {n_carts} [[carts]]")
+
+
+def _check_end_channel(sim: SimConfig, where: str) -> None:
+    """'fold': the end channel's two bends fit into the rise ``xi3*H`` (or it is zero)."""
+    from chainfountain.sim.guide import end_channel_bends, end_channel_min_rise
+
+    a = sim.apparatus
+    rise = a.xi3 * a.drop
+    if a.variant != "fold" or rise <= 1e-9:
+        return
+    f = _fountain_or_fail(where, "apparatus.speed", a.speed, a.launch_angle, a.drop,
+                          a.end_tension, sim.gravity)
+    try:
+        end_channel_bends(f.alphaE, rise, a.channel_radius)
+    except ValueError:
+        least = end_channel_min_rise(f.alphaE, a.channel_radius) / a.drop
+        _fail(where, "apparatus.xi3",
+              f"{a.xi3!r} lifts the chain only {rise:.3g} m, too little for the end channel's "
+              f"two bends at this landing angle; allowed: 0 or at least {least:.4g} "
+              f"(a rise of {least * a.drop:.3g} m)")
 
 
 def _check_apparatus_size(sim: SimConfig, where: str) -> None:
@@ -477,6 +498,13 @@ def parse_level(data: dict[str, Any], where: str = "<level>") -> Level:
     return level
 
 
+def shown_path(path: str | Path) -> str:
+    """A file name as messages show it: as it is, or quoted when it holds a newline or
+    another character that is not printable (a message stays one line)."""
+    text = str(path)
+    return text if text.isprintable() else repr(text)
+
+
 def _parse_toml(text: str, where: str) -> dict[str, Any]:
     """The TOML document in ``text``; :class:`LevelError` (one line) when it is not one."""
     try:
@@ -491,7 +519,7 @@ def _parse_toml(text: str, where: str) -> dict[str, Any]:
 def load(path: str | Path) -> Level:
     """Read and validate a level file. Raises :class:`LevelError` with one clear line."""
     p = Path(path)
-    where = str(path)
+    where = shown_path(path)
     try:
         raw = p.read_bytes()
     except FileNotFoundError:
@@ -499,7 +527,9 @@ def load(path: str | Path) -> Level:
     except IsADirectoryError:
         raise LevelError(f"{where}: is a directory, expected a .toml level file") from None
     except OSError as exc:
-        raise LevelError(f"{where}: cannot read ({exc.strerror})") from None
+        raise LevelError(f"{where}: cannot read ({exc.strerror or exc})") from None
+    except ValueError as exc:  # a NUL byte in the name
+        raise LevelError(f"{where}: cannot read ({exc})") from None
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError:
@@ -677,4 +707,5 @@ __all__ = [
     "parse_level",
     "save",
     "schema_markdown",
+    "shown_path",
 ]
