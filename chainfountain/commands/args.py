@@ -3,10 +3,14 @@
 from __future__ import annotations
 
 import argparse
+import os
 import sys
+import tempfile
 from collections.abc import Callable
+from pathlib import Path
 from typing import NoReturn
 
+from chainfountain.errors import UserError
 from chainfountain.level.fields import in_range
 
 
@@ -43,29 +47,71 @@ def number(
                 f"{text!r} is not a number; allowed: {allowed}"
             ) from None
         if not in_range(val, meta):
-            raise argparse.ArgumentTypeError(f"{text} is out of range; allowed: {allowed}")
+            raise argparse.ArgumentTypeError(f"{val:g} is out of range; allowed: {allowed}")
         return val
 
     parse.__name__ = what  # argparse shows this in "invalid <name> value" messages
     return parse
 
 
-def integer(what: str, *, min: int | None = None) -> Callable[[str], int]:  # noqa: A002
-    """Parser for an integer ``>= min``."""
+def integer(what: str, *, min: int | None = None,  # noqa: A002
+            max: int | None = None) -> Callable[[str], int]:  # noqa: A002
+    """Parser for an integer ``>= min`` and ``<= max``."""
+    parts = [f">= {min}"] if min is not None else []
+    parts += [f"<= {max}"] if max is not None else []
+    allowed = f"{what} {' and '.join(parts)}".rstrip()
 
     def parse(text: str) -> int:
         try:
             val = int(text)
-        except ValueError:
+        except ValueError:  # not a whole number, or more digits than Python converts
             raise argparse.ArgumentTypeError(
-                f"{text!r} is not a whole number; allowed: {what}"
+                f"{shown(text[:40] + ('...' if len(text) > 40 else ''))} is not a whole "
+                f"number; allowed: {allowed}"
             ) from None
-        if min is not None and val < min:
-            raise argparse.ArgumentTypeError(f"{val} is out of range; allowed: {what} >= {min}")
+        if (min is not None and val < min) or (max is not None and val > max):
+            raise argparse.ArgumentTypeError(f"{val:.6g} is out of range; allowed: {allowed}")
         return val
 
     parse.__name__ = what
     return parse
+
+
+def path_arg(what: str) -> Callable[[str], Path]:
+    """Parser for a non-empty path; ``what`` describes it, e.g. ``"an output folder"``."""
+
+    def parse(text: str) -> Path:
+        if not text.strip():
+            raise argparse.ArgumentTypeError(f"{shown(text)} is empty; allowed: {what}")
+        return Path(text)
+
+    parse.__name__ = what
+    return parse
+
+
+def shown(text: str) -> str:
+    """``text`` quoted for a one-line message (newlines and other controls escaped)."""
+    return repr(text)
+
+
+def writable_file(path: Path, option: str) -> Path:
+    """Check, before any work, that a file can be written at ``path`` (its folder is created
+    when missing); :class:`UserError` naming ``option`` otherwise."""
+    problem = ""
+    if path.is_dir():
+        problem = "a folder, not a file"
+    else:
+        try:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=".test", dir=path.parent)
+            os.close(fd)
+            os.unlink(tmp)
+        except OSError as exc:
+            problem = exc.strerror or str(exc)
+    if problem:
+        raise UserError(f"argument {option}: cannot write to {shown(str(path))} ({problem}); "
+                        "allowed: a file in a folder you can write to")
+    return path
 
 
 def stdout_is_tty() -> bool:

@@ -5,11 +5,10 @@ from __future__ import annotations
 import argparse
 import json
 import math
-from pathlib import Path
 
-from chainfountain.commands.args import number
-from chainfountain.commands.theory import add_fountain_args
-from chainfountain.errors import UserError
+from chainfountain.commands.args import number, path_arg, writable_file
+from chainfountain.commands.theory import add_fountain_args, finite_or_refuse, geometry_error
+from chainfountain.errors import OutputError, UserError
 from chainfountain.theory import Fountain
 from chainfountain.theory.design import Design, DesignError, design
 
@@ -27,17 +26,20 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         allow_abbrev=False,
     )
     add_fountain_args(p, speed_required=True)
-    p.add_argument("--xi2", type=number("an offset (fraction of H)", min=0), default=None,
-                   help="beaker offset below the fountain start, as a fraction of H")
-    p.add_argument("--xi3", type=number("an offset (fraction of H)", min=0), default=None,
-                   help="bottom offset above the fountain end, as a fraction of H")
+    p.add_argument("--xi2", type=number("an offset (fraction of H)", min=0, max=100),
+                   default=None, help="beaker offset below the fountain start, as a fraction "
+                   "of H")
+    p.add_argument("--xi3", type=number("an offset (fraction of H)", min=0, max=100),
+                   default=None, help="bottom offset above the fountain end, as a fraction "
+                   "of H")
     p.add_argument("--lambda", dest="lam", metavar="KG_PER_M", default=0.05,
-                   type=number("a linear density in kg/m", min=0, min_inclusive=False),
+                   type=number("a linear density in kg/m", min=0, min_inclusive=False,
+                               max=1000),
                    help="linear density of the chain (default 0.05 kg/m)")
     p.add_argument("--slope", type=number("a track angle in degrees", min=0, max=90,
                                           min_inclusive=False), default=30.0,
                    help="cart track angle in degrees (default 30)")
-    p.add_argument("--out", type=Path, default=None, metavar="LEVEL.toml",
+    p.add_argument("--out", type=path_arg("a level file"), default=None, metavar="LEVEL.toml",
                    help="write a level that generates the fountain (run/play accept it)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=run)
@@ -71,19 +73,26 @@ def design_dict(d: Design) -> dict:
 
 
 def run(args: argparse.Namespace) -> int:
+    if args.out is not None:
+        writable_file(args.out, "--out")
     try:
         base = Fountain(l=args.l, h=args.h, H=args.H, k=1.0, g=args.g)
         f = base.with_k(args.k if args.k is not None else args.g / args.v**2)
         d = design(f, args.lam, xi2=args.xi2, xi3=args.xi3, slope=math.radians(args.slope))
+        out = design_dict(d)
     except DesignError as exc:
         raise UserError(str(exc)) from None
-    except ValueError as exc:
-        raise UserError(str(exc)) from None
-    out = design_dict(d)
+    except (ValueError, ArithmeticError) as exc:
+        raise UserError(geometry_error(args, f"the solver fails ({exc})")) from None
+    finite_or_refuse(out, args)
     if args.out is not None:
         from chainfountain.design_level import near_critical_note, write_design_level
 
-        out["level"] = str(write_design_level(d, args.out))
+        try:
+            out["level"] = str(write_design_level(d, args.out))
+        except OSError as exc:
+            raise OutputError(f"argument --out: cannot write {str(args.out)!r} "
+                              f"({exc.strerror or exc})") from None
     if args.json:
         print(json.dumps(out, indent=2))
         return 0

@@ -3,9 +3,10 @@
 from __future__ import annotations
 
 import argparse
-from pathlib import Path
 
 from chainfountain import atomic
+from chainfountain.commands.args import path_arg, writable_file
+from chainfountain.errors import OutputError
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -24,7 +25,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         description="Print the level schema as Markdown (the source of docs/levels.md).",
         allow_abbrev=False,
     )
-    s.add_argument("--out", type=Path, help="write to this file instead of printing")
+    s.add_argument("--out", type=path_arg("a Markdown file"),
+                   help="write to this file instead of printing")
     s.set_defaults(func=run_schema)
 
 
@@ -41,8 +43,13 @@ def run_schema(args: argparse.Namespace) -> int:
     from chainfountain.level import io
 
     text = io.schema_markdown()
-    if args.out:
-        atomic.write_text(args.out, text)
+    if args.out is not None:
+        writable_file(args.out, "--out")
+        try:
+            atomic.write_text(args.out, text)
+        except OSError as exc:
+            raise OutputError(f"argument --out: cannot write {str(args.out)!r} "
+                              f"({exc.strerror or exc})") from None
         print(f"wrote {args.out}")
     else:
         print(text, end="")

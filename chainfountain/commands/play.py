@@ -5,8 +5,11 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from chainfountain.commands.args import integer
+from chainfountain.commands.args import integer, path_arg, shown, writable_file
 from chainfountain.errors import UserError
+
+MAX_FRAMES = 216_000
+"""Most frames ``--frames`` renders: an hour of simulated time at 60 frames per second."""
 
 
 def _size(text: str) -> tuple[int, int]:
@@ -14,10 +17,11 @@ def _size(text: str) -> tuple[int, int]:
         w, h = (int(p) for p in text.lower().split("x"))
     except ValueError:
         raise argparse.ArgumentTypeError(
-            f"{text!r} is not a window size; allowed: WIDTHxHEIGHT, e.g. 1280x760") from None
+            f"{shown(text[:40])} is not a window size; allowed: WIDTHxHEIGHT, e.g. 1280x760"
+        ) from None
     if not (640 <= w <= 8000 and 400 <= h <= 8000):
         raise argparse.ArgumentTypeError(
-            f"{text} is out of range; allowed: width 640-8000, height 400-8000 pixels")
+            f"{w:.6g}x{h:.6g} is out of range; allowed: width 640-8000, height 400-8000 pixels")
     return w, h
 
 
@@ -34,13 +38,14 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         allow_abbrev=False,
     )
     p.add_argument("level", nargs="?", metavar="LEVEL", help="level file or name")
-    p.add_argument("--frames", type=integer("a number of frames", min=1), metavar="N",
+    p.add_argument("--frames", type=integer("a number of frames", min=1, max=MAX_FRAMES),
+                   metavar="N",
                    help="render N frames off-screen and exit")
-    p.add_argument("--screenshot", type=Path, metavar="FILE.png",
+    p.add_argument("--screenshot", type=path_arg("a .png file"), metavar="FILE.png",
                    help="with --frames: save the last frame as PNG (default 120 frames)")
     p.add_argument("--size", type=_size, metavar="WxH", help="window size (default 1280x760)")
     p.add_argument("--paused", action="store_true", help="start paused")
-    p.add_argument("--out", type=Path, metavar="DIR",
+    p.add_argument("--out", type=path_arg("an output folder"), metavar="DIR",
                    help="output folder of a headless run (no display); "
                    "default runs/<level name>")
     p.set_defaults(func=run)
@@ -63,9 +68,16 @@ def run(args: argparse.Namespace) -> int:
         level = io.load(source)  # LevelError: one line, exit 2
     if args.screenshot is not None and args.screenshot.suffix.lower() != ".png":
         raise UserError(f"argument --screenshot: {str(args.screenshot)!r} must end in .png")
+    offscreen = args.frames is not None or args.screenshot is not None
+    if offscreen and args.out is not None:
+        raise UserError(f"argument --out: {str(args.out)!r} has no effect with --frames or "
+                        "--screenshot (it is the folder of a headless run without a display); "
+                        "allowed: --out without --frames and --screenshot")
+    if args.screenshot is not None:
+        writable_file(args.screenshot, "--screenshot")
     from chainfountain.app import launch
 
-    if args.frames is not None or args.screenshot is not None:
+    if offscreen:
         frames = args.frames if args.frames is not None else 120
         return launch.open_app(level, source, frames=frames, screenshot=args.screenshot,
                                size=args.size, offscreen=True, paused=args.paused)

@@ -5,9 +5,8 @@ from __future__ import annotations
 import argparse
 import json
 import sys
-from pathlib import Path
 
-from chainfountain.commands.args import integer, number
+from chainfountain.commands.args import integer, number, path_arg
 from chainfountain.errors import UserError
 
 EXIT_HELP = ("Exit status: 0 a complete run; 2 bad input (one line naming it; nothing "
@@ -33,7 +32,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                                              max=3600),
                    default=None, help="simulated seconds (default 8; an apparatus level without a "
                    "treadmill: its apparatus.duration)")
-    p.add_argument("--out", type=Path, default=None,
+    p.add_argument("--out", type=path_arg("an output folder"), default=None,
                    help="output folder (default runs/<level name>)")
     p.add_argument("--seed", type=integer("a seed", min=0), default=None,
                    help="override the level's random seed (kind 'feed' levels only)")

@@ -12,23 +12,49 @@ from chainfountain.errors import UserError
 from chainfountain.theory import G0, Fountain
 
 LENGTH = "a length in m"
+LENGTH_MIN, LENGTH_MAX = 1e-4, 1e4
+"""Range of the fountain's lengths (m): the solver's numbers stay finite inside it."""
 
 
 def add_fountain_args(p: argparse.ArgumentParser, *, speed_required: bool) -> None:
     """The paper's fountain flags: ``--l --h --H``, ``--k`` or ``--v``, ``--g``."""
-    p.add_argument("--l", type=number(LENGTH, min=0, min_inclusive=False), required=True,
+    p.add_argument("--l", type=number(LENGTH, min=LENGTH_MIN, max=LENGTH_MAX), required=True,
                    metavar="L", help="horizontal distance start to end (m)")
-    p.add_argument("--h", type=number(LENGTH, min=0), required=True, metavar="OVERSHOOT",
-                   help="height of the vertex above the start (m)")
-    p.add_argument("--H", type=number(LENGTH, min=0, min_inclusive=False), required=True,
+    p.add_argument("--h", type=number(LENGTH, min=0, max=LENGTH_MAX), required=True,
+                   metavar="OVERSHOOT", help="height of the vertex above the start (m)")
+    p.add_argument("--H", type=number(LENGTH, min=LENGTH_MIN, max=LENGTH_MAX), required=True,
                    metavar="DROP", help="drop from the start to the end (m)")
     speed = p.add_mutually_exclusive_group(required=speed_required)
-    speed.add_argument("--k", type=number("k = g/v^2 in 1/m", min=0, min_inclusive=False),
+    speed.add_argument("--k", type=number("k = g/v^2 in 1/m", min=1e-6, max=1e6),
                        help="k = g/v^2 (1/m)")
-    speed.add_argument("--v", type=number("a speed in m/s", min=0, min_inclusive=False),
+    speed.add_argument("--v", type=number("a speed in m/s", min=1e-3, max=1e4),
                        help="chain speed (m/s)")
-    p.add_argument("--g", type=number("gravity in m/s^2", min=0, min_inclusive=False),
+    p.add_argument("--g", type=number("gravity in m/s^2", min=0.01, max=1000.0),
                    default=G0, help=f"gravitational acceleration (default {G0})")
+
+
+def finite_or_refuse(values: object, args: argparse.Namespace) -> None:
+    """Refuse (one line naming the fountain's flags) a result with a number that is not
+    finite: a geometry or speed at the edge of the ranges the solver cannot follow."""
+    def finite(x: object) -> bool:
+        if isinstance(x, float):
+            return math.isfinite(x)
+        if isinstance(x, dict):
+            return all(finite(v) for v in x.values())
+        if isinstance(x, list | tuple):
+            return all(finite(v) for v in x)
+        return True
+
+    if not finite(values):
+        raise UserError(geometry_error(args, "a result of the solver is not a finite number"))
+
+
+def geometry_error(args: argparse.Namespace, why: str) -> str:
+    """One line naming the fountain's flags and their values, and why they fail."""
+    given = " ".join(f"--{n} {getattr(args, n):g}" for n in ("l", "h", "H", "k", "v", "g")
+                     if getattr(args, n, None) is not None)
+    return (f"arguments {given}: {why}; allowed: a less extreme geometry (ratios of l, h "
+            "and H nearer 1) or speed")
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -76,12 +102,18 @@ def _table(rows: list[tuple[str, str, str]]) -> str:
 
 def run(args: argparse.Namespace) -> int:
     try:
-        # k is a placeholder here; it only matters once the user gives a speed.
-        base = Fountain(l=args.l, h=args.h, H=args.H, k=1.0, g=args.g)
-    except ValueError as exc:
-        raise UserError(str(exc)) from None
+        return _run(args)
+    except (ValueError, ArithmeticError) as exc:  # the solver failed at an extreme geometry
+        raise UserError(geometry_error(args, f"the solver fails ({exc})")) from None
+
+
+def _run(args: argparse.Namespace) -> int:
+    # k is a placeholder here; it only matters once the user gives a speed.
+    base = Fountain(l=args.l, h=args.h, H=args.H, k=1.0, g=args.g)
     if args.k is None and args.v is None:
         rep = _range_report(base)
+        finite_or_refuse([v for k, v in rep.items() if k not in ("k_range", "T0_bar_range",
+                                                                 "TE_bar_range")], args)
         if args.json:
             print(json.dumps(rep, indent=2))
             return 0
@@ -117,6 +149,7 @@ def run(args: argparse.Namespace) -> int:
             f"argument {flag}: {val:g} gives a pushing end force (Tbar_E = {f.TE_bar:.4g} < 0), "
             f"impossible for a chain; allowed: {allowed}"
         )
+    finite_or_refuse(f.to_dict(), args)
     b = f.bounds()
     if not b.below_v_max:
         print(f"warning: v = {f.v:.4g} m/s is not below the rough energy bound "

@@ -93,8 +93,9 @@ def allowed_text(meta: dict[str, Any]) -> str:
 
 
 def in_range(value: float, meta: dict[str, Any]) -> bool:
-    """True when ``value`` is finite and inside the range declared in ``meta``."""
-    if not math.isfinite(value):
+    """True when ``value`` is finite and inside the range declared in ``meta`` (an integer
+    of any size is compared exactly)."""
+    if not isinstance(value, int) and not math.isfinite(value):
         return False
     lo, hi = meta.get("min"), meta.get("max")
     if lo is not None and (value < lo or (value == lo and not meta.get("min_inclusive", True))):

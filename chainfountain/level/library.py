@@ -49,14 +49,19 @@ def available() -> list[Path]:
 def resolve(name_or_path: str | os.PathLike[str]) -> Path:
     """A level path from a file path or a bare level name (``paper_tall``)."""
     p = Path(name_or_path)
-    if p.suffix == ".toml" or p.is_file():
-        return p
-    for d in (shipped_dir(), user_dir()):
-        cand = d / f"{p.name}.toml"
-        if cand.exists():
-            return cand
+    try:
+        if p.suffix == ".toml" or p.is_file():
+            return p
+        for d in (shipped_dir(), user_dir()):
+            cand = d / f"{p.name}.toml"
+            if cand.exists():
+                return cand
+    except (OSError, ValueError):  # a name too long for the file system, a NUL byte
+        pass
     names = ", ".join(sorted(x.stem for x in available())) or "none found"
-    raise io.LevelError(f"{name_or_path}: no such level file or level name; known levels: {names}")
+    shown = str(name_or_path)
+    shown = shown if shown and shown.isprintable() else repr(shown)
+    raise io.LevelError(f"{shown}: no such level file or level name; known levels: {names}")
 
 
 def default_level() -> io.Level:

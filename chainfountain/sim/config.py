@@ -101,7 +101,8 @@ class FeedConfig:
         choices=("absorbing", "solid"),
     )
     floor_width: float = param(
-        6.0, unit="m", doc="Length of the solid floor segment, centred under the fountain",
+        6.0, unit="m", doc="Length of the floor, centred on the launch point (a solid floor "
+        "must reach past the landing point)",
         min=0.1, max=100.0,
     )
     guide_links: int = param(
@@ -192,11 +193,14 @@ class RecordingConfig:
 class RollerConfig:
     """A kinematic roller (circle) spinning at a set angular speed (apparatus building block)."""
 
-    x: float = param(0.0, unit="m", doc="Centre x relative to the launch point")
-    y: float = param(0.0, unit="m", doc="Centre y relative to the launch point")
+    x: float = param(0.0, unit="m", doc="Centre x relative to the launch point", min=-100.0,
+                     max=100.0)
+    y: float = param(0.0, unit="m", doc="Centre y relative to the launch point", min=-100.0,
+                     max=100.0)
     radius: float = param(0.03, unit="m", doc="Roller radius", min=1e-3, max=2.0)
     angular_speed: float = param(
-        0.0, unit="rad/s", doc="Spin rate, counter-clockwise positive", live=True
+        0.0, unit="rad/s", doc="Spin rate, counter-clockwise positive", min=-1000.0,
+        max=1000.0, live=True,
     )
     friction: float = param(1.0, unit="1", doc="Friction coefficient", min=0.0, max=5.0)
 
@@ -205,17 +209,20 @@ class RollerConfig:
 class CartConfig:
     """A dynamic cart on a straight inclined track (GrooveJoint), apparatus building block."""
 
-    x: float = param(0.0, unit="m", doc="Start position x of the cart centre (launch frame)")
-    y: float = param(0.0, unit="m", doc="Start position y of the cart centre (launch frame)")
+    x: float = param(0.0, unit="m", doc="Start position x of the cart centre (launch frame)",
+                     min=-100.0, max=100.0)
+    y: float = param(0.0, unit="m", doc="Start position y of the cart centre (launch frame)",
+                     min=-100.0, max=100.0)
     incline: float = param(
         0.0, unit="rad", doc="Track angle beta above horizontal (+x uphill for beta > 0)",
         min=-math.pi / 2, max=math.pi / 2,
     )
-    track_length: float = param(2.0, unit="m", doc="Track length, centred on the start", min=0.01)
-    mass: float = param(0.1, unit="kg", doc="Cart mass", min=1e-6, min_inclusive=False,
-                        live=True)
-    width: float = param(0.05, unit="m", doc="Cart box width", min=1e-3)
-    height: float = param(0.02, unit="m", doc="Cart box height", min=1e-3)
+    track_length: float = param(2.0, unit="m", doc="Track length, centred on the start", min=0.01,
+                                max=100.0)
+    mass: float = param(0.1, unit="kg", doc="Cart mass", min=1e-6, max=1000.0,
+                        min_inclusive=False, live=True)
+    width: float = param(0.05, unit="m", doc="Cart box width", min=1e-3, max=10.0)
+    height: float = param(0.02, unit="m", doc="Cart box height", min=1e-3, max=10.0)
 
 
 @dataclass
@@ -379,7 +386,8 @@ class SimConfig:
 
     kind: str = param("feed", unit="", doc="Level kind", choices=KINDS)
     name: str = param("", unit="", doc="Short name of the level")
-    gravity: float = param(9.81, unit="m/s^2", doc="Gravitational acceleration g", min=0.0)
+    gravity: float = param(9.81, unit="m/s^2", doc="Gravitational acceleration g", min=0.01,
+                           max=1000.0)
     chain: ChainConfig = field(default_factory=ChainConfig)
     feed: FeedConfig = field(default_factory=FeedConfig)
     apparatus: ApparatusConfig = field(default_factory=ApparatusConfig)

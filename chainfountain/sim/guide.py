@@ -133,6 +133,15 @@ def end_channel_bends(alphaE: float, rise: float, R: float,
     return R, S
 
 
+def end_channel_min_rise(alphaE: float, R: float, up: float = math.radians(60.0)) -> float:
+    """The least rise above zero a rising end channel can make: its two bends at the
+    smallest radius :func:`end_channel_bends` shrinks ``R`` to (a factor 0.8 at a time,
+    down to 0.02 m), with no straight between them."""
+    while R > 0.02:
+        R *= 0.8
+    return R * (math.cos(alphaE) - math.cos(up)) + R * (1.0 - math.cos(up))
+
+
 def end_channel(xE: float, yE: float, alphaE: float, rise: float, R: float, lead: float,
                 step: float, *, up: float = math.radians(60.0),
                 mouth: float = 0.06) -> tuple[np.ndarray, int]:

@@ -22,7 +22,7 @@ from chainfountain.sim.config import SimConfig
 from chainfountain.sim.feed import Feed
 from chainfountain.sim.measure import ChainReader, ChainState, link_ends, polyline
 from chainfountain.sim.reference import LaunchReference
-from chainfountain.sim.watchdog import CHECK_INTERVAL, Limits, Watchdog
+from chainfountain.sim.watchdog import CHECK_INTERVAL, Limits, Watchdog, limits_for
 
 if TYPE_CHECKING:
     from chainfountain.sim.recorder import Recorder
@@ -47,8 +47,10 @@ class Simulation:
     space, chain, feed, floor, rollers, carts:
         The pymunk objects; read them, change them through the methods here.
     reference:
-        The paper's prediction for this feed (``None`` when the feed is too slow
-        for a tensile fountain, ``k*H >= 1``).
+        The paper's prediction for this feed. ``None`` for an apparatus level, and
+        for a configuration that has no fountain (``Tbar_E + k*H >= 1``), which the level
+        check (:func:`chainfountain.level.io.check_consistency`) refuses: a feed level
+        that passed it always has a reference.
     time, steps:
         Simulated time (s) and number of physics steps since the last build.
     """
@@ -147,17 +149,8 @@ class Simulation:
         return float(cfg.solver.wave_damping) * cfg.chain.linear_density * abs(speed) * L * L
 
     def _limits(self) -> Limits:
-        """Watchdog limits from the level's speed and size (see :meth:`Limits.for_level`)."""
-        cfg = self.config
-        g = float(cfg.gravity)
-        if cfg.kind == "apparatus":
-            a = cfg.apparatus
-            v = float(a.speed)
-            size = a.drop * (1.0 + a.xi2 + a.xi3) + a.floor_depth + v * a.duration
-        else:
-            v = float(cfg.feed.speed)
-            size = cfg.feed.drop + cfg.feed.chain_length
-        return Limits.for_level(v, size + v * v / max(g, 1e-9), g)
+        """Watchdog limits from the level's speed and size (:func:`limits_for`)."""
+        return limits_for(self.config)
 
     def reset(self) -> None:
         """Rebuild from the current configuration (time back to 0, recorder cleared)."""
