@@ -56,6 +56,13 @@ class Channel:
     def walls(self, offset: float) -> tuple[np.ndarray, np.ndarray]:
         """Left and right wall polylines at ``offset`` from the centre line."""
         p = self.points
+        # points closer than a nanometre (a vanishing rise, e.g. xi2 -> 0) have no
+        # direction between them: keep the first of each run
+        keep = np.ones(len(p), dtype=bool)
+        keep[1:] = np.hypot(*np.diff(p, axis=0).T) > 1e-9
+        p = p[keep]
+        if len(p) < 2:
+            return p.copy(), p.copy()
         t = np.gradient(p, axis=0)
         t /= np.linalg.norm(t, axis=1)[:, None]
         nrm = np.column_stack((-t[:, 1], t[:, 0]))
