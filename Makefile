@@ -17,7 +17,7 @@ run: $(STAMP)
 	$(BIN)/chainfountain
 
 test: $(STAMP)
-	$(BIN)/ruff check chainfountain tests benchmarks
+	$(BIN)/ruff check chainfountain tests benchmarks research
 	$(BIN)/python -m pytest -n 2 --dist loadgroup -q
 
 bench: $(STAMP)

@@ -1,7 +1,6 @@
 """Run every benchmark script in this folder and print their figures (``make bench``).
 
-The studies (``convergence_study.py``, ``*_study.py``) take longer and are run
-by hand; see ``docs/``.
+The studies of the model against the paper are in ``research/``, run by hand.
 """
 
 from __future__ import annotations

@@ -25,7 +25,7 @@ So the prediction is the energy balance of the strand and roller unit
 :func:`~chainfountain.theory.apparatus.referred_mass` and the rig's ``d(p lambda v^2)/dv``
 as ``drag``; :mod:`chainfountain.sim.cart_step` runs and reads the pair):
 measured/predicted 1.027 over the 0.6-s window (the first 0.2 s carry axial waves along
-the 8-m strand; ``benchmarks/cart_step_study.py`` gives the 0.3- and 1.0-s windows); with
+the 8-m strand; ``research/cart_step_study.py`` gives the 0.3- and 1.0-s windows); with
 the rig's gain 0.526 instead of 1/2: 0.976.
 
 The step is chaotic, with two outcomes about equally often (16 starts nudged by 1e-12,

@@ -179,7 +179,7 @@ def test_the_guides_arc_takes_most_of_the_loss(run) -> None:
     """The upper guide's arc (its slide joints and the pivots there) loses more than
     the grooves, the straights and the flight together (measured 0.0108 of 0.0159
     ``lambda v**3``): a velocity-level constraint on a discrete curved path is not
-    energy-neutral (the loss scales as 1/R: benchmarks/energy_budget.py --radius)."""
+    energy-neutral (the loss scales as 1/R: research/energy_budget.py --radius)."""
     _, sim, _, _ = run
     b = sim.probe.result()
     assert b.region("arc") > b.total - b.region("arc")

@@ -24,7 +24,7 @@ weighs 0.2 N). ``apparatus.fold_clearance = 0.002`` (the lower table 2 mm lower)
 it: 0.15-0.52 N at 0.1-0.5 ms, and with a 46 g lower cart no run at 0.1, 0.25, 0.35 or
 0.5 ms collapsed in 3 s. It does not make the fold converged: at 0.1 ms the roller
 still slips part of the time (window 0.5-3 s: ``v_R/v`` 0.472, drift +4.1 %/s; 0.5 ms:
-0.501, +0.09 %/s). ``benchmarks/fold_step_study.py --only special --clearance 0.002
+0.501, +0.09 %/s). ``research/fold_step_study.py --only special --clearance 0.002
 --lower-cart 0.046``.
 
 Fourteenth session (``fold_step_study.py --seconds 6 --speeds 2.94 2.97 3.0 3.03 3.06``):

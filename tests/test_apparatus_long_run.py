@@ -16,7 +16,7 @@ last link to enter the end guide through its mouth did so at 17.14 s, 5.9 cm ins
 first turn's radius (the catch takes links within 6 cm: the fountain had widened), and
 the folding roller rolled back at 18.27 s, having held the chain at ``v/2`` for 17.0 s.
 Started 2.94 / 2.97 / 3.03 / 3.06 m/s it ends at 5.54 s / holds 30 s / 17.97 / 13.37 s
-(``benchmarks/swing_study.py --speeds``).
+(``research/swing_study.py --speeds``).
 
 With the channel's walls (until the nineteenth session) the same test read 3.008 m/s,
 the swing +-0.089 then +-0.259 m/s, the catch lost at 14.37 s 5.9 cm *outside* the

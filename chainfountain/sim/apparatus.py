@@ -95,7 +95,7 @@ iterations), ``(p_inf, R)`` of ``Tbar = p_inf + R/(lambda*v**2) + G*Fbar_c`` wit
 in N: a loss-free unfolding (1/4) with a little discretisation excess, a
 speed-independent rolling resistance ``R`` and the cart term (:data:`CART_GAIN_2CM`).
 Weighted fit to 19 rig runs of 6 s at 2.6-5.1 m/s and ``Fbar_c`` 0-0.5
-(``benchmarks/pickup_study.py --pickup-2cm-law``; ``docs/apparatus.md``, "Rig law for
+(``research/pickup_study.py --pickup-2cm-law``; ``docs/apparatus.md``, "Rig law for
 the presets' links"), read through the contacts with pymunk's stale impulses taken out
 (twenty-second session; until then the two-point law ``((2.6, 0.331), (2.9, 0.315))``
 with gain 0.68, fitted to the biased contact reading)."""
@@ -114,7 +114,7 @@ PUTDOWN_RIG_2CM = (0.172, 0.618)
 """Put-down (folding) entry tension at alpha = 0 with 2 cm links: ``Tbar = d + G_d*Fbar_c``
 (intercept ``d``, cart gain ``G_d``), fitted to rig runs at 3 m/s, dt 0.5 ms, 10
 iterations, ``Fbar_c = 0.3, 0.4, 0.5`` (3-s averages, about +-0.02 each; the strand
-tension from the pivot forces, ``benchmarks/pickup_study.py --putdown-2cm``;
+tension from the pivot forces, ``research/pickup_study.py --putdown-2cm``;
 ``docs/apparatus.md``). Below ``Fbar_c`` of about 0.25 the roller falls behind and the
 chain piles up (not steady). Until the twenty-first session (0.13, 0.78), the same runs
 read through the rig's contacts, whose stale impulses overstate the tension under a

@@ -197,7 +197,7 @@ class Feed:
         """Apply the floor's pull ``Tbar_E*lambda*v^2`` to the chain end (absorbing floor only).
 
         The force acts at the downstream end of the end link, along the
-        predicted landing direction (see :meth:`aim_end_force`): the end
+        predicted landing direction (see :meth:`set_reference`): the end
         tension of the paper's string model.
         """
         self.end_force = None

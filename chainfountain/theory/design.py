@@ -35,7 +35,7 @@ from chainfountain.theory.fountain import Fountain
 
 MEASURED_CART_GAIN = 0.5
 """Tension added per unit cart force for a roller-carrying cart at alpha = 0, measured with
-``benchmarks/pickup_study.py`` (the loss-free power balance ``v_R/v``; the paper: 1)."""
+``research/pickup_study.py`` (the loss-free power balance ``v_R/v``; the paper: 1)."""
 
 
 class DesignError(ValueError):

@@ -9,10 +9,10 @@ biased contacts: ``docs/apparatus.md``, "Contact impulses") and the paper's mome
 law (gain 1), beside the pair's tension readings. ``docs/apparatus.md``,
 "Unbalanced carts", quotes it::
 
-    .venv/bin/python benchmarks/cart_step_study.py                  # 60 g, about 10 s
-    .venv/bin/python benchmarks/cart_step_study.py --masses 0.025 0.04 0.06
-    .venv/bin/python benchmarks/cart_step_study.py --plate-links 20   # the treadmill
-    .venv/bin/python benchmarks/cart_step_study.py --figure docs/img/cart_step.png
+    .venv/bin/python research/cart_step_study.py                  # 60 g, about 10 s
+    .venv/bin/python research/cart_step_study.py --masses 0.025 0.04 0.06
+    .venv/bin/python research/cart_step_study.py --plate-links 20   # the treadmill
+    .venv/bin/python research/cart_step_study.py --figure docs/img/cart_step.png
 """
 
 from __future__ import annotations

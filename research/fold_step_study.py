@@ -1,14 +1,14 @@
 """Is the fold converged in the time step? The fold presets at several solver steps.
 
-    .venv/bin/python benchmarks/fold_step_study.py                  # ~1.5 min
-    .venv/bin/python benchmarks/fold_step_study.py --only special --dt 0.5 0.25
-    .venv/bin/python benchmarks/fold_step_study.py --rig            # put-down rig, ~30 s
-    .venv/bin/python benchmarks/fold_step_study.py --only special --clearance 0.002 \
+    .venv/bin/python research/fold_step_study.py                  # ~1.5 min
+    .venv/bin/python research/fold_step_study.py --only special --dt 0.5 0.25
+    .venv/bin/python research/fold_step_study.py --rig            # put-down rig, ~30 s
+    .venv/bin/python research/fold_step_study.py --only special --clearance 0.002 \
         --lower-cart 0.046                                          # the clamp removed
-    .venv/bin/python benchmarks/fold_step_study.py --only special --seconds 6 --dt 0.5 \
+    .venv/bin/python research/fold_step_study.py --only special --seconds 6 --dt 0.5 \
         --speeds 2.94 2.97 3.0 3.03 3.06                            # perturbed starts
-    .venv/bin/python benchmarks/fold_step_study.py --rig --feed groove --push 0.632
-    .venv/bin/python benchmarks/fold_step_study.py --rig --feed groove --push 0.632 \
+    .venv/bin/python research/fold_step_study.py --rig --feed groove --push 0.632
+    .venv/bin/python research/fold_step_study.py --rig --feed groove --push 0.632 \
         --clearance 0.002 --dt 0.5 0.1 0.025 --iterations 10 40
 
 Runs each 'fold' preset (real geometry or treadmills, as shipped) for ``--seconds`` at

@@ -4,11 +4,11 @@ Runs :class:`chainfountain.sim.pickup.RollerRig` (paper section "Pick-Up and
 Pull-Down Forces") at alpha = 0, 45, 90 deg, with and without a cart force,
 prints a Markdown table and writes ``docs/img/pickup.png``::
 
-    .venv/bin/python benchmarks/pickup_study.py            # ~1 min
-    .venv/bin/python benchmarks/pickup_study.py --no-figure
-    .venv/bin/python benchmarks/pickup_study.py --putdown-2cm   # ~25 s, no figure
-    .venv/bin/python benchmarks/pickup_study.py --pickup-2cm --iterations 20
-    .venv/bin/python benchmarks/pickup_study.py --pickup-2cm-law   # ~4 min, no figure
+    .venv/bin/python research/pickup_study.py            # ~1 min
+    .venv/bin/python research/pickup_study.py --no-figure
+    .venv/bin/python research/pickup_study.py --putdown-2cm   # ~25 s, no figure
+    .venv/bin/python research/pickup_study.py --pickup-2cm --iterations 20
+    .venv/bin/python research/pickup_study.py --pickup-2cm-law   # ~4 min, no figure
 
 ``--pickup-2cm``: pick-up at alpha = 0 with the same chain, 3 m/s, dt 0.5 ms, for cart
 forces 0-0.3, and the line ``Tbar = p + G*Fbar_c`` (carriage mass ``0.02 + F/(g sin 30
