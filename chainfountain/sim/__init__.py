@@ -7,6 +7,14 @@ Main entry points::
     rec = Recorder(sim)
     sim.advance(10.0)
     print(rec.summary().errors(sim.reference))
+
+A free chain without a feed (folds, drops onto a scale)::
+
+    from chainfountain.sim import ChainScene
+    scene = ChainScene(points)        # a polyline, one link per segment
+    pin = scene.pin(0)
+    scene.advance(0.3)
+    scene.points(), scene.velocities(), scene.tensions(), scene.pin_force(pin)
 """
 
 from chainfountain.sim.config import (
@@ -21,14 +29,17 @@ from chainfountain.sim.config import (
 )
 from chainfountain.sim.recorder import Recorder
 from chainfountain.sim.reference import LaunchReference
+from chainfountain.sim.scene import ChainScene, Pin
 from chainfountain.sim.world import Simulation
 
 __all__ = [
     "CartConfig",
     "ChainConfig",
+    "ChainScene",
     "FeedConfig",
     "InitialConfig",
     "LaunchReference",
+    "Pin",
     "Recorder",
     "RecordingConfig",
     "RollerConfig",

@@ -1,0 +1,211 @@
+"""A free chain laid along a polyline: the public API for scenes without a feed.
+
+:class:`ChainScene` builds the project's chain (rod links, pivot joints, see
+:mod:`chainfountain.sim.chain`) along a polyline, pins and releases its points, adds a
+floor, steps in pymunk sub-steps and reads positions, speeds, tensions, pin forces and
+the floor's force. The validation problems with closed forms use it: the folded chain
+falling with one end fixed and the chain dropped onto a scale
+(``tests/test_sim_scene.py``).
+
+Its default solver (:data:`SCENE_SOLVER`) keeps the energy of fast folds: the energy a
+fold loses is set by how far the links rounding it turn in one pymunk step,
+``h*v/w`` (``w`` the fold's width); it must stay below about 0.015 for the free end of
+a folded chain to keep within 2 % of the energy-conserving speed (``research/`` and
+``docs/convergence.md``). A 250-us step in 8 sub-steps (31 us) does that up to 6 m/s
+for a fold 1.4 cm wide.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pymunk
+
+from chainfountain.sim.bodies import Floor
+from chainfountain.sim.chain import Chain
+from chainfountain.sim.config import ChainConfig, SolverConfig
+from chainfountain.sim.measure import ChainReader, joint_forces, signed_tension
+
+SCENE_SOLVER = SolverConfig(dt=2.5e-4, substeps=8, iterations=2)
+"""Solver of a scene unless told otherwise: 31-us pymunk steps, 2 iterations each."""
+
+
+@dataclass(eq=False)
+class Pin:
+    """A point of the chain held in place (returned by :meth:`ChainScene.pin`)."""
+
+    point: int
+    joint: pymunk.PivotJoint
+
+
+class ChainScene:
+    """A chain along ``points`` (``(N + 1, 2)`` m, every segment one link of the same
+    length), at rest, under gravity ``g`` pointing down (-y).
+
+    Points are numbered along the polyline, ``0 .. N``; link ``i`` joins points ``i`` and
+    ``i + 1``. With ``collide`` the links get capsule shapes (radius
+    ``chain.link_radius``) so they can land on a floor; they never collide with each
+    other.
+    """
+
+    def __init__(self, points, *, linear_density: float = 0.05, gravity: float = 9.81,
+                 solver: SolverConfig | None = None, collide: bool = False,
+                 bending_damping: float = 0.0, friction: float = 0.6) -> None:
+        pts = np.asarray(points, dtype=float)
+        if pts.ndim != 2 or pts.shape[1] != 2 or len(pts) < 3 or not np.isfinite(pts).all():
+            raise ValueError("points: a finite (N + 1, 2) polyline with at least 2 links "
+                             f"is needed, got shape {pts.shape}")
+        seg = np.hypot(*np.diff(pts, axis=0).T)
+        L = float(seg.mean())
+        if not L > 0.0 or np.abs(seg / L - 1.0).max() > 1e-6:
+            raise ValueError(f"points: every segment must be one link of the same length; "
+                             f"lengths are {seg.min():.6g} ... {seg.max():.6g} m")
+        if not (linear_density > 0.0 and gravity >= 0.0):
+            raise ValueError(f"linear_density {linear_density} and gravity {gravity}: "
+                             "allowed: linear_density > 0, gravity >= 0")
+        self.solver = solver or SCENE_SOLVER
+        self.g = float(gravity)
+        self.space = pymunk.Space()
+        self.space.gravity = (0.0, -self.g)
+        self.space.iterations = self.solver.iterations
+        self.space.collision_slop = self.solver.collision_slop
+        cfg = ChainConfig(link_length=L, linear_density=float(linear_density),
+                          bending_damping=float(bending_damping), friction=float(friction))
+        self.chain = Chain(self.space, cfg, self.solver, shapes=collide)
+        n = len(pts) - 1
+        self.n = n
+        self.L = L
+        # chain order runs downstream from point N back to point 0 (links[0] is link N-1)
+        for i in reversed(range(n)):
+            (x0, y0), (x1, y1) = pts[i], pts[i + 1]
+            link = self.chain.make_body((0.5 * (x0 + x1), 0.5 * (y0 + y1)),
+                                        math.atan2(y1 - y0, x1 - x0))
+            self.chain.append(link)
+        self.floor: Floor | None = None
+        self.time = 0.0
+        self._reader = ChainReader(self.space, self.chain)
+        self._last: tuple | None = None  # (pre, post, contacts) of the last pymunk step
+        self._floor_impulse = np.zeros(2)
+
+    # ------------------------------------------------------------------ set-up
+    def _link(self, i: int):
+        return self.chain.links[self.n - 1 - i]
+
+    def _point_anchor(self, point: int) -> tuple[pymunk.Body, tuple[float, float]]:
+        """A link holding ``point`` and the point in that link's frame."""
+        if not 0 <= point <= self.n:
+            raise ValueError(f"point {point}: allowed: 0 .. {self.n}")
+        h = 0.5 * self.L
+        if point < self.n:
+            return self._link(point).body, (-h, 0.0)
+        return self._link(self.n - 1).body, (h, 0.0)
+
+    def pin(self, point: int) -> Pin:
+        """Hold ``point`` where it is now (a pivot to the static world)."""
+        body, local = self._point_anchor(point)
+        world = body.local_to_world(local)
+        joint = pymunk.PivotJoint(self.space.static_body, body, world, local)
+        joint.error_bias = self.solver.joint_error_bias
+        joint.collide_bodies = False
+        self.space.add(joint)
+        return Pin(point=point, joint=joint)
+
+    def release(self, pin: Pin) -> None:
+        """Let a pinned point go."""
+        if pin.joint in self.space.constraints:
+            self.space.remove(pin.joint)
+
+    def add_floor(self, y: float, x0: float = -10.0, x1: float = 10.0, *,
+                  friction: float = 0.6) -> Floor:
+        """A static floor with its top surface at ``y`` (needs ``collide=True``)."""
+        if not self.chain.shapes:
+            raise ValueError("add_floor: the chain was built with collide=False; links "
+                             "without shapes pass through floors")
+        self.floor = Floor.add(self.space, y, x0, x1, friction=friction)
+        return self.floor
+
+    # ------------------------------------------------------------------ stepping
+    @property
+    def h(self) -> float:
+        """The pymunk step (s): ``solver.dt / solver.substeps``."""
+        return self.solver.dt / self.solver.substeps
+
+    def step(self) -> None:
+        """Advance one time step ``solver.dt`` (``substeps`` pymunk steps). Joint, pin and
+        tension readings are those of the last pymunk step; the floor's force is the mean
+        over the step (impacts are short)."""
+        h = self.h
+        floor_imp = np.zeros(2)
+        for k in range(self.solver.substeps):
+            last = k == self.solver.substeps - 1
+            pre = self._reader.read() if last else None
+            self.space.step(h)
+            if last:
+                self._last = (pre, self._reader.read(), self._reader.contact_impulses())
+            if self.floor is not None:
+                floor_imp += self._impulse_on_floor()
+        self.time += self.solver.dt
+        self._floor_impulse = floor_imp
+
+    def _impulse_on_floor(self) -> np.ndarray:
+        static = self.space.static_body
+        imp = np.zeros(2)
+
+        def add(arb: pymunk.Arbiter) -> None:
+            # the impulse on the arbiter's first body is +total_impulse
+            sign = 1.0 if arb.bodies[0] is static else -1.0
+            imp[:] += (sign * arb.total_impulse.x, sign * arb.total_impulse.y)
+
+        static.each_arbiter(add)
+        return imp
+
+    def advance(self, seconds: float) -> None:
+        """Step for ``seconds`` (rounded to whole steps)."""
+        for _ in range(int(round(seconds / self.solver.dt))):
+            self.step()
+
+    # ------------------------------------------------------------------ readings
+    def points(self) -> np.ndarray:
+        """Link ends ``(N + 1, 2)`` in polyline order (m)."""
+        h = 0.5 * self.L
+        out = np.empty((self.n + 1, 2))
+        for i in range(self.n):
+            out[i] = self._link(i).body.local_to_world((-h, 0.0))
+        out[self.n] = self._link(self.n - 1).body.local_to_world((h, 0.0))
+        return out
+
+    def point_velocity(self, point: int) -> np.ndarray:
+        """Velocity (m/s) of polyline point ``point``."""
+        body, local = self._point_anchor(point)
+        return np.array(body.velocity_at_local_point(local))
+
+    def velocities(self) -> np.ndarray:
+        """Velocities of the link centres ``(N, 2)`` in polyline order (m/s)."""
+        return np.array([self._link(i).body.velocity for i in range(self.n)])
+
+    def pin_force(self, pin: Pin) -> float:
+        """Magnitude of the force (N) the pin exerts in the last pymunk step."""
+        return float(pin.joint.impulse) / self.h
+
+    def tensions(self) -> np.ndarray:
+        """Tension (N, + = pull) at the interior points ``1 .. N-1`` in polyline order,
+        from the momentum balance of the last pymunk step summed from point ``N``
+        (:func:`chainfountain.sim.measure.joint_forces`): exact while point ``N`` is free
+        and no pin holds a point between it and the joint."""
+        if self._last is None:
+            raise RuntimeError("tensions: step the scene first")
+        pre, post, contacts = self._last
+        f = joint_forces(pre, post, self.chain.mass, self.h, self.g, self.n, contacts)
+        t, _ = signed_tension(f, post, self.n)
+        return t[: self.n - 1][::-1].copy()
+
+    def floor_force(self) -> np.ndarray:
+        """Mean force (N) the chain exerts on the floor over the last step (a chain at rest
+        on it pushes down: ``(0, -weight)``)."""
+        return self._floor_impulse / self.solver.dt
+
+    def kinetic_energy(self) -> float:
+        """Translational and rotational kinetic energy of the links (J)."""
+        return float(sum(lk.body.kinetic_energy for lk in self.chain.links))
