@@ -321,7 +321,10 @@ def _value_for(draw: st.DrawFn, path: tuple, old: Any) -> Any:
         return draw(st.sampled_from(_numbers(meta) or [0.0, -1.0]))
     factor = draw(st.sampled_from([0.0, -1.0, 1e-3, 0.5, 0.9, 0.99, 1.01, 1.1, 2.0, 10.0,
                                    1e3, 1e9]))
-    new = old * factor
+    try:
+        new = old * factor
+    except OverflowError:  # an integer beyond any float (a "weird" value) stays as it is
+        return old
     return int(new) if isinstance(old, int) and abs(new) < 2**63 else float(new)
 
 
