@@ -51,6 +51,8 @@ MAX_SAMPLES = 100_000
 """Scalar samples kept by a headless run (thinned evenly beyond: 1000 s at 100 Hz)."""
 DEFAULT_DURATION = 8.0
 """Simulated seconds of a headless run when none is given."""
+FORMING_DURATION = 20.0
+"""... of a fed level that starts from its stub: the shipped ones are steady after 4-12 s."""
 DEFAULT_OUTPUTS = ("summary.json", "tensions.csv", "speed.csv", "snapshot.png")
 """What every run writes (``summary.json`` lists its own files under ``outputs``)."""
 LOG_PROGRESS_EVERY = 30.0
@@ -59,11 +61,15 @@ LOG_PROGRESS_EVERY = 30.0
 
 def default_duration(level: Level) -> float:
     """Simulated seconds of a headless run of ``level`` when none is given:
-    :data:`DEFAULT_DURATION`, or an apparatus level's own ``apparatus.duration`` when its
-    upper table is sized by it (no treadmill), so the run ends before the table does."""
+    :data:`DEFAULT_DURATION`; :data:`FORMING_DURATION` for a fed level that starts from its
+    stub, so that it forms and is then averaged; an apparatus level's own
+    ``apparatus.duration`` when its upper table is sized by it (no treadmill), so the run
+    ends before the table does."""
     sim = level.sim
     if sim.kind == "apparatus" and sim.apparatus.plate_links == 0:
         return float(sim.apparatus.duration)
+    if sim.kind == "feed" and sim.initial.mode == "stub":
+        return FORMING_DURATION
     return DEFAULT_DURATION
 
 
@@ -317,17 +323,17 @@ def summarize(level: Level, sim: Simulation, rec: Recorder, duration: float,
         rep = _attempt(failed, "apparatus report", report, sim, rec, s.t0, s.t1)
         if rep is not None:
             out["TE_bar"] = _f(rep["measured"]["TE_bar"])
-            out["apparatus"] = _json_safe(rep)
+            out["apparatus"] = json_safe(rep)
     out["analysis_failed"] = failed
     return out
 
 
-def _json_safe(obj: Any) -> Any:
-    """Nested dict/list with NaN/inf as null (for the apparatus report)."""
+def json_safe(obj: Any) -> Any:
+    """Nested dict/list with NaN/inf as null (for the apparatus report and converge.json)."""
     if isinstance(obj, dict):
-        return {k: _json_safe(v) for k, v in obj.items()}
+        return {k: json_safe(v) for k, v in obj.items()}
     if isinstance(obj, list | tuple):
-        return [_json_safe(v) for v in obj]
+        return [json_safe(v) for v in obj]
     if isinstance(obj, bool) or obj is None or isinstance(obj, str):
         return obj
     return _f(obj)
@@ -499,7 +505,8 @@ def prepare_out_dir(out_dir: Path, option: str = "--out") -> Path:
 
 
 def run_level(level: Level, out_dir: Path, duration: float | None = None, *,
-              seed: int | None = None, progress: bool = True) -> Path:
+              seed: int | None = None, progress: bool = True,
+              error_bars: dict | None = None) -> Path:
     """Run ``level`` headless and write the outputs into ``out_dir``; returns summary.json.
 
     Raw outputs (the CSVs) are written before the analyses that could fail (figures,
@@ -507,18 +514,20 @@ def run_level(level: Level, out_dir: Path, duration: float | None = None, *,
     rest is still written. SIGINT or SIGTERM while simulating ends the run like a
     stopped machine: its part is written completely (a second signal while writing is
     noted, not obeyed). :func:`exit_status` gives the command's status. Raises
-    :class:`OutputError` when ``summary.json`` itself cannot be written."""
+    :class:`OutputError` when ``summary.json`` itself cannot be written. ``error_bars``
+    (:meth:`chainfountain.refine.Refinement.as_dict`) goes into ``summary.json`` as is."""
     duration = default_duration(level) if duration is None else float(duration)
     out_dir = prepare_out_dir(out_dir)
     sim, rec, wall, ended = simulate(level, duration, seed=seed, progress=progress)
     received: list[int] = []
     with _signals_deferred(received):
-        path = _write_outputs(level, out_dir, duration, sim, rec, wall, ended)
+        path = _write_outputs(level, out_dir, duration, sim, rec, wall, ended, error_bars)
     return path
 
 
 def _write_outputs(level: Level, out_dir: Path, duration: float, sim: Simulation,
-                   rec: Recorder, wall: float, ended: Ending | None) -> Path:
+                   rec: Recorder, wall: float, ended: Ending | None,
+                   error_bars: dict | None = None) -> Path:
     """Every output of a finished (or stopped) run, raw data first; see :func:`run_level`."""
     lam = level.sim.chain.linear_density
     app = sim.apparatus
@@ -543,6 +552,10 @@ def _write_outputs(level: Level, out_dir: Path, duration: float, sim: Simulation
     put("tensions.csv", _write_tensions, rec, lam)
     summary = summarize(level, sim, rec, duration, wall)
     summary["ended_early"] = None
+    if level.sim.kind == "feed":
+        summary["error_bars"] = json_safe(error_bars) if error_bars is not None else {
+            "method": None, "how": "not estimated: chainfountain run LEVEL --error-bars, or "
+            "chainfountain converge LEVEL"}
     if ended is not None:
         summary["ended_early"] = {"t_s": _f(sim.time), "cause": ended.cause,
                                   "reason": ended.reason}
@@ -617,4 +630,13 @@ def describe_outputs(summary_path: Path) -> str:
             f"  vertex height {s['h']:.4f} m (theory {th['h']:.4f}, {pct(err.get('h'))}), "
             f"landing {s['l']:.4f} m (theory {th['l']:.4f}, {pct(err.get('l'))}), "
             f"speed {s['speed_mean']:.4f} m/s")
+    d = (s.get("error_bars") or {}).get("error_bar")
+    if d:
+        def bar(x: float | None) -> str:
+            return "n/a" if x is None else f"+-{100 * x:.2f} %"
+
+        lines.append(
+            f"  discretisation error bars at this link length and step (refinement): vertex "
+            f"height {bar(d.get('h'))}, vertex x {bar(d.get('vertex_x'))}, landing "
+            f"{bar(d.get('l'))}")
     return "\n".join(lines)

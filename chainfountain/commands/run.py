@@ -30,12 +30,17 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="run without a window (the only mode of 'run'; accepted for clarity)")
     p.add_argument("--duration", type=number("a duration in s", min=0, min_inclusive=False,
                                              max=3600),
-                   default=None, help="simulated seconds (default 8; an apparatus level without a "
-                   "treadmill: its apparatus.duration)")
+                   default=None, help="simulated seconds (default 8; 20 for a fed level that "
+                   "starts from its stub, to form and then be averaged; an apparatus level "
+                   "without a treadmill: its apparatus.duration)")
     p.add_argument("--out", type=path_arg("an output folder"), default=None,
                    help="output folder (default runs/<level name>)")
     p.add_argument("--seed", type=integer("a seed", min=0), default=None,
                    help="override the level's random seed (kind 'feed' levels only)")
+    p.add_argument("--error-bars", action="store_true",
+                   help="also estimate the discretisation error (kind 'feed': two short runs "
+                   "from the catenary at the level's link length and step and at half of "
+                   "both, as 'chainfountain converge'; into summary.json's error_bars)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=run)
 
@@ -58,10 +63,23 @@ def run(args: argparse.Namespace) -> int:
             f"{level.sim.kind!r}: the apparatus lays its chain along its own path; to start a "
             "perturbed run, change apparatus.speed slightly); allowed: only with kind 'feed' "
             "levels")
+    if args.error_bars and level.sim.kind != "feed":
+        raise UserError(
+            f"argument --error-bars: {level.meta.name!r} is kind {level.sim.kind!r}; allowed: "
+            "only with kind 'feed' levels, whose fountain the paper predicts from the feed")
     out = prepare_out_dir(args.out or default_out_dir(level))
+    bars = None
+    if args.error_bars:
+        from chainfountain.refine import refine
+
+        print("estimating the discretisation error (chainfountain converge) ...",
+              file=sys.stderr)
+        bars = refine(level.sim, level.meta.name, progress=None if args.quiet else (
+            lambda m: print("  " + m, file=sys.stderr, flush=True))).as_dict()
     duration = args.duration or default_duration(level)
     print(f"running {level.meta.name} headless for {duration:g} simulated s ...",
           file=sys.stderr)
-    path = run_level(level, out, duration, seed=args.seed, progress=not args.quiet)
+    path = run_level(level, out, duration, seed=args.seed, progress=not args.quiet,
+                     error_bars=bars)
     print(describe_outputs(path))
     return exit_status(json.loads(path.read_text()))

@@ -1,0 +1,82 @@
+"""Discretisation error by refinement: ``chainfountain converge`` and ``run --error-bars``."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+from chainfountain.level import io, library
+from chainfountain.refine import FIGURES, refine, refined_config
+
+
+def _cli(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "chainfountain", *args],
+                          capture_output=True, text=True, timeout=600)
+
+
+@pytest.fixture(scope="module")
+def wide_low():
+    return refine(io.load(library.resolve("wide_low")).sim, "wide_low")
+
+
+def test_refined_config_halves_link_and_step_and_starts_on_the_catenary() -> None:
+    cfg = io.load(library.resolve("classroom")).sim
+    fine = refined_config(cfg, 2)
+    assert fine.chain.link_length == cfg.chain.link_length / 2
+    assert fine.solver.dt == cfg.solver.dt / 2
+    assert fine.initial.mode == "catenary"
+    assert cfg.chain.link_length == 0.02  # the level itself is untouched
+
+
+@pytest.mark.slow
+def test_halving_link_and_step_brings_the_fountain_closer_to_the_paper(wide_low) -> None:
+    """The fountain converges on the paper's catenary: wide_low's vertex is +0.41 % high at
+    20 mm and 250 us (docs/convergence.md) and about half that at 10 mm and 125 us."""
+    coarse, fine = (r.errors for r in wide_low.runs)
+    assert abs(fine["h"]) < abs(coarse["h"])
+    stat = wide_low.statistical_error()
+    est = wide_low.discretisation_error()
+    # the estimate resolves the height's error: larger than its own statistical error
+    assert abs(est["h"]) > 2 * stat["h"], (est, stat)
+    # ... and the error it estimates is the coarse run's own to within the estimate's
+    # uncertainty (first order: the extrapolated figure is closer to the paper)
+    assert abs(wide_low.extrapolated()["h"]) < abs(coarse["h"])
+
+
+def test_converge_on_an_apparatus_level_is_refused_in_one_line() -> None:
+    r = _cli("converge", "apparatus_floor")
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+    assert "kind = 'apparatus'" in r.stderr and len(r.stderr.strip().splitlines()) == 1
+
+
+def test_converge_below_the_smallest_link_is_refused(tmp_path) -> None:
+    lvl = io.load(library.resolve("fountain_d"))  # 4-mm links: L/8 = 0.5 mm
+    with pytest.raises(Exception, match="chain.link_length"):
+        refine(lvl.sim, "fountain_d", refinements=4)
+    r = _cli("converge", "fountain_d", "--refinements", "9")
+    assert r.returncode == 2 and "--refinements" in r.stderr
+
+
+def test_run_error_bars_only_on_fed_levels() -> None:
+    r = _cli("run", "apparatus_floor", "--error-bars", "--duration", "0.1")
+    assert r.returncode == 2 and "--error-bars" in r.stderr and "Traceback" not in r.stderr
+
+
+@pytest.mark.slow
+def test_run_with_error_bars_writes_them_next_to_the_figures(tmp_path) -> None:
+    lvl = io.load(library.resolve("wide_low"))
+    lvl.sim.solver.dt = 1e-3  # a coarse, cheap run: the estimate is about the settings
+    path = io.save(lvl, tmp_path / "coarse.toml")
+    r = _cli("run", str(path), "--error-bars", "--duration", "0.5", "--quiet",
+             "--out", str(tmp_path / "o"))
+    assert r.returncode == 0, r.stderr
+    s = json.loads((tmp_path / "o" / "summary.json").read_text())
+    bars = s["error_bars"]
+    assert bars["method"].startswith("refinement")
+    assert set(bars["discretisation_error"]) == set(FIGURES)
+    assert [run["dt"] for run in bars["runs"]] == [1e-3, 5e-4]
+    assert "discretisation error bars" in r.stdout
+    assert all(bars["error_bar"][f] >= abs(bars["discretisation_error"][f]) for f in FIGURES)
