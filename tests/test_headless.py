@@ -95,6 +95,21 @@ def test_default_duration_of_a_table_sized_apparatus_is_its_own() -> None:
     assert default_duration(floor) == DEFAULT_DURATION
 
 
+def test_demo_fed_levels_form_from_a_stub_and_run_long_enough_to_be_averaged() -> None:
+    """The ordinary fed levels start from rest on a stub and form (steady after 4-12 s,
+    research/long_runs.py); a headless run of them lasts long enough to average the
+    formed fountain over the level's window."""
+    from chainfountain.headless import FORMING_DURATION, default_duration
+    from chainfountain.level import io as level_io
+
+    levels = Path(__file__).resolve().parents[1] / "levels"
+    for name in ("classroom", "paper_tall", "paper_tall_fine", "wide_low"):
+        lvl = level_io.load(levels / f"{name}.toml")
+        assert lvl.sim.initial.mode == "stub", name
+        assert default_duration(lvl) == FORMING_DURATION
+        assert FORMING_DURATION >= 12.5 + 2 * lvl.sim.recording.window
+
+
 def test_run_that_ends_early_writes_its_part_and_exits_3(tmp_path):
     """A collapsing fold (the paper's limit case, apparatus_limit) ends the run early:
     the outputs cover the part simulated, summary.json says why, and `run` exits with 3."""

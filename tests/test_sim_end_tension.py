@@ -10,6 +10,7 @@ from chainfountain.sim import Recorder, Simulation
 def run():
     cfg = io.load(library.resolve("wide_low")).sim
     cfg.feed.end_tension = 0.2
+    cfg.initial.mode = "catenary"
     sim = Simulation(cfg)
     sim.advance(1.5)
     rec = Recorder(sim)
