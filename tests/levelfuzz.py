@@ -42,8 +42,8 @@ import tomli_w
 from hypothesis import strategies as st
 
 from chainfountain.errors import RunEnded
+from chainfountain.fields import tuple_item_type
 from chainfountain.level import io
-from chainfountain.level.fields import tuple_item_type
 from chainfountain.sim.config import CartConfig, RollerConfig, SimConfig
 
 LEVELS_DIR = Path(__file__).resolve().parents[1] / "levels"

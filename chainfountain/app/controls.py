@@ -1,6 +1,6 @@
 """Control specifications generated from the level schema (no pygame here).
 
-Every number a level has is declared with :func:`chainfountain.level.fields.param`
+Every number a level has is declared with :func:`chainfountain.fields.param`
 (unit, doc, min, max, live). :func:`control_fields` walks a level's
 :class:`~chainfountain.sim.config.SimConfig` instance (so array entries such as
 ``carts[1].mass`` appear when the level has carts) and returns a
@@ -18,7 +18,7 @@ import typing
 from dataclasses import dataclass
 from typing import Any
 
-from chainfountain.level.fields import allowed_text, tuple_item_type
+from chainfountain.fields import allowed_text, tuple_item_type
 
 CONTROL_PATTERNS: tuple[str, ...] = (
     r"(feed|apparatus)\.speed",

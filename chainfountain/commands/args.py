@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import NoReturn
 
 from chainfountain.errors import UserError
-from chainfountain.level.fields import in_range
+from chainfountain.fields import in_range
 
 
 class OneLineParser(argparse.ArgumentParser):

@@ -1,6 +1,6 @@
-"""Level files (TOML): schema declarations (``fields``) and reading/writing (``io``).
+"""Level files (TOML): reading, checking and writing them (``io``) and the level library.
 
-Import ``chainfountain.level.io`` for :func:`load`, :func:`save` and friends;
-this package itself stays import-light because the simulation's config
-dataclasses import :mod:`chainfountain.level.fields`.
+Import ``chainfountain.level.io`` for :func:`load`, :func:`save` and friends. The
+fields a level declares (unit, description, allowed range) are
+:mod:`chainfountain.fields`, a layer below the simulation's config dataclasses.
 """

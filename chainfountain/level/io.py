@@ -17,7 +17,7 @@ A level file (schema version 1) looks like::
 Top-level keys other than ``schema_version`` and ``[meta]`` are the fields of
 :class:`chainfountain.sim.config.SimConfig`; tables are its nested sections
 and arrays of tables (``[[rollers]]``) its tuples. Every field is declared
-with :func:`chainfountain.level.fields.param`; ``docs/levels.md`` is generated
+with :func:`chainfountain.fields.param`; ``docs/levels.md`` is generated
 from those declarations by :func:`schema_markdown`.
 """
 
@@ -36,7 +36,7 @@ import tomli_w
 
 from chainfountain import atomic
 from chainfountain.errors import UserError
-from chainfountain.level.fields import REQUIRED, allowed_text, in_range, param, tuple_item_type
+from chainfountain.fields import REQUIRED, allowed_text, in_range, param, tuple_item_type
 from chainfountain.sim.config import KINDS, InitialConfig, SimConfig
 
 SCHEMA_VERSION = 1

@@ -1,6 +1,6 @@
 """Configuration dataclasses of the physics core (SI units: m, kg, s, N, rad).
 
-Every numeric field is declared with :func:`chainfountain.level.fields.param`
+Every numeric field is declared with :func:`chainfountain.fields.param`
 (unit, one-line doc, allowed range, ``live`` flag), so a generic level loader
 can read, validate and document them. The classes are plain nested dataclasses
 of numbers, strings, bools and tuples; :class:`SimConfig` is the top level.
@@ -23,7 +23,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from chainfountain.level.fields import param
+from chainfountain.fields import param
 
 KINDS: tuple[str, ...] = ("feed", "apparatus")
 """Level kinds the simulator can build."""

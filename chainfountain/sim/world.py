@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import copy
 import math
-from typing import TYPE_CHECKING, Protocol
+from typing import Protocol
 
 import numpy as np
 import pymunk
@@ -24,8 +24,23 @@ from chainfountain.sim.measure import ChainReader, ChainState, link_ends, polyli
 from chainfountain.sim.reference import LaunchReference
 from chainfountain.sim.watchdog import CHECK_INTERVAL, Limits, Watchdog, limits_for
 
-if TYPE_CHECKING:
-    from chainfountain.sim.recorder import Recorder
+
+class Observer(Protocol):
+    """What the simulation calls to record a step (:attr:`Simulation.recorder`;
+    :class:`chainfountain.sim.recorder.Recorder` is one)."""
+
+    def wants(self, step_index: int) -> bool:
+        """Whether step number ``step_index`` (1-based) is to be sampled."""
+        ...
+
+    def take(self, pre: ChainState, post: ChainState,
+             contacts: np.ndarray | None = None) -> None:
+        """The chain before and after a sampled step (and its contact impulses)."""
+        ...
+
+    def clear(self) -> None:
+        """Forget everything recorded (the simulation was rebuilt)."""
+        ...
 
 
 class Probe(Protocol):
@@ -60,7 +75,7 @@ class Simulation:
             raise ValueError(f"unsupported level kind {config.kind!r} "
                              "(supported: 'feed', 'apparatus')")
         self.config = copy.deepcopy(config)
-        self.recorder: Recorder | None = None
+        self.recorder: Observer | None = None
         self.probe: Probe | None = None
         """Optional measurement called around each physics step (read only), e.g.
         :class:`chainfountain.sim.budget.EnergyBudget`."""
