@@ -2,8 +2,9 @@
 
 Main entry points::
 
-    from chainfountain.sim import Simulation, Recorder, presets
-    sim = Simulation(presets.paper_tall())
+    from chainfountain.level import io, library
+    from chainfountain.sim import Simulation, Recorder
+    sim = Simulation(io.load(library.resolve("paper_tall")).sim)
     rec = Recorder(sim)
     sim.advance(10.0)
     print(rec.summary().errors(sim.reference))
