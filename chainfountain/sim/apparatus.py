@@ -95,10 +95,9 @@ iterations), ``(p_inf, R)`` of ``Tbar = p_inf + R/(lambda*v**2) + G*Fbar_c`` wit
 in N: a loss-free unfolding (1/4) with a little discretisation excess, a
 speed-independent rolling resistance ``R`` and the cart term (:data:`CART_GAIN_2CM`).
 Weighted fit to 19 rig runs of 6 s at 2.6-5.1 m/s and ``Fbar_c`` 0-0.5
-(``research/pickup_study.py --pickup-2cm-law``; ``docs/apparatus.md``, "Rig law for
-the presets' links"), read through the contacts with pymunk's stale impulses taken out
-(twenty-second session; until then the two-point law ``((2.6, 0.331), (2.9, 0.315))``
-with gain 0.68, fitted to the biased contact reading)."""
+(``research/pickup_study.py --pickup-2cm-law``; ``docs/apparatus.md``), read through the
+contacts with pymunk's stale impulses of re-touching contacts taken out
+(:meth:`~chainfountain.sim.measure.ChainReader.arm`)."""
 RIG_2CM_LAMBDA = 0.05
 """Linear density (kg/m) of the chain :data:`PICKUP_RIG_2CM` was measured with."""
 PICKUP_RIG_2CM_ERR = 0.002
@@ -116,10 +115,10 @@ PUTDOWN_RIG_2CM = (0.172, 0.618)
 iterations, ``Fbar_c = 0.3, 0.4, 0.5`` (3-s averages, about +-0.02 each; the strand
 tension from the pivot forces, ``research/pickup_study.py --putdown-2cm``;
 ``docs/apparatus.md``). Below ``Fbar_c`` of about 0.25 the roller falls behind and the
-chain piles up (not steady). Until the twenty-first session (0.13, 0.78), the same runs
-read through the rig's contacts, whose stale impulses overstate the tension under a
-cart ("Contact impulses"). With those taken out (twenty-second session) the contact
-reading gives 0.354 / 0.419 / 0.472 against the pivots' 0.357 / 0.422 / 0.481."""
+chain piles up (not steady). Read through the rig's contacts with pymunk's stale
+impulses taken out, the same runs give 0.354 / 0.419 / 0.472 against the pivots' 0.357 /
+0.422 / 0.481; with the stale impulses left in, the contacts overstate the tension
+under a cart."""
 
 
 def pickup_rig_2cm(v: float) -> float:
@@ -183,16 +182,16 @@ radius closes in to it."""
 _FOLD_CAPTURE = (0.06, math.radians(3.0))
 """'fold' joint guide: capture band (m) and angular margin (rad) of the first turn.
 Wider than 'open''s: the fountain's landing point wanders by several centimetres
-(docs/apparatus.md, "Fold variant"), and a link captured off the radius
+(docs/apparatus.md), and a link captured off the radius
 is held there (its limits close in at :data:`_FOLD_CLOSE_RATE`), so a wide band costs
 nothing while the chain lands on the radius."""
 _FOLD_CLOSE_RATE = 5.0
 """Speed (m/s) at which the limits of a link captured off the 'fold' turn's radius
 close in to ``R -+ PLAY``: a 6-cm offset closes in 12 ms, while the link moves
 about two link lengths, so the catch acts as a stiff funnel at the mouth. Measured
-(docs/apparatus.md, "Fifth session"): at 0.5 m/s the landing point's oscillation
-grew until the catch was lost at about 4.3 s (both treadmills on); at 2, 5 and
-20 m/s the run held to 8 s, at 5 m/s to about 13 s."""
+(docs/apparatus.md): at a close rate of 0.5 m/s the landing point's oscillation grew
+until the catch was lost at about 4.3 s (both treadmills on); at 2, 5 and 20 m/s the
+run held to 8 s, at 5 m/s to about 13 s."""
 _TAIL_KEEP = 30
 """'open': links kept in the lower plate grooves; the tail beyond is lumped into the
 end link (:meth:`Apparatus._lump_tail`)."""
@@ -211,9 +210,9 @@ _FOLD_DT_MIN = 3.5e-4
 The fold is not converged in the step: ``apparatus_fold`` and ``apparatus_special``
 hold for 3 s at dt 0.35-0.5 ms, lose their folding roller at about 2.1 s at 0.25 ms
 (``apparatus_special`` with its joint guide: at 0.65 s) and within 0.2 s at 0.1 ms
-(docs/apparatus.md, "Twelfth session", "Twentieth session"); the put-down rig
-alone is converged down to 0.03 ms. With ``fold_clearance = 0`` only: the cause is the
-folding roller locking between the plate grooves and the table ("Thirteenth session")."""
+(docs/apparatus.md); the put-down rig alone is converged down to 0.03 ms. With
+``fold_clearance = 0`` only: the cause is the folding roller locking between the plate
+grooves and the table."""
 _HELD = 0.1
 """'fold': the folding roller counts as holding the chain while ``|v_R/v - 1/2|`` is at
 most this (the collapse message tells a fold that never held from one that held and was
@@ -223,12 +222,11 @@ _SWING_EVERY, _SWING_SAMPLES = 0.05, 100
 reads the speed swing from (the last 5 s in which the fold held)."""
 _LATE_COLLAPSE = 2.0
 """'fold': a collapse after the folding roller has held the chain this long (s) is
-reported as the landing swing's, not as a missing push (docs/apparatus.md, "Fifteenth
-session")."""
+reported as the landing swing's, not as a missing push (docs/apparatus.md)."""
 _CATCH_LOST = 0.1
 """'fold': a collapse this long (s) or longer after the last link entered the end guide
 through its mouth (normally one does every ``L/v``, about 7 ms) was preceded by a lost
-catch, and the collapse message says so (docs/apparatus.md, "Seventeenth session")."""
+catch, and the collapse message says so (docs/apparatus.md)."""
 _PRELOAD_STEPS = 40
 """Treadmill: a joint made in the tensioned plate strand starts with the tension of the
 joint it replaces as an internal force pair, faded out over this many steps (the
@@ -238,7 +236,7 @@ _UP_RELEASE = 0.5
 """Upper joint guide: a link leaves the guide's straight once its centre is this many
 link lengths short of the fountain start, i.e. once its front joint has left the guide,
 so the free fountain starts at ``(0, 0)`` as with the channel's walls. Measured
-(``apparatus_floor``, 2-6 s; docs/apparatus.md, "Eighteenth session"): the vertex is
+(``apparatus_floor``, 2-6 s; docs/apparatus.md): the vertex is
 +5.4 % off the catenary through the ends when links leave at their centre (0), +0.1 %
 at 0.5, -1.6 % at 0.6, -6.0 % at 1 (the walls: +1.7 %)."""
 _CLEAR = 0.0008
@@ -884,11 +882,11 @@ class Apparatus:
                 head + f"solver.dt = {dt:g} s is below {_FOLD_DT_MIN:g} s, where the folding "
                 "roller locks between the lower plate's grooves and the table (with "
                 "apparatus.fold_clearance = 0 the fold only holds at dt 0.35-0.5 ms; "
-                "docs/apparatus.md, 'Thirteenth session'): set apparatus.fold_clearance = "
+                "docs/apparatus.md): set apparatus.fold_clearance = "
                 "0.002 (with a lighter lower cart) or solver.dt = 0.0005")
         raise FoldCollapsed(
             head + "This model's put-down needs a forward push of about 0.3 lambda*v^2 or "
-            "more (docs/apparatus.md, 'Put-down rig'); "
+            "more (docs/apparatus.md); "
             + ("raise the lower cart mass" if push else
                "give the level a second [[carts]] entry (the lower cart)") + "."
             + self._catch_note())
@@ -898,7 +896,7 @@ class Apparatus:
         the end guide through its mouth :data:`_CATCH_LOST` s or more before the collapse
         (the fountain landed outside the catch's band and fell into the turn from the
         side), '' otherwise (or before any link entered: nothing to compare). It states
-        the order, not a cause. Measured (docs/apparatus.md, "Seventeenth session"): the
+        the order, not a cause. Measured (docs/apparatus.md): the
         catch is lost 1.0-1.3 s before the folding roller rolls back in
         ``apparatus_special`` (starts 2.97-3.06 m/s, the channel's walls; 1.13 s with the
         joint guide from 3.0 m/s), 0.47 s before in ``apparatus_limit``."""
@@ -933,7 +931,7 @@ class Apparatus:
                 "lighter or heavier, a start 2 % faster or slower, a stiffer catch or longer "
                 "strands only move the failure (5.5-18.3 s for apparatus_special at "
                 "solver.dt 0.5 ms, 6.7-22.5 s with the upper channel's walls; "
-                "docs/apparatus.md, 'Fifteenth session', 'Twentieth session')."
+                "docs/apparatus.md)."
                 + self._catch_note())
 
     # ------------------------------------------------------------------ treadmill
@@ -1307,12 +1305,12 @@ class Apparatus:
         A frictionless wall does exactly this (it stops the motion into it); the
         slide joint alone corrects a position error only slowly (error bias), while
         the discrete step moves a link in a turn outward by ``(v dt)^2/(2 R)`` every
-        step, so the turn's links sat 1-2 mm beyond the limit. Measured on the fold
-        test: with the projection they stay on it to the step, and the turn no longer
-        drifts outward as the lower plate strand grows. (A :mod:`pymunk.batch` version,
-        one read and one write of all bodies per step with the projection in numpy, was
-        slower: numpy's per-call cost on a few dozen links is more than this loop's;
-        docs/apparatus.md, "Eighth session".)"""
+        step, so without the projection the turn's links sit 1-2 mm beyond the limit.
+        Measured on the fold test: with the projection they stay on it to the step, and
+        the turn does not drift outward as the lower plate strand grows. (A
+        :mod:`pymunk.batch` version, one read and one write of all bodies per step with
+        the projection in numpy, is slower: numpy's per-call cost on a few dozen links is
+        more than this loop's; docs/apparatus.md.)"""
         close = _FOLD_CLOSE_RATE * self.sim_cfg.solver.dt
         get_p, set_p = fastbody.get_position, fastbody.set_position
         get_v, set_v = fastbody.get_velocity, fastbody.set_velocity

@@ -122,10 +122,11 @@ def _open_guide_impulses(app: Apparatus, pre_vel: np.ndarray, pre_w: np.ndarray,
     end link's mass and moment with the lumped tail). The energy budget's impulse sweep
     (:func:`chainfountain.sim.budget.sweep`) gives each joint's impulse along its known
     normal from the links' momentum and angular momentum changes, so nothing is
-    neglected (the earlier reconstruction took the guide forces normal to each link's
-    axis and neglected the shear). Each row also carries what ``joint_forces`` does not
-    know: the end pull and the lumped mass beyond one link's on the end link. Also
-    returns the grooves' summed impulse on the tail (N s, upward)."""
+    neglected (the 'fold' guide's reconstruction, :func:`_guided_impulses`, takes the
+    guide forces normal to each link's axis and neglects the shear). Each row also
+    carries what ``joint_forces`` does not know: the end pull and the lumped mass beyond
+    one link's on the end link. Also returns the grooves' summed impulse on the tail (N
+    s, upward)."""
     from chainfountain.sim.budget import lower_kinds, sweep
 
     n_tail, n_turn, m_end, I_end = lower
@@ -154,13 +155,13 @@ def _pivot_offset(F: np.ndarray, pivots: np.ndarray, free: np.ndarray) -> np.nda
     to one constant vector: the error of the guide's reconstruction (its guide forces
     taken normal to each link's axis, shear neglected), which reaches every joint
     upstream of the mouth. The solver's own pivot impulses give each joint force's
-    size, ``|F_j + c| = |J_j|/dt``; ``c`` is their least-squares fit (Gauss-Newton
-    from 0). Measured on ``apparatus_special`` over 1-4 s (docs/apparatus.md,
-    "Nineteenth session"): the fit's rms residual is 1e-4 ``lambda v^2`` (the flight's
-    joint forces are exact up to ``c``), ``|c|`` 0.05 ``lambda v^2`` in the median,
-    and ``Tbar_0 - Tbar_E`` then equals ``k`` times the height between the two joints
-    within 0.01 with either upper guide. None if the fit does not hold (fewer than 5
-    free joints, or an rms residual above 2 % of the mean pivot force)."""
+    size, ``|F_j + c| = |J_j|/dt``; ``c`` is their least-squares fit (Gauss-Newton from
+    0). Measured on ``apparatus_special`` over 1-4 s (docs/apparatus.md): the fit's rms
+    residual is 1e-4 ``lambda v^2`` (the flight's joint forces are exact up to ``c``),
+    ``|c|`` 0.05 ``lambda v^2`` in the median, and ``Tbar_0 - Tbar_E`` then equals ``k``
+    times the height between the two joints within 0.01 with either upper guide. None if
+    the fit does not hold (fewer than 5 free joints, or an rms residual above 2 % of the
+    mean pivot force)."""
     if len(free) < 5:
         return None
     Ff, P = F[free], pivots[free]
@@ -279,7 +280,7 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
         # (not the pivot forces: the grooves and the pivots over-constrain the straight
         # strand, and the pivots carry an alternating vertical part that adds about
         # 0.008 lambda v^2; the contacts are read with their stale impulses taken out,
-        # docs/apparatus.md, "Contact impulses corrected")
+        # docs/apparatus.md)
         T_up = float(np.mean(-Fu[max(k - 2, 0):min(k + 3, len(Fu)), 0])) / scale
     else:
         T_up = at(xu + 6 * L, app.y_up)
@@ -351,7 +352,7 @@ def report(sim, rec, t0: float, t1: float) -> dict:
     Measured mechanism laws (``docs/apparatus.md``, alpha = 0, 10-mm rig): pick-up
     ``p`` = :data:`PICKUP_BAR`, put-down ``d`` = :data:`PUTDOWN_BAR`, cart gain
     ``G`` = :data:`~chainfountain.theory.design.MEASURED_CART_GAIN` (1/2, the loss-free
-    power balance; until the twenty-first session 1, a biased reading)::
+    power balance; the paper's is 1)::
 
         Tbar_0 = p + G*Tbar_uc + xi2*k*H,   Tbar_E = d + G*Tbar_lc - xi3*k*H,
         steady: Tbar_uc = Tbar_lc + (k*H*(1 - xi2 - xi3) + d - p)/G.

@@ -3,7 +3,7 @@
 The paper's apparatus is loss-free apart from the unfolding and folding; the simulated
 one also loses energy in its frictionless guides, because a velocity-level constraint
 on a discrete, curved path is not energy-neutral. This module measures that loss
-without reading any single joint's tension (docs/apparatus.md, "Energy budget").
+without reading any single joint's tension (docs/apparatus.md).
 
 For every sampled step the sweep starts at the free end (a 'floor' apparatus with the
 absorbing end, or the 'open' one's lumped tail end, whose end pull is an external
@@ -317,7 +317,7 @@ def open_windows(sim: Simulation, start: float, end: float, width: float,
     """Advance an 'open' :class:`~chainfountain.sim.world.Simulation` (joint guides, plate
     grooves) from ``start`` to ``end`` (s) in windows of ``width`` (s), with an
     :class:`EnergyBudget` over each, and compare the chain's acceleration with the
-    momentum law (docs/apparatus.md, "Open variant: where the drive goes").
+    momentum law (docs/apparatus.md).
 
     The moving chain (roller exit to the lumped tail's end) on its fixed path obeys
     ``M(t) dv/dt = lambda g (y_up - y_lo) + F_pull - T_exit(v) - D/v``, where ``T_exit``

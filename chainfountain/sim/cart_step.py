@@ -1,8 +1,8 @@
-"""A step in the upper cart's force, measured against the energy balance (issue 4, step 2).
+"""A step in the upper cart's force, measured against the energy balance.
 
 The ``floor`` variant of the apparatus runs to ``t_switch``; then the upper cart's mass
 is changed live and the run is compared with an unswitched one over ``window`` s
-(``docs/apparatus.md``, "Unbalanced carts"). Tensions come from the solver's pivot
+(``docs/apparatus.md``). Tensions come from the solver's pivot
 impulses: on the grooved upper plate they are the strand tension itself (the grooves add
 no horizontal force), at the fountain start they are the joint forces' size.
 

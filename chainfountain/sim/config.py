@@ -277,8 +277,8 @@ class ApparatusConfig:
         min=0.1, max=30.0,
     )
     end_tension: float = param(
-        0.0, unit="1", doc="Scaled end tension Tbar_E used to lay out the initial fountain and "
-        "aim the end channel", min=0.0, max=0.99,
+        0.0, unit="1", doc="Scaled end tension Tbar_E that sets the initial fountain's "
+        "layout and the end channel's aim", min=0.0, max=0.99,
     )
     xi2: float = param(
         0.5, unit="1", doc="Upper table ('beaker') xi2*H below the fountain start", min=0.0,
@@ -343,7 +343,7 @@ class ApparatusConfig:
         0, unit="1", doc="Resting links kept in the solver ahead of the pick-up roller (the "
         "rest enter as the roller comes); 0: as rest_links. The presets with a fold use 8: "
         "same physics within the runs' spread, 8 % fewer solver instructions per step "
-        "(docs/apparatus.md, 'Eighth session')", min=0, max=10000,
+        "(docs/apparatus.md)", min=0, max=10000,
     )
     plate_links: int = param(
         0, unit="1", doc="Treadmill (needs plate = 'groove'): keep the upper plate strand at "
@@ -365,17 +365,16 @@ class ApparatusConfig:
         "the clamp locks and the fold collapses. 0.002: the lower cart must be lighter "
         "(apparatus_special: 44 g instead of 58 g); the fold then gives the same run at "
         "0.5 and 0.25 ms (9 of 10 perturbed starts hold 6 s) but still collapses after "
-        "3-4 s at 0.1 ms (docs/apparatus.md, 'Thirteenth session', 'Fourteenth session')",
+        "3-4 s at 0.1 ms (docs/apparatus.md)",
         min=0.0, max=0.005,
     )
     upper_guide: str = param(
         "walls", unit="", doc="Upper guide channel (plate end to fountain start): 'walls' is "
-        "a frictionless two-sided channel of static segments (one contact per link, the "
-        "presets' build); 'joints' (needs plate = 'groove') holds each link centre on the "
+        "a frictionless two-sided channel of static segments (one contact per link; the "
+        "default); 'joints' (needs plate = 'groove') holds each link centre on the "
         "channel's centre line with frictionless joints (groove joints on the straight "
         "pieces, a slide joint to the bend's centre on the bend), as the 'fold' lower guide: "
-        "no wall contacts and no shapes in the channel (docs/apparatus.md, 'Eighteenth "
-        "session')",
+        "no wall contacts and no shapes in the channel (docs/apparatus.md)",
         choices=("walls", "joints"),
     )
 

@@ -9,8 +9,9 @@ chipmunk calls pymunk itself makes, without the wrapper; they take the body's
 chipmunk handle (:func:`handle`), return structs with ``.x`` and ``.y``, and
 take ``(x, y)`` tuples. ``tests/test_fastbody.py`` checks them against pymunk's
 properties; the apparatus gives the same numbers to the last digit with them.
-Measured with callgrind on ``apparatus_special`` (t = 0.5-0.6 s): 2.60 million
-instructions per step before, 2.17 after (docs/apparatus.md, "Eighth session").
+Measured with callgrind on ``apparatus_special`` (t = 0.5-0.6 s): 2.17 million
+instructions per step with these calls against 2.60 with pymunk's properties
+(docs/apparatus.md).
 
 :mod:`pymunk.batch` (one read and one write of all bodies) was measured as
 well and is slower here: numpy's per-call cost on a few dozen links is more

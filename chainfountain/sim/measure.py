@@ -25,8 +25,7 @@ window, Chipmunk copies the old accumulated impulses into the new contact points
 ``Arbiter.total_impulse`` reports an impulse that this step never applied. Call
 :meth:`ChainReader.arm` before the step whose contacts are read: it captures those
 starting impulses in a pre-solve callback (during that step only) and
-:meth:`ChainReader.contact_impulses` subtracts them (``docs/apparatus.md``,
-"Contact impulses").
+:meth:`ChainReader.contact_impulses` subtracts them (``docs/apparatus.md``).
 """
 
 from __future__ import annotations

@@ -455,10 +455,10 @@ class RigResult:
     pivot_force: np.ndarray = field(default_factory=lambda: np.zeros(0))
     """The size of the same joints' force from the solver's pivot impulses (N). It
     involves no contact impulse. :attr:`force` is summed through the contacts, with the
-    stale impulses of contacts that touch again taken out (:meth:`ChainReader.arm`;
-    until the twenty-second session they biased it when a cart pressed the roller,
-    ``docs/apparatus.md``, "Contact impulses"); it is the component along the chain, so
-    where the strand goes slack for a moment it is below this size."""
+    stale impulses of contacts that touch again taken out (:meth:`ChainReader.arm`; left
+    in, they bias it when a cart presses the roller, ``docs/apparatus.md``); it is the
+    component along the chain, so where the strand goes slack for a moment it is below
+    this size."""
 
     @property
     def speed(self) -> float:

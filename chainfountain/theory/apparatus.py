@@ -124,8 +124,7 @@ def referred_mass(strand_mass: float, carriage_mass: float, roller_mass: float) 
     their kinetic energy is ``(v**2/2)*((m_c + m_r)/4 + m_r/8)`` beside the strand's
     ``M*v**2/2``. ``strand_mass`` is the chain the roller drives along a fixed path: in
     the apparatus the links between the pick-up and the fountain start; the chain in
-    flight is not on a fixed path and does not take part (``docs/apparatus.md``,
-    "Unbalanced carts")."""
+    flight is not on a fixed path and does not take part (``docs/apparatus.md``)."""
     for name, m in (("strand_mass", strand_mass), ("carriage_mass", carriage_mass),
                     ("roller_mass", roller_mass)):
         if not m >= 0.0:

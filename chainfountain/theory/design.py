@@ -19,9 +19,10 @@ for a force ``F_c = m*g*sin(beta)`` along its track. The paper takes ``cart_gain
 gives ``cart_gain = v_R/v = 1/(1 + cos(alpha))``, i.e. 1/2 for the apparatus' rollers,
 and that is what the simulated roller rig (``chainfountain.sim.pickup``,
 ``docs/apparatus.md``) measures: pick-up at alpha = 0 0.49, put-down 0.50, with the
-strand tension read from the solver's pivot impulses. (Until the twenty-first session a
-reading summed through the contacts gave about 1.0; pymunk's stale impulses of contacts
-that touch again biased it.) :data:`MEASURED_CART_GAIN` is that value and the default;
+strand tension read from the solver's pivot impulses. (A reading summed through the
+contacts gives about 1.0 unless pymunk's stale impulses of contacts that touch again are
+taken out, as :meth:`chainfountain.sim.measure.ChainReader.arm` does.)
+:data:`MEASURED_CART_GAIN` is that value and the default;
 pass ``cart_gain=1.0`` for the paper's carts.
 """
 
