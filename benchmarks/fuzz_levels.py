@@ -1,6 +1,6 @@
 """Fuzz the level check and the simulator with mutated level files.
 
-Runs the strategies of ``tests/levelfuzz.py`` on ``--examples`` mutants of the shipped
+Runs the strategies of ``tests/level/levelfuzz.py`` on ``--examples`` mutants of the shipped
 levels (wrong types, NaN/inf, zero/negative/huge numbers, missing and unknown keys, wrong
 table shapes, truncated files, random bytes, non-UTF-8) through
 :func:`chainfountain.level.io.load` and prints how many were accepted, refused with one
@@ -23,7 +23,7 @@ import time
 import traceback
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "level"))
 import levelfuzz as lf  # noqa: E402
 from hypothesis import HealthCheck, Phase, given, settings  # noqa: E402
 from hypothesis import seed as hypothesis_seed  # noqa: E402

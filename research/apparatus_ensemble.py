@@ -63,7 +63,7 @@ def fountain_d(seed: int) -> dict[str, float]:
 
 
 def cart_step(seed: int) -> dict[str, float]:
-    """The heavier cart's step on the floor preset (tests/test_apparatus_carts.py)."""
+    """The heavier cart's step on the floor preset (tests/apparatus/test_apparatus_carts.py)."""
     from chainfountain.level import io
     from chainfountain.sim.apparatus import CART_GAIN_2CM
     from chainfountain.sim.cart_step import cart_step as step
@@ -77,7 +77,8 @@ def cart_step(seed: int) -> dict[str, float]:
 
 
 def open_run(seed: int) -> dict[str, float]:
-    """The open arrangement over 2.2 s, window 0.1-2.2 s (tests/test_apparatus_open.py)."""
+    """The open arrangement over 2.2 s, window 0.1-2.2 s
+    (tests/apparatus/test_apparatus_open.py)."""
     from chainfountain.sim import Recorder
     from chainfountain.sim.apparatus_report import report
 

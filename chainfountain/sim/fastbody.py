@@ -7,7 +7,7 @@ read: 1.8 us per read or write of a position or velocity on this machine
 back onto a guide arc needs four of them per step. These functions are the
 chipmunk calls pymunk itself makes, without the wrapper; they take the body's
 chipmunk handle (:func:`handle`), return structs with ``.x`` and ``.y``, and
-take ``(x, y)`` tuples. ``tests/test_fastbody.py`` checks them against pymunk's
+take ``(x, y)`` tuples. ``tests/sim/test_fastbody.py`` checks them against pymunk's
 properties; the apparatus gives the same numbers to the last digit with them.
 Measured with callgrind on ``apparatus_special`` (t = 0.5-0.6 s): 2.17 million
 instructions per step with these calls against 2.60 with pymunk's properties
@@ -19,7 +19,7 @@ than the loop's.
 
 They use pymunk's private ``pymunk._chipmunk_cffi`` and ``Body._body`` (stable
 through pymunk 7; ``pyproject.toml`` pins ``pymunk>=7,<8``), kept in this one
-module so that a pymunk change breaks one place and ``tests/test_fastbody.py``.
+module so that a pymunk change breaks one place and ``tests/sim/test_fastbody.py``.
 """
 
 from __future__ import annotations

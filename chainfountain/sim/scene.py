@@ -5,7 +5,7 @@
 floor, steps in pymunk sub-steps and reads positions, speeds, tensions, pin forces and
 the floor's force. The validation problems with closed forms use it: the folded chain
 falling with one end fixed and the chain dropped onto a scale
-(``tests/test_sim_scene.py``).
+(``tests/sim/test_sim_scene.py``).
 
 Its default solver (:data:`SCENE_SOLVER`) keeps the energy of fast folds: the energy a
 fold loses is set by how far the links rounding it turn in one pymunk step,

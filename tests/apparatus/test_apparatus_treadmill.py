@@ -33,7 +33,7 @@ from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus import TableUsedUp
 from chainfountain.sim.apparatus_report import report
 
-LEVEL = Path(__file__).resolve().parents[1] / "levels" / "apparatus_floor.toml"
+LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_floor.toml"
 FOLD = LEVEL.with_name("apparatus_fold.toml")
 RUN = 1.5
 FOLD_RUN = 2.5

@@ -21,7 +21,7 @@ from chainfountain.level import io, library
 from chainfountain.sim import Simulation
 from chainfountain.sim.watchdog import CHECK_INTERVAL, Diverged
 
-LEVELS = Path(__file__).resolve().parents[1] / "levels"
+LEVELS = Path(__file__).resolve().parents[2] / "levels"
 
 
 def _cli(*args: str, **kw) -> subprocess.CompletedProcess:

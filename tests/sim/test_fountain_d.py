@@ -5,7 +5,7 @@ Fountain D (Fig. "schematic_chain_fountain"): ``H = 2 m``, ``xi = h/H = 0.14``,
 ``k = k_max`` (`levels/fountain_d_kmax.toml`, the limit case: ``Tbar_E = 0``,
 ``Tbar_0 = k*H``). Both are fed levels written by ``chainfountain design`` (4 mm
 links, a step of 15 / 18 us: the vertex is near-critical, ``k/q`` = 0.017 /
-0.019). The ``k = 0.377`` level is run by ``tests/test_design_levels.py``
+0.019). The ``k = 0.377`` level is run by ``tests/cli/test_design_levels.py``
 (``paper_D``); this file runs the ``k_max`` one.
 
 Measured (1.5-s run, window 0.5-1.5 s): ``Tbar_E`` 0.0033, ``Tbar_0`` 0.8594
@@ -26,7 +26,7 @@ from chainfountain.sim import Recorder, Simulation
 from chainfountain.theory import Fountain
 from chainfountain.theory.design import design
 
-LEVELS = Path(__file__).resolve().parents[1] / "levels"
+LEVELS = Path(__file__).resolve().parents[2] / "levels"
 L_D, H_D, H = 0.33, 0.28, 2.0  # the paper's fountain D: l = kappa*H, h = xi*H
 SETTLE, WINDOW = 0.5, 1.0
 

@@ -36,7 +36,7 @@ from apparatus_runs import run_fold
 
 from chainfountain.level import io
 
-LEVEL = Path(__file__).resolve().parents[1] / "levels" / "apparatus_fold.toml"
+LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_fold.toml"
 CLEAN = (0.2, 2.5)
 RUN = 3.0
 WINDOWS = [(0.5 * i, 0.5 * i + 0.5) for i in range(1, 6)]

@@ -153,7 +153,7 @@ def test_drag_a_link():
 def test_used_up_apparatus_table_pauses_with_a_message() -> None:
     from pathlib import Path
 
-    lvl = io.load(Path(__file__).resolve().parents[1] / "levels" / "apparatus_floor.toml")
+    lvl = io.load(Path(__file__).resolve().parents[2] / "levels" / "apparatus_floor.toml")
     lvl.sim.apparatus.plate_links = 0  # the real geometry, sized for a 0.2-s run
     lvl.sim.apparatus.duration = 0.2
     s = Session(lvl)
@@ -183,7 +183,7 @@ def test_fold_clearance_control_lowers_the_lower_table() -> None:
     table that much lower."""
     from pathlib import Path
 
-    lvl = io.load(Path(__file__).resolve().parents[1] / "levels" / "apparatus_special.toml")
+    lvl = io.load(Path(__file__).resolve().parents[2] / "levels" / "apparatus_special.toml")
     s = Session(lvl)
     spec = controls.spec_for(s.level.sim, "apparatus.fold_clearance")
     assert not spec.log and spec.slider_lo == 0.0 and spec.slider_hi == 0.005
@@ -198,7 +198,7 @@ def test_fold_clearance_control_lowers_the_lower_table() -> None:
 def test_floor_depth_control_rebuilds_and_refuses() -> None:
     from pathlib import Path
 
-    lvl = io.load(Path(__file__).resolve().parents[1] / "levels" / "apparatus_floor.toml")
+    lvl = io.load(Path(__file__).resolve().parents[2] / "levels" / "apparatus_floor.toml")
     s = Session(lvl)
     H = s.sim.apparatus.H
     r = s.set_field("apparatus.floor_depth", 0.1)
@@ -215,7 +215,7 @@ def test_collapsed_fold_pauses_and_keeps_the_reason() -> None:
     session pauses and keeps why until the scene is rebuilt."""
     from pathlib import Path
 
-    lvl = io.load(Path(__file__).resolve().parents[1] / "levels" / "apparatus_limit.toml")
+    lvl = io.load(Path(__file__).resolve().parents[2] / "levels" / "apparatus_limit.toml")
     s = Session(lvl)
     s.advance(2.0)  # no exception escapes
     assert s.paused and 0.5 < s.sim.time < 2.0
@@ -227,7 +227,7 @@ def test_collapsed_fold_pauses_and_keeps_the_reason() -> None:
 def test_apparatus_history_has_the_roller_speeds() -> None:
     """The speed plot's pick-up and fold lines (twice each roller's speed) are in the
     history for a fold level, and absent (nan) for a feed level."""
-    lvl = io.load(Path(__file__).resolve().parents[1] / "levels" / "apparatus_special.toml")
+    lvl = io.load(Path(__file__).resolve().parents[2] / "levels" / "apparatus_special.toml")
     s = Session(lvl)
     s.advance(0.6)
     h = s.history.arrays()

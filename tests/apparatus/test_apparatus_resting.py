@@ -11,7 +11,7 @@ import pytest
 from chainfountain.level import io
 from chainfountain.sim import Simulation
 
-LEVEL = Path(__file__).resolve().parents[1] / "levels" / "apparatus_special.toml"
+LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_special.toml"
 
 
 def _resting(sim: Simulation) -> tuple[int, int]:

@@ -36,7 +36,7 @@ from chainfountain.level import io
 from chainfountain.sim import Simulation
 from chainfountain.sim.apparatus import FoldCollapsed
 
-LEVEL = Path(__file__).resolve().parents[1] / "levels" / "apparatus_special.toml"
+LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_special.toml"
 pytestmark = pytest.mark.xdist_group("apparatus_long_run")
 
 

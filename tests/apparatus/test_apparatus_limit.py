@@ -35,7 +35,7 @@ from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus import FoldCollapsed
 from chainfountain.sim.apparatus_report import report
 
-LEVEL = Path(__file__).resolve().parents[1] / "levels" / "apparatus_limit.toml"
+LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_limit.toml"
 RUN = 2.0
 EARLY = (0.05, 0.5)
 """Window before the catch is lost (the roller rolls back from about 0.95 s)."""

@@ -48,7 +48,7 @@ from chainfountain.sim.apparatus import FoldCollapsed
 from chainfountain.sim.apparatus_report import report
 from chainfountain.sim.config import SimConfig
 
-LEVEL = Path(__file__).resolve().parents[1] / "levels" / "apparatus_special.toml"
+LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_special.toml"
 pytestmark = pytest.mark.xdist_group("apparatus_fold_step")
 
 

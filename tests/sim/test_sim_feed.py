@@ -39,7 +39,7 @@ def run(request) -> tuple[Simulation, Summary]:
 # The paper's fountain D presets are near-critical (k/q = 0.017 / 0.019): over this
 # window their vertex is +1.2 % high and 2.6 / 2.8 % short of the predicted x (the
 # first-order creep of docs/convergence.md, "Near-critical fountains"), so they miss
-# these criteria; tests/test_fountain_d.py and test_design_levels.py hold them to the
+# these criteria; tests/sim/test_fountain_d.py and test_design_levels.py hold them to the
 # design (3 %) and apparatus (2 %) criteria. A strict expected failure, by hand: the
 # fixture's other tests pass for them.
 NEAR_CRITICAL = {"fountain_d", "fountain_d_kmax"}

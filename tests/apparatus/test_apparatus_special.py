@@ -43,7 +43,7 @@ from apparatus_runs import run_fold
 from chainfountain.level import io
 from chainfountain.sim.apparatus_report import _pivot_offset
 
-LEVEL = Path(__file__).resolve().parents[1] / "levels" / "apparatus_special.toml"
+LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_special.toml"
 CLEAN = (0.2, 6.0)
 WINDOWS = [(0.5 * i, 0.5 * i + 0.5) for i in range(1, 12)]
 

@@ -87,7 +87,7 @@ def test_default_duration_of_a_table_sized_apparatus_is_its_own() -> None:
     from chainfountain.headless import DEFAULT_DURATION, default_duration
     from chainfountain.level import io as level_io
 
-    levels = Path(__file__).resolve().parents[1] / "levels"
+    levels = Path(__file__).resolve().parents[2] / "levels"
     fold = level_io.load(levels / "apparatus_fold.toml")
     assert fold.sim.apparatus.plate_links == 0
     assert default_duration(fold) == fold.sim.apparatus.duration  # the table is sized for it
@@ -102,7 +102,7 @@ def test_demo_fed_levels_form_from_a_stub_and_run_long_enough_to_be_averaged() -
     from chainfountain.headless import FORMING_DURATION, default_duration
     from chainfountain.level import io as level_io
 
-    levels = Path(__file__).resolve().parents[1] / "levels"
+    levels = Path(__file__).resolve().parents[2] / "levels"
     for name in ("classroom", "paper_tall", "paper_tall_fine", "wide_low"):
         lvl = level_io.load(levels / f"{name}.toml")
         assert lvl.sim.initial.mode == "stub", name

@@ -42,7 +42,7 @@ from chainfountain.sim.apparatus_report import report
 from chainfountain.sim.budget import EnergyBudget, rig_law_speed
 from chainfountain.sim.guide import PLAY
 
-LEVEL = Path(__file__).resolve().parents[1] / "levels" / "apparatus_floor.toml"
+LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_floor.toml"
 RUN = 6.0
 STEADY = (3.0, RUN)
 

@@ -48,7 +48,7 @@ from chainfountain.level import io
 from chainfountain.sim.apparatus import CART_GAIN_2CM
 from chainfountain.sim.cart_step import CartStep, cart_step
 
-LEVEL = Path(__file__).resolve().parents[1] / "levels" / "apparatus_floor.toml"
+LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_floor.toml"
 T_SWITCH, WINDOW, HEAVY = 1.0, 0.6, 0.06
 
 pytestmark = pytest.mark.xdist_group("apparatus_carts")

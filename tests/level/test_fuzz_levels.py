@@ -1,4 +1,4 @@
-"""Bad level files never give a traceback or a wrong run (mutants from ``tests/levelfuzz.py``).
+"""Bad level files never give a traceback or a wrong run (mutants from ``levelfuzz.py``).
 
 Each mutant is either accepted or refused with one line naming the file and a field;
 accepted mutants build and run 0.3 s, stopping themselves at most (RunEnded). The

@@ -42,7 +42,7 @@ from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import report
 from chainfountain.sim.budget import open_windows
 
-LEVEL = Path(__file__).resolve().parents[1] / "levels" / "apparatus_open.toml"
+LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_open.toml"
 FLOOR = LEVEL.with_name("apparatus_floor.toml")
 RUN = 2.2
 FLOOR_SPEED = 2.929

@@ -1,7 +1,7 @@
 """Speed selection of the free-ended apparatus: a heavier upper cart, a slower chain.
 
 ``levels/apparatus_floor_heavy.toml`` (15 g cart) against ``apparatus_floor``
-(9 g, about 2.93 m/s, ``tests/test_apparatus_floor.py``). Paper (section
+(9 g, about 2.93 m/s, ``tests/apparatus/test_apparatus_floor.py``). Paper (section
 "Generating Steady-State Chain Fountains", free end ``Tbar_E = 0``):
 ``v**2 = (g*H*(1 - xi2) - G*F_uc/lambda)/p``. What is asserted is what the
 simulation does (``docs/apparatus.md``): the heavy cart selects a clearly lower
@@ -27,7 +27,7 @@ from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import report
 from chainfountain.sim.budget import EnergyBudget, rig_law_speed
 
-LEVEL = Path(__file__).resolve().parents[1] / "levels" / "apparatus_floor_heavy.toml"
+LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_floor_heavy.toml"
 RUN = 5.0
 
 

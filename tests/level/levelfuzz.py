@@ -1,6 +1,6 @@
 """Mutated level files: hypothesis strategies and the checks every mutant must pass.
 
-Shared by ``tests/test_fuzz_levels.py`` (a few hundred mutants) and
+Shared by ``tests/level/test_fuzz_levels.py`` (a few hundred mutants) and
 ``benchmarks/fuzz_levels.py`` (ten thousand and more); pytest does not collect this
 module. A mutant starts from one of the shipped levels in ``levels/*.toml`` and is
 
@@ -46,7 +46,7 @@ from chainfountain.fields import tuple_item_type
 from chainfountain.level import io
 from chainfountain.sim.config import CartConfig, RollerConfig, SimConfig
 
-LEVELS_DIR = Path(__file__).resolve().parents[1] / "levels"
+LEVELS_DIR = Path(__file__).resolve().parents[2] / "levels"
 SHIPPED: dict[str, str] = {p.stem: p.read_text(encoding="utf-8")
                            for p in sorted(LEVELS_DIR.glob("*.toml"))}
 """Text of every shipped level, by name."""

@@ -10,7 +10,7 @@ import pytest
 
 from chainfountain.level import io
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 LEVELS = sorted((ROOT / "levels").glob("*.toml"))
 
 

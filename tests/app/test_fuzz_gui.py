@@ -31,7 +31,7 @@ from chainfountain.app.session import Session  # noqa: E402
 from chainfountain.app.window import App  # noqa: E402
 from chainfountain.level import io  # noqa: E402
 
-LEVELS = Path(__file__).resolve().parents[1] / "levels"
+LEVELS = Path(__file__).resolve().parents[2] / "levels"
 
 NUMBERS = [math.nan, math.inf, -math.inf, 1e308, -1e308, 0.0, -0.0, -1.0, -1e-9, 5e-324,
            1e-300, 1e9]
