@@ -26,7 +26,6 @@ def test_no_display_detected(monkeypatch):
 
 
 def test_no_display_runs_the_default_level_headless(tmp_path, monkeypatch, capsys):
-    headless = pytest.importorskip("chainfountain.headless")
     from chainfountain.level import io
     from chainfountain.sim.config import SimConfig
 
@@ -36,7 +35,7 @@ def test_no_display_runs_the_default_level_headless(tmp_path, monkeypatch, capsy
     cfg.chain.link_length = 0.03
     small = io.make_level("tiny default", "", cfg)
     monkeypatch.setattr("chainfountain.app.session.default_level", lambda: small)
-    monkeypatch.setattr(headless, "DEFAULT_DURATION", 0.3, raising=False)
+    monkeypatch.setattr("chainfountain.headless.run.DEFAULT_DURATION", 0.3)
     monkeypatch.chdir(tmp_path)
     monkeypatch.delenv("DISPLAY", raising=False)
     monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)

@@ -103,7 +103,7 @@ def test_a_failed_figure_is_named_and_the_rest_written(tmp_path, quick_level, mo
     def broken(*args, **kw):
         raise ValueError("figure broke")
 
-    monkeypatch.setattr(headless, "write_snapshot", broken)
+    monkeypatch.setattr("chainfountain.headless.files.write_snapshot", broken)
     s = json.loads(run_level(quick_level, tmp_path, 0.2, progress=False).read_text())
     assert s["analysis_failed"] == {"snapshot.png": "ValueError: figure broke"}
     assert "snapshot.png" not in s["outputs"] and (tmp_path / "speed.csv").exists()

@@ -164,9 +164,7 @@ def test_full_run_is_not_marked_ended_early(tmp_path, quick_level):
 
 def test_progress_lines_when_not_a_terminal(tmp_path, quick_level, capsys, monkeypatch):
     """stderr is no terminal under pytest: progress comes as plain lines (a log file)."""
-    import chainfountain.headless as headless
-
-    monkeypatch.setattr(headless, "LOG_PROGRESS_EVERY", 0.0)
+    monkeypatch.setattr("chainfountain.headless.stepping.LOG_PROGRESS_EVERY", 0.0)
     run_level(quick_level, tmp_path, 0.2, progress=True)
     lines = [ln for ln in capsys.readouterr().err.splitlines() if "sim s" in ln]
     assert lines and lines[-1].strip().startswith("quick: 0.20/0.20 sim s (100 %)")

@@ -1,0 +1,151 @@
+"""The files of a headless run besides ``summary.json``: CSVs and figures."""
+
+from __future__ import annotations
+
+import csv
+import dataclasses
+import io as _io
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from chainfountain import atomic
+from chainfountain.sim.recorder import Recorder
+from chainfountain.sim.world import Simulation
+from chainfountain.theory.apparatus import plate_reaction
+
+MAX_TENSION_SAMPLES = 200
+"""Time samples of ``tensions.csv`` (evenly chosen among the recorded profiles)."""
+
+
+def write_tensions(path: Path, rec: Recorder, lam: float) -> None:
+    profs = rec.profiles
+    samples = rec.samples
+    if not profs:
+        atomic.write_text(path, "t,joint,s,x,y,tension_N,tension_bar\n")
+        return
+    idx = np.unique(np.linspace(0, len(profs) - 1, min(MAX_TENSION_SAMPLES, len(profs)))
+                    .round().astype(int))
+    buf = _io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(["t", "joint", "s", "x", "y", "tension_N", "tension_bar"])
+    t_samples = np.array([smp.t for smp in samples])
+    for i in idx:
+        p = profs[i]
+        smp = samples[int(np.argmin(np.abs(t_samples - p.t)))]
+        v = smp.speed_mean if smp.speed_mean > 0 else 1.0
+        xy = np.column_stack([p.x, p.y])
+        s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(xy, axis=0), axis=1))])
+        scale = lam * v * v
+        for j in range(len(p.tension_bar)):
+            w.writerow([f"{smp.t:.6g}", j, f"{s[j]:.6g}", f"{p.x[j]:.6g}", f"{p.y[j]:.6g}",
+                        f"{p.tension_bar[j] * scale:.6g}", f"{p.tension_bar[j]:.6g}"])
+    atomic.write_text(path, buf.getvalue())
+
+
+def write_samples(path: Path, samples: list) -> None:
+    """One row per recorded sample (a dataclass), one column per field."""
+    buf = _io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    cols = [f.name for f in dataclasses.fields(samples[0])] if samples else ["t"]
+    w.writerow(cols)
+    for smp in samples:
+        w.writerow([f"{getattr(smp, c):.6g}" for c in cols])
+    atomic.write_text(path, buf.getvalue())
+
+
+def write_reaction_figure(path: Path, rec: Recorder, summary: dict[str, Any],
+                          lam: float, g: float, title: str) -> None:
+    """'open' arrangement: the lower plate's reaction force against time, with the
+    paper's rate ``lambda g v`` integrated over the measured speed from the first sample
+    (the paper: "the reaction force change is exactly known over time")."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    S = rec.apparatus_samples
+    t = np.array([x.t for x in S], dtype=float)
+    R = np.array([x.tail_reaction for x in S], dtype=float)
+    v = np.array([x.v for x in S], dtype=float)
+    ok = np.isfinite(R) & np.isfinite(v)
+    t, R, v = t[ok], R[ok], v[ok]
+    fig, ax = plt.subplots(figsize=(6.4, 4.2), dpi=100)
+    ax.plot(t, R, ".", ms=3, color="#333333", label="measured (each sample)")
+    if len(t) > 1:
+        ax.plot(t, plate_reaction(t, v, float(R[0]), lam, g), "--", color="#d62728", lw=1.4,
+                label="lambda g v (paper), from the first sample")
+    o = (summary.get("apparatus") or {}).get("open") or {}
+    rate, pred = o.get("tail_reaction_rate_N_per_s"), o.get("tail_reaction_rate_predicted")
+    if rate is not None and pred is not None:
+        w0, w1 = summary["apparatus"]["window"]
+        ax.text(0.02, 0.97, f"rate over {w0:.2g}-{w1:.2g} s: {rate:.3f} N/s measured "
+                f"(Theil-Sen), {pred:.3f} N/s = lambda g v ({100 * (rate / pred - 1):+.1f} %)",
+                transform=ax.transAxes, va="top", fontsize=8)
+    ax.set_xlabel("t (s)")
+    ax.set_ylabel("lower plate reaction (N)")
+    ax.grid(alpha=0.3)
+    ax.set_ylim(bottom=0.0)
+    _save_png(fig, ax, path, title, legend="lower right")
+
+
+def write_snapshot(path: Path, sim: Simulation, summary: dict[str, Any], title: str) -> None:
+    """The chain at the end of the run over the predicted catenary, axes in metres."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    pts = sim.chain_polyline()
+    fig, ax = plt.subplots(figsize=(6.4, 6.4), dpi=100)
+    ax.plot(pts[:, 0], pts[:, 1], "-", color="#333333", lw=1.6, label="simulated chain")
+    ref = sim.reference
+    if ref is not None:
+        x = np.linspace(0.0, ref.landing_x, 300)
+        ax.plot(x, ref.y_of_x(x), "--", color="#d62728", lw=1.2,
+                label=f"inverted catenary (theory), q = {ref.q:.3g} 1/m")
+        ax.plot(*ref.vertex, "x", color="#d62728", ms=9, mew=2, label="predicted vertex")
+    vx, vy = summary["vertex"]
+    if vx is not None and vy is not None:
+        ax.plot(vx, vy, "o", mfc="none", color="#1f77b4", ms=9, mew=1.5,
+                label="measured vertex (window mean)")
+    fy, fx0, fx1, mode = sim.floor_geometry()
+    app = sim.apparatus
+    if mode != "none":
+        ax.plot([fx0, fx1], [fy, fy], color="#8c564b", lw=3, label=f"{mode} floor")
+    if app is not None and app.floor_depth > 0:
+        ex = app.end[0]
+        ax.plot([ex - 0.3, ex + 0.3], [-app.H, -app.H], ":", color="#7f7f7f", lw=1.5,
+                label=f"fountain end height (Tbar_E read here; floor {app.floor_depth:.3g} m "
+                "lower)")
+    if app is None:
+        (gx, gy), (ux, uy) = sim.guide_geometry()
+        ax.plot([gx - 0.15 * ux, gx], [gy - 0.15 * uy, gy], color="#2ca02c", lw=4,
+                label="feed guide")
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.grid(alpha=0.3)
+    if app is not None:
+        # the fountain and the guides, not the metres of table on either side (a tall,
+        # narrow fountain such as the paper's D ends well before 2.4 H)
+        H = app.H
+        ax.set_xlim(-0.6, max(1.2, min(2.4 * H, app.end[0] + 1.0)))
+        ax.set_ylim(min(-H - 0.4, app.floor_y - 0.1), max(0.3, 0.6 * H))
+    else:
+        xs = np.concatenate([pts[:, 0], [fx0, fx1]]) if ref is None else pts[:, 0]
+        ax.set_xlim(min(xs.min(), -0.2) - 0.1, max(xs.max(), 0.2) + 0.1)
+    _save_png(fig, ax, path, title)
+
+
+def _save_png(fig, ax, path: Path, title: str, legend: str = "best") -> None:
+    """Title and legend, then the figure as PNG, atomically; closes it."""
+    import matplotlib.pyplot as plt
+
+    ax.set_title(title, fontsize=10)
+    ax.legend(loc=legend, fontsize=8, framealpha=0.9)
+    fig.tight_layout()
+    with atomic.atomic_path(path) as tmp:
+        fig.savefig(tmp, format="png")
+    plt.close(fig)

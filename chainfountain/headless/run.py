@@ -1,0 +1,221 @@
+"""A headless run: defaults, the output folder, running and writing, the exit status and
+the terminal's lines about it."""
+
+from __future__ import annotations
+
+import json
+import shutil
+import signal
+import textwrap
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+from chainfountain import atomic
+from chainfountain.errors import OutputError, UserError
+from chainfountain.headless import files
+from chainfountain.headless.stepping import Ending, _signals_deferred, simulate
+from chainfountain.headless.summary import _attempt, _f, json_safe, summarize
+from chainfountain.level.io import Level
+from chainfountain.sim.recorder import Recorder
+from chainfountain.sim.world import Simulation
+
+DEFAULT_DURATION = 8.0
+"""Simulated seconds of a headless run when none is given."""
+FORMING_DURATION = 20.0
+"""... of a fed level that starts from its stub: the shipped ones are steady after 4-12 s."""
+DEFAULT_OUTPUTS = ("summary.json", "tensions.csv", "speed.csv", "snapshot.png")
+"""What every run writes (``summary.json`` lists its own files under ``outputs``)."""
+
+
+def default_duration(level: Level) -> float:
+    """Simulated seconds of a headless run of ``level`` when none is given:
+    :data:`DEFAULT_DURATION`; :data:`FORMING_DURATION` for a fed level that starts from its
+    stub, so that it forms and is then averaged; an apparatus level's own
+    ``apparatus.duration`` when its upper table is sized by it (no treadmill), so the run
+    ends before the table does."""
+    sim = level.sim
+    if sim.kind == "apparatus" and sim.apparatus.plate_links == 0:
+        return float(sim.apparatus.duration)
+    if sim.kind == "feed" and sim.initial.mode == "stub":
+        return FORMING_DURATION
+    return DEFAULT_DURATION
+
+
+def default_out_dir(level: Level) -> Path:
+    """Where a headless run of ``level`` writes by default: ``./runs/<name>``."""
+    from chainfountain.level.library import safe_name
+
+    return Path("runs") / safe_name(level.meta.name)
+
+
+EXIT_STATUS = {None: 0, "machine": 3, "diverged": 3}
+"""Exit status of ``chainfountain run`` by :attr:`Ending.cause` (see :func:`exit_status`)."""
+
+
+def exit_status(summary: dict[str, Any]) -> int:
+    """0 for a complete run; 3 if it ended early (the machine stopped, the run diverged);
+    128 + the signal's number (130 for Ctrl-C, 143 for SIGTERM) if it was interrupted;
+    4 if an output could not be written. The outputs cover the part simulated."""
+    if summary.get("write_failed"):
+        return 4
+    ended = summary.get("ended_early")
+    if not ended:
+        return 0
+    if ended.get("cause") == "interrupted":
+        return 128 + int(ended.get("signal_number") or signal.SIGINT)
+    return EXIT_STATUS.get(ended.get("cause"), 3)
+
+
+def prepare_out_dir(out_dir: Path, option: str = "--out") -> Path:
+    """Create ``out_dir`` and make sure a file can be written there, before any simulating:
+    a folder that cannot be written is bad input (one line naming ``option``)."""
+    out_dir = Path(out_dir)
+    try:
+        out_dir.mkdir(parents=True, exist_ok=True)
+        with atomic.atomic_path(out_dir / ".write-test") as tmp:
+            tmp.write_bytes(b"")
+        (out_dir / ".write-test").unlink()
+    except OSError as exc:
+        raise UserError(f"{option}: cannot write to {str(out_dir)!r} "
+                        f"({exc.strerror or exc}); allowed: a folder you can write to") from None
+    return out_dir
+
+
+def run_level(level: Level, out_dir: Path, duration: float | None = None, *,
+              seed: int | None = None, progress: bool = True,
+              error_bars: dict | None = None) -> Path:
+    """Run ``level`` headless and write the outputs into ``out_dir``; returns summary.json.
+
+    Raw outputs (the CSVs) are written before the analyses that could fail (figures,
+    fits); a failed analysis is named in ``summary.json`` (``analysis_failed``) and the
+    rest is still written. SIGINT or SIGTERM while simulating ends the run like a
+    stopped machine: its part is written completely (a second signal while writing is
+    noted, not obeyed). :func:`exit_status` gives the command's status. Raises
+    :class:`OutputError` when ``summary.json`` itself cannot be written. ``error_bars``
+    (:meth:`chainfountain.refine.Refinement.as_dict`) goes into ``summary.json`` as is."""
+    duration = default_duration(level) if duration is None else float(duration)
+    out_dir = prepare_out_dir(out_dir)
+    sim, rec, wall, ended = simulate(level, duration, seed=seed, progress=progress)
+    received: list[int] = []
+    with _signals_deferred(received):
+        path = _write_outputs(level, out_dir, duration, sim, rec, wall, ended, error_bars)
+    return path
+
+
+def _write_outputs(level: Level, out_dir: Path, duration: float, sim: Simulation,
+                   rec: Recorder, wall: float, ended: Ending | None,
+                   error_bars: dict | None = None) -> Path:
+    """Every output of a finished (or stopped) run, raw data first; see :func:`run_level`."""
+    lam = level.sim.chain.linear_density
+    app = sim.apparatus
+    written: list[str] = []
+    write_failed: dict[str, str] = {}
+    analysis_failed: dict[str, str] = {}
+
+    def put(name: str, writer: Callable[..., None], *args: Any) -> None:
+        try:
+            writer(out_dir / name, *args)
+            written.append(name)
+        except OSError as exc:
+            write_failed[name] = exc.strerror or str(exc)
+        except Exception as exc:  # noqa: BLE001 - an analysis behind the file failed
+            analysis_failed[name] = f"{type(exc).__name__}: {exc}"
+
+    put("speed.csv", files.write_samples, _attempt(analysis_failed, "samples",
+                                              lambda: rec.samples, default=[]))
+    if app is not None:
+        put("apparatus.csv", files.write_samples, _attempt(
+            analysis_failed, "apparatus samples", lambda: rec.apparatus_samples, default=[]))
+    put("tensions.csv", files.write_tensions, rec, lam)
+    summary = summarize(level, sim, rec, duration, wall)
+    summary["ended_early"] = None
+    if level.sim.kind == "feed":
+        summary["error_bars"] = json_safe(error_bars) if error_bars is not None else {
+            "method": None, "how": "not estimated: chainfountain run LEVEL --error-bars, or "
+            "chainfountain converge LEVEL"}
+    if ended is not None:
+        summary["ended_early"] = {"t_s": _f(sim.time), "cause": ended.cause,
+                                  "reason": ended.reason}
+        if ended.signum is not None:
+            summary["ended_early"]["signal_number"] = int(ended.signum)
+        if ended.cause == "machine" and app is not None and app.fold_guided:
+            # when the fountain last landed in the end guide's mouth (a lost catch comes
+            # about 1 s before the fold's collapse)
+            summary["ended_early"]["last_mouth_entry_s"] = _f(app.last_mouth_entry)
+    title = (f"{level.meta.name}: t = {sim.time:.2f} s, "
+             f"v = {summary.get('speed_mean') or 0:.3f} m/s"
+             + ("" if summary.get("steady") else " (not steady)")
+             + ("" if ended is None else " - ended early"))
+    if "vertex" in summary:
+        put("snapshot.png", files.write_snapshot, sim, summary, title)
+    if app is not None and app.variant == "open" and "apparatus" in summary:
+        put("reaction.png", files.write_reaction_figure, rec, summary, lam, level.sim.gravity,
+            title)
+    summary["analysis_failed"].update(analysis_failed)
+    order = ["summary.json", *DEFAULT_OUTPUTS[1:], "apparatus.csv", "reaction.png"]
+    summary["outputs"] = sorted(["summary.json", *written], key=order.index)
+    summary["write_failed"] = write_failed
+    path = out_dir / "summary.json"
+    try:
+        atomic.write_text(path, json.dumps(summary, indent=2) + "\n")
+    except OSError as exc:
+        raise OutputError(f"cannot write {path} ({exc.strerror or exc}); the run's other "
+                          f"outputs: {', '.join(written) or 'none'}") from None
+    return path
+
+
+def describe_outputs(summary_path: Path) -> str:
+    """A few lines for the terminal: what was written and how the run compares with theory."""
+    summary_path = Path(summary_path)
+    out = summary_path.parent
+    s = json.loads(summary_path.read_text())
+    th = s.get("theory") or {}
+    err = th.get("rel_error", {})
+
+    def pct(x: float | None) -> str:
+        return "n/a" if x is None else f"{100 * x:+.2f} %"
+
+    steady = (f"steady since {s['steady_since_s']:.2f} s" if s.get("steady")
+              else "never steady (compare with care)")
+    o = (s.get("apparatus") or {}).get("open")
+    if o:
+        # the paper's non-stationary arrangement: its measurement is the reaction's rate
+        rate, pred = o.get("tail_reaction_rate_N_per_s"), o.get("tail_reaction_rate_predicted")
+        steady = "non-stationary by design"
+        if rate is not None and pred:
+            steady += (f"; lower plate reaction grows at {rate:.3f} N/s, lambda g v "
+                       f"{pred:.3f} N/s ({pct(rate / pred - 1.0)})")
+    lines = [
+        f"wrote {out}/" + ", ".join(s.get("outputs") or DEFAULT_OUTPUTS),
+        f"  {s['links']} links, {s['steps']} steps, real-time factor "
+        f"{s.get('realtime_factor') or 0:.2f}, {steady}",
+    ]
+    for name, why in (s.get("write_failed") or {}).items():
+        lines.append(f"  NOT WRITTEN: {name} ({why})")
+    for name, why in (s.get("analysis_failed") or {}).items():
+        lines.append(f"  analysis failed: {name} ({why}); its figures are null")
+    ended = s.get("ended_early")
+    if ended:
+        # the reason runs to several sentences (a fold's collapse: about 900 characters):
+        # wrapped to the terminal, continuation lines indented under it
+        width = max(60, min(100, shutil.get_terminal_size((100, 24)).columns - 1))
+        lines.append(textwrap.fill(
+            f"ENDED EARLY (of {s['requested_duration_s']:g} s asked for): {ended['reason']}",
+            width=width, initial_indent="  ", subsequent_indent="    ",
+            break_on_hyphens=False))
+    if th and s.get("h") is not None and s.get("l") is not None:
+        lines.append(
+            f"  vertex height {s['h']:.4f} m (theory {th['h']:.4f}, {pct(err.get('h'))}), "
+            f"landing {s['l']:.4f} m (theory {th['l']:.4f}, {pct(err.get('l'))}), "
+            f"speed {s['speed_mean']:.4f} m/s")
+    d = (s.get("error_bars") or {}).get("error_bar")
+    if d:
+        def bar(x: float | None) -> str:
+            return "n/a" if x is None else f"+-{100 * x:.2f} %"
+
+        lines.append(
+            f"  discretisation error bars at this link length and step (refinement): vertex "
+            f"height {bar(d.get('h'))}, vertex x {bar(d.get('vertex_x'))}, landing "
+            f"{bar(d.get('l'))}")
+    return "\n".join(lines)

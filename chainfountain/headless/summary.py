@@ -1,0 +1,131 @@
+"""The ``summary.json`` object of a headless run: figures over the steady window and the
+paper's prediction with relative errors."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import Any
+
+from chainfountain.level.io import Level
+from chainfountain.sim.recorder import Recorder
+from chainfountain.sim.world import Simulation
+
+
+def _f(x: Any) -> Any:
+    """JSON-safe float (NaN/inf become null)."""
+    if x is None:
+        return None
+    x = float(x)
+    return x if math.isfinite(x) else None
+
+
+def _attempt(failed: dict[str, str], name: str, fn: Callable[..., Any], *args: Any,
+             default: Any = None) -> Any:
+    """``fn(*args)``, or ``default`` with the failure noted under ``name``: an analysis
+    after the simulation must never lose the run."""
+    try:
+        return fn(*args)
+    except Exception as exc:  # noqa: BLE001 - reported by name in summary.json
+        failed[name] = f"{type(exc).__name__}: {exc}"
+        return default
+
+
+def summarize(level: Level, sim: Simulation, rec: Recorder, duration: float,
+              wall: float) -> dict[str, Any]:
+    """The ``summary.json`` object. Analyses that fail are listed under
+    ``analysis_failed`` (name: reason) and their figures are null."""
+    failed: dict[str, str] = {}
+    steady = _attempt(failed, "steady-state detection", rec.steady_from, duration)
+    window_start = steady if steady is not None else max(0.0, sim.time - rec.cfg.window)
+    s = _attempt(failed, "window averages", rec.summary, sim.time - window_start)
+    if s is None:
+        return {"level": level.meta.name, "kind": level.sim.kind, "duration_s": _f(sim.time),
+                "requested_duration_s": _f(duration), "steps": sim.steps,
+                "links": sim.n_links, "dt": sim.dt, "wall_s": _f(wall), "steady": False,
+                "theory": None, "analysis_failed": failed}
+    failed.update(s.failed)
+    ref = sim.reference
+    tb = s.extras.get("tension_bar")
+    TE_bar = float(tb[-1]) if tb is not None and len(tb) else float("nan")
+    speed_cv = s.speed_uniformity
+    app = sim.apparatus
+    H = level.sim.apparatus.drop if app is not None else level.sim.feed.drop
+    out: dict[str, Any] = {
+        "level": level.meta.name,
+        "kind": level.sim.kind,
+        "duration_s": _f(sim.time),
+        "requested_duration_s": _f(duration),
+        "steps": sim.steps,
+        "links": sim.n_links,
+        "links_free": sim.n_free,
+        "link_length": level.sim.chain.link_length,
+        "dt": sim.dt,
+        "wall_s": _f(wall),
+        "realtime_factor": _f(sim.time / wall) if wall > 0 else None,
+        "steady": steady is not None,
+        "steady_since_s": _f(steady),
+        "window": [_f(s.t0), _f(s.t1)],
+        "samples": s.samples,
+        "speed_mean": _f(s.speed_mean),
+        "speed_cv": _f(speed_cv),
+        "speed_spread": _f(s.speed_spread_inst),
+        "max_stretch": _f(s.stretch_max),
+        "vertex": [_f(s.vertex_x), _f(s.vertex_y)],
+        "start": [0.0, 0.0],
+        "end": [_f(s.landing_x), _f(-H)],
+        "h": _f(s.vertex_y),
+        "l": _f(s.landing_x),
+        "H": H,
+        "q_fit": _f(s.q_fit),
+        "k": _f(sim.g / s.speed_mean**2) if s.speed_mean > 0 else None,
+        "T0_bar": _f(s.T0_bar),
+        "TE_bar": _f(TE_bar),
+        "tension_rms": _f(s.tension_rms),
+    }
+    if ref is not None:
+        errs = s.errors(ref)
+        out["theory"] = {
+            "h": ref.h,
+            "vertex": [ref.x_rise, ref.h],
+            "l": ref.landing_x,
+            "q": ref.q,
+            "k": ref.k,
+            "v": ref.v,
+            "T0_bar": ref.T0_bar,
+            "TE_bar": ref.TE_bar,
+            "rel_error": {
+                "h": _f(errs["vertex_y"]),
+                "vertex_x": _f(errs["vertex_x"]),
+                "l": _f(errs["landing_x"]),
+                "q": _f(errs["q"]),
+                "speed": _f(errs["speed"]),
+            },
+            "abs_error": {
+                "T0_bar": _f(errs["T0_bar"]),
+                "TE_bar": _f(TE_bar - ref.TE_bar),
+                "tension_rms": _f(s.tension_rms),
+            },
+        }
+    else:
+        out["theory"] = None
+    if app is not None:
+        from chainfountain.sim.apparatus_report import report
+
+        rep = _attempt(failed, "apparatus report", report, sim, rec, s.t0, s.t1)
+        if rep is not None:
+            out["TE_bar"] = _f(rep["measured"]["TE_bar"])
+            out["apparatus"] = json_safe(rep)
+    out["analysis_failed"] = failed
+    return out
+
+
+def json_safe(obj: Any) -> Any:
+    """Nested dict/list with NaN/inf as null (for the apparatus report and converge.json)."""
+    if isinstance(obj, dict):
+        return {k: json_safe(v) for k, v in obj.items()}
+    if isinstance(obj, list | tuple):
+        return [json_safe(v) for v in obj]
+    if isinstance(obj, bool) or obj is None or isinstance(obj, str):
+        return obj
+    return _f(obj)
