@@ -1,0 +1,326 @@
+"""Cross-field checks of a level: it must describe a fountain that can exist, in a scene
+the simulation can hold, and every setting must have an effect (:func:`check_consistency`)."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+from chainfountain.level.model import Level, _fail
+from chainfountain.sim.config import KINDS, InitialConfig, SimConfig
+
+MAX_LINKS = 20_000
+"""Most chain links a level may put into the simulation at its start (the chain in
+flight, plus an apparatus's upper plate strand): a level beyond it would take minutes
+to build and hours to run, or exhaust the machine's memory."""
+
+
+def check_consistency(level: Level, where: str) -> None:
+    """Cross-field checks: the configured fountain must exist, fit the simulator, and
+    every setting given must have an effect in this kind of level."""
+    sim = level.sim
+    g = sim.gravity
+    if not g > 0:
+        _fail(where, "gravity", f"{g!r} is out of range; allowed: a number > 0 (m/s^2)")
+    _check_other_kind(sim, where)
+    if sim.kind == "apparatus":
+        _check_apparatus(level, where)
+    if sim.kind == "feed":
+        _check_feed(level, where)
+
+
+def _check_other_kind(sim: SimConfig, where: str) -> None:
+    """The table of the other level kind is left out or at its defaults (it has no effect)."""
+    defaults = SimConfig()
+    for kind in KINDS:
+        if kind == sim.kind:
+            continue
+        table, default = getattr(sim, kind), getattr(defaults, kind)
+        for f in dataclasses.fields(table):
+            value = getattr(table, f.name)
+            if value != getattr(default, f.name):
+                _fail(where, f"{kind}.{f.name}",
+                      f"{value!r} has no effect in a {sim.kind!r} level (the [{kind}] table "
+                      f"belongs to kind {kind!r}); allowed: {getattr(default, f.name)!r} or "
+                      f"no [{kind}] table")
+
+
+def _fountain_or_fail(where: str, field: str, v: float, alpha0: float, H: float,
+                      TE_bar: float, g: float):
+    """The paper's fountain for a launch (the checks before this one make it exist)."""
+    from chainfountain.theory import Fountain
+
+    try:
+        return Fountain.from_launch(v=v, alpha0=alpha0, H=H, TE_bar=TE_bar, g=g)
+    except (ValueError, ArithmeticError) as exc:
+        _fail(where, field, f"{v!r} m/s gives no fountain ({exc})")
+
+
+def _fastest_fitting(v_lo: float, v_hi: float, alpha0: float, H: float, TE_bar: float,
+                     g: float, length: float, depth: float = 0.0) -> float:
+    """The highest speed in ``(v_lo, v_hi)`` whose fountain has at most ``length`` m of chain
+    in flight (bisection; the length in flight grows with the speed). ``depth``: an
+    apparatus floor that far below the fountain end adds ``g*depth/v**2`` to ``TE_bar``."""
+    from chainfountain.theory import Fountain
+
+    lo, hi = v_lo, v_hi
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        try:
+            ok = Fountain.from_launch(v=mid, alpha0=alpha0, H=H, TE_bar=TE_bar + g * depth / mid**2,
+                                      g=g).length <= length
+        except (ValueError, ArithmeticError):
+            ok = True  # below the fountain's least speed: nothing in flight yet
+        lo, hi = (mid, hi) if ok else (lo, mid)
+    return lo
+
+
+def _check_size(where: str, speed_field: str, flight: float, extra_links: float,
+                link: float, link_max: float, v: float, v_min: float, fit) -> None:
+    """At most :data:`MAX_LINKS` links at the start: ``flight`` m of chain in flight plus
+    ``extra_links``; names ``chain.link_length`` when longer links would do, else the speed
+    (``fit(length)``: the fastest speed with at most ``length`` m in flight)."""
+    n = flight / link + extra_links
+    if n <= MAX_LINKS:
+        return
+    room = MAX_LINKS - extra_links
+    link_need = flight / room if room > 0 else math.inf
+    if link_need <= link_max:
+        _fail(where, "chain.link_length",
+              f"{link!r} m puts {n:.0f} links into the simulation ({flight:.4g} m of chain in "
+              f"flight); allowed: at most {MAX_LINKS} links, here a link_length >= "
+              f"{link_need:.4g} m (at most {link_max:.4g} m for this drop)")
+    v_fit = fit(link_max * room) if room > 0 else v_min
+    _fail(where, speed_field,
+          f"{v!r} m/s throws {flight:.4g} m of chain into flight, {n:.0f} links even at the "
+          f"longest link allowed ({link_max:.4g} m); allowed: at most {MAX_LINKS} links, here a "
+          f"speed <= {v_fit:.4g} m/s (or stronger gravity, a lower launch angle)")
+
+
+def _check_blocks_in_scene(sim: SimConfig, where: str) -> None:
+    """Rollers and carts of a feed level lie inside the scene the divergence watchdog
+    allows (:func:`chainfountain.sim.watchdog.limits_for`): a body beyond it would stop the
+    run at once as diverged."""
+    from chainfountain.sim.watchdog import limits_for
+
+    reach = limits_for(sim).radius
+    for i, r in enumerate(sim.rollers):
+        d = math.hypot(r.x, r.y) + r.radius
+        if d >= reach:
+            _fail(where, f"rollers[{i}].x",
+                  f"{r.x!r} m (with y = {r.y:g} m) puts the roller {d:.4g} m from the launch "
+                  f"point, outside this level's scene; allowed: rollers within {reach:.4g} m "
+                  "of the launch point")
+    for i, c in enumerate(sim.carts):
+        half = 0.5 * c.track_length + 0.5 * math.hypot(c.width, c.height)
+        d = math.hypot(c.x, c.y) + half
+        if d >= reach:
+            _fail(where, f"carts[{i}].x",
+                  f"{c.x!r} m (with y = {c.y:g} m and a {c.track_length:g} m track) lets the "
+                  f"cart reach {d:.4g} m from the launch point, outside this level's scene; "
+                  f"allowed: carts and their tracks within {reach:.4g} m of the launch point")
+
+
+def _check_feed(level: Level, where: str) -> None:
+    """Feed cross-field checks (paper: ``Tbar_E + k*H < 1`` for the launch)."""
+    sim = level.sim
+    feed = sim.feed
+    g = sim.gravity
+    v, H, te = feed.speed, feed.drop, feed.end_tension
+    v_need = math.sqrt(g * H)
+    if v <= v_need:
+        with_te = (f" (with feed.end_tension = {te:g}: > sqrt(g*H/(1 - Tbar_E)) = "
+                   f"{math.sqrt(g * H / (1.0 - te)):.4g} m/s)" if te > 0 else "")
+        _fail(
+            where, "feed.speed",
+            f"{v!r} m/s cannot make a fountain that lands {H:g} m below "
+            f"the launch point (k*H >= 1); allowed: a speed > sqrt(g*H) = {v_need:.4g} m/s"
+            + with_te,
+        )
+    if te > 0 and feed.floor == "solid":
+        _fail(where, "feed.end_tension",
+              f"{te!r} has no effect with feed.floor = 'solid' (the pull on the chain end is "
+              "the absorbing floor's; a solid floor only carries the pile); allowed: 0 with a "
+              "solid floor")
+    kH = g * H / v**2
+    if te + kH >= 1.0:
+        _fail(where, "feed.end_tension",
+              f"{te!r} leaves no fountain at feed.speed = {v:g} m/s and feed.drop = {H:g} m "
+              f"(Tbar_E + k*H = {te + kH:.4g}, k = g/v^2; the paper needs < 1); allowed: "
+              f"Tbar_E < 1 - k*H = {1.0 - kH:.4g} at this speed and drop (this end tension "
+              f"needs a speed > sqrt(g*H/(1 - Tbar_E)) = {math.sqrt(g * H / (1.0 - te)):.4g} "
+              "m/s)")
+    link_max = min(0.1 * H, 0.2)
+    if sim.chain.link_length > 0.1 * H:
+        _fail(
+            where, "chain.link_length",
+            f"{sim.chain.link_length!r} m is too coarse for a drop of {H:g} m; "
+            f"allowed: at most a tenth of feed.drop ({0.1 * H:.4g} m)",
+        )
+    a0 = feed.launch_angle
+    f = _fountain_or_fail(where, "feed.speed", v, a0, H, te, g)
+    _check_size(where, "feed.speed", f.length, 0.0, sim.chain.link_length, link_max, v,
+                v_need, lambda length: _fastest_fitting(v_need, v, a0, H, te, g, length))
+    if feed.floor == "solid" and 0.5 * feed.floor_width <= f.l:
+        _fail(where, "feed.floor_width",
+              f"{feed.floor_width!r} m reaches {0.5 * feed.floor_width:g} m from the launch "
+              f"point, short of where the fountain lands ({f.l:.4g} m), so the chain would "
+              f"fall past the solid floor's end; allowed: a width > 2*l = {2.0 * f.l:.4g} m "
+              "(the floor is centred on the launch point)")
+    _check_blocks_in_scene(sim, where)
+    init, default_init = sim.initial, InitialConfig()
+    if init.mode == "catenary" and init.stub_length != default_init.stub_length:
+        _fail(where, "initial.stub_length",
+              f"{init.stub_length!r} m has no effect with initial.mode = 'catenary' (the chain "
+              f"starts on the predicted fountain); allowed: {default_init.stub_length!r}, or "
+              "initial.mode = 'stub'")
+
+
+def _check_apparatus(level: Level, where: str) -> None:
+    """Apparatus cross-field checks (paper: ``Tbar_E + k*H < 1`` for the launch)."""
+    sim = level.sim
+    a = sim.apparatus
+    g = sim.gravity
+    if a.floor_depth > 0:
+        if a.variant != "floor" or a.end != "absorbing":
+            _fail(where, "apparatus.floor_depth",
+                  f"{a.floor_depth!r} m needs apparatus.variant = 'floor' with end = "
+                  f"'absorbing' (it is {a.variant!r} with end {a.end!r}); allowed: 0")
+        if a.end_tension != 0:
+            _fail(where, "apparatus.end_tension",
+                  f"{a.end_tension!r} conflicts with apparatus.floor_depth = {a.floor_depth:g} m, "
+                  "which sets Tbar_E = g*floor_depth/speed**2; allowed: 0 with a floor_depth")
+        v_need = math.sqrt(g * (a.drop + a.floor_depth))
+        if a.speed <= v_need:
+            _fail(where, "apparatus.speed",
+                  f"{a.speed!r} m/s cannot launch a fountain that reaches a free end "
+                  f"{a.drop + a.floor_depth:g} m lower (drop + floor_depth); allowed: a speed > "
+                  f"sqrt(g*(H + floor_depth)) = {v_need:.4g} m/s")
+    v_need = math.sqrt(g * a.drop / (1.0 - a.end_tension))
+    if a.speed <= v_need:
+        kH = g * a.drop / a.speed**2
+        if a.end_tension > 0 and kH < 1.0:
+            _fail(where, "apparatus.end_tension",
+                  f"{a.end_tension!r} leaves no fountain at apparatus.speed = {a.speed:g} m/s "
+                  f"and apparatus.drop = {a.drop:g} m (Tbar_E + k*H = {a.end_tension + kH:.4g}, "
+                  f"k = g/v^2; the paper needs < 1); allowed: Tbar_E < 1 - k*H = {1.0 - kH:.4g} "
+                  f"at this speed and drop (this end tension needs a speed > "
+                  f"sqrt(g*H/(1 - Tbar_E)) = {v_need:.4g} m/s)")
+        _fail(where, "apparatus.speed",
+              f"{a.speed!r} m/s cannot launch a fountain that ends {a.drop:g} m lower with "
+              f"Tbar_E = {a.end_tension:g}; allowed: a speed > sqrt(g*H/(1 - Tbar_E)) = "
+              f"{v_need:.4g} m/s")
+    if sim.chain.link_length > 0.1 * a.drop:
+        _fail(where, "chain.link_length",
+              f"{sim.chain.link_length!r} m is too coarse for a drop of {a.drop:g} m; "
+              f"allowed: at most a tenth of apparatus.drop ({0.1 * a.drop:.4g} m)")
+    if a.plate_links and a.plate != "groove":
+        _fail(where, "apparatus.plate_links",
+              f"{a.plate_links!r} needs apparatus.plate = 'groove' (it is {a.plate!r}); "
+              "allowed: 0 with a 'contact' plate")
+    if a.plate_links and a.plate_links < 4:
+        _fail(where, "apparatus.plate_links",
+              f"{a.plate_links!r} is too short a plate strand to cut or extend in the middle; "
+              "allowed: 0 (off) or at least 4")
+    if 0 < a.pickup_rest_links < 5:
+        _fail(where, "apparatus.pickup_rest_links",
+              f"{a.pickup_rest_links!r} leaves the pick-up roller too little resting chain to "
+              "roll on; allowed: 0 (as apparatus.rest_links) or at least 5")
+    default_initial = type(sim.initial)()
+    for f in dataclasses.fields(sim.initial):
+        value, default = getattr(sim.initial, f.name), getattr(default_initial, f.name)
+        if value != default:
+            _fail(where, f"initial.{f.name}",
+                  f"{value!r} has no effect in an 'apparatus' level: the apparatus lays its "
+                  "chain along its own path, moving at apparatus.speed (to start a perturbed "
+                  f"run, change apparatus.speed slightly); allowed: {default!r}")
+    if a.fold_clearance and (a.variant != "fold" or a.plate != "groove"):
+        _fail(where, "apparatus.fold_clearance",
+              f"{a.fold_clearance!r} m only applies to variant = 'fold' with plate = 'groove' "
+              f"(here variant {a.variant!r}, plate {a.plate!r}); allowed: 0")
+    if a.upper_guide == "joints" and a.plate != "groove":
+        _fail(where, "apparatus.upper_guide",
+              f"'joints' needs apparatus.plate = 'groove' (it is {a.plate!r}): the joint guide "
+              "takes the links from the plate's grooves; allowed: 'walls' with a 'contact' plate")
+    _check_apparatus_unused(sim, where)
+    _check_apparatus_size(sim, where)
+    _check_end_channel(sim, where)
+
+
+ONLY_FOR_VARIANT: dict[str, tuple[str, ...]] = {
+    "xi3": ("fold",),
+    "end_pull": ("open",),
+    "end": ("floor",),
+    "floor_width": ("floor",),
+}
+"""Apparatus fields that only the named variants use: ``xi3`` is the lower table's height
+(only 'fold' has one), ``end_pull`` pulls the chain sliding away ('open'), ``end`` and
+``floor_width`` are the floor's (only 'floor' has one)."""
+
+
+def _check_apparatus_unused(sim: SimConfig, where: str) -> None:
+    """Settings an apparatus level would ignore are refused: another variant's fields,
+    ``[[rollers]]``, and carts beyond the ones its rollers take."""
+    a, default = sim.apparatus, type(sim.apparatus)()
+    for name, variants in ONLY_FOR_VARIANT.items():
+        value = getattr(a, name)
+        if a.variant not in variants and value != getattr(default, name):
+            only = " or ".join(repr(v) for v in variants)
+            _fail(where, f"apparatus.{name}",
+                  f"{value!r} has no effect with apparatus.variant = {a.variant!r} (only "
+                  f"{only} uses it); allowed: {getattr(default, name)!r}")
+    if sim.rollers:
+        _fail(where, "rollers",
+              f"{len(sim.rollers)} [[rollers]] have no effect in an 'apparatus' level (it "
+              "builds its own rollers); allowed: none (rollers = [])")
+    n_carts = 2 if a.variant == "fold" else 1
+    if len(sim.carts) > n_carts:
+        which = ("carts[0] pulls the pick-up roller, carts[1] pushes the folding roller"
+                 if n_carts == 2 else "carts[0] pulls the pick-up roller")
+        _fail(where, f"carts[{n_carts}]",
+              f"has no effect with apparatus.variant = {a.variant!r} ({which}); allowed: at "
+              f"most {n_carts} [[carts]]")
+
+
+def _check_end_channel(sim: SimConfig, where: str) -> None:
+    """'fold': the end channel's two bends fit into the rise ``xi3*H`` (or it is zero)."""
+    from chainfountain.sim.guide import end_channel_bends, end_channel_min_rise
+
+    a = sim.apparatus
+    rise = a.xi3 * a.drop
+    if a.variant != "fold" or rise <= 1e-9:
+        return
+    f = _fountain_or_fail(where, "apparatus.speed", a.speed, a.launch_angle, a.drop,
+                          a.end_tension, sim.gravity)
+    try:
+        end_channel_bends(f.alphaE, rise, a.channel_radius)
+    except ValueError:
+        least = end_channel_min_rise(f.alphaE, a.channel_radius) / a.drop
+        _fail(where, "apparatus.xi3",
+              f"{a.xi3!r} lifts the chain only {rise:.3g} m, too little for the end channel's "
+              f"two bends at this landing angle; allowed: 0 or at least {least:.4g} "
+              f"(a rise of {least * a.drop:.3g} m)")
+
+
+def _check_apparatus_size(sim: SimConfig, where: str) -> None:
+    """At most :data:`MAX_LINKS` links at the start: the chain in flight, and the upper
+    plate strand that spans the pick-up roller's travel (``v/2`` for ``duration``) unless
+    the plate is a treadmill."""
+    a, g, L = sim.apparatus, sim.gravity, sim.chain.link_length
+    d = a.floor_depth if a.variant == "floor" else 0.0
+    te = a.end_tension + g * d / a.speed**2
+    f = _fountain_or_fail(where, "apparatus.speed", a.speed, a.launch_angle, a.drop, te, g)
+    v_min = math.sqrt(g * (a.drop + d) / (1.0 - a.end_tension))
+    _check_size(where, "apparatus.speed", f.length, 0.0, L, min(0.1 * a.drop, 0.2), a.speed,
+                v_min, lambda length: _fastest_fitting(v_min, a.speed, a.launch_angle, a.drop,
+                                                       a.end_tension, g, length, d))
+    if a.plate_links > 0 and a.plate == "groove":
+        return
+    n = (f.length + 0.5 * a.speed * a.duration + 0.15) / L
+    if n > MAX_LINKS:
+        room = (MAX_LINKS * L - f.length - 0.15) / (0.5 * a.speed)
+        _fail(where, "apparatus.duration",
+              f"{a.duration!r} s sizes the upper plate for {0.5 * a.speed * a.duration:.4g} m of "
+              f"roller travel (v/2 for the duration): {n:.0f} links at the start; allowed: at "
+              f"most {MAX_LINKS} links, here a duration <= {max(room, 0.0):.4g} s (or "
+              "apparatus.plate_links > 0, a treadmill, for runs of any length)")

@@ -1,0 +1,56 @@
+"""What a level is: its meta data and simulation setup, the schema version and the
+error every level problem raises (one line naming where, the field, the value and what is
+allowed)."""
+
+from __future__ import annotations
+
+import dataclasses
+import typing
+from dataclasses import dataclass
+from typing import Any
+
+from chainfountain.errors import UserError
+from chainfountain.fields import REQUIRED, param
+from chainfountain.sim.config import SimConfig
+
+SCHEMA_VERSION = 1
+_SKIP_TOP = frozenset({"name"})  # SimConfig.name mirrors meta.name
+"""Top-level config fields a level file does not carry."""
+
+
+class LevelError(UserError):
+    """A level file or level value is not acceptable."""
+
+
+@dataclass
+class Meta:
+    """Name and description of a level."""
+
+    name: str = param(REQUIRED, unit="", doc="Short name of the level (shown in the picker)")
+    description: str = param(
+        "", unit="", doc="What the level shows and what the user should see"
+    )
+
+
+@dataclass
+class Level:
+    """One saved configuration: its meta data and the simulation setup."""
+
+    meta: Meta
+    sim: SimConfig
+
+    @property
+    def name(self) -> str:
+        return self.meta.name
+
+
+def _fail(where: str, field: str, msg: str) -> typing.NoReturn:
+    raise LevelError(f"{where}: {field}: {msg}")
+
+
+def _hints(cls: type) -> dict[str, Any]:
+    return typing.get_type_hints(cls)
+
+
+def _is_dataclass_type(tp: Any) -> bool:
+    return isinstance(tp, type) and dataclasses.is_dataclass(tp)
