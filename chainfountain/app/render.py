@@ -1,7 +1,7 @@
 """Pixels: the camera (metres <-> pixels), the scene, the live plots, text panels.
 
 Everything here reads the model (a :class:`~chainfountain.sim.world.Simulation`
-and a :class:`~chainfountain.app.session.Readout`) and draws; nothing here
+and a :class:`~chainfountain.app.readout.Readout`) and draws; nothing here
 changes the model.
 """
 
@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 import pygame
 
-from chainfountain.app.session import Readout
+from chainfountain.app.readout import Readout
 from chainfountain.sim.world import Simulation
 
 # colours (projector friendly: light lines on a dark blue-grey background)

@@ -1,0 +1,179 @@
+"""What the window's readout shows: the measured numbers, the paper's fountain through
+them, the live plots' history and whether the fountain is steady. No pygame here."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from chainfountain.sim.measure import steady_time
+from chainfountain.sim.recorder import Recorder
+from chainfountain.sim.world import Simulation
+
+HISTORY_SECONDS = 120.0
+"""How much measured history the plots keep (older samples are dropped)."""
+
+
+@dataclass
+class Readout:
+    """What the readout panel and the overlays show (all floats, launch frame, SI)."""
+
+    t: float = 0.0
+    v: float = math.nan
+    k: float = math.nan
+    q: float = math.nan
+    h: float = math.nan
+    l: float = math.nan  # noqa: E741 - the paper's symbol
+    H: float = math.nan
+    T0_bar: float = math.nan
+    TE_bar: float = math.nan
+    T0_theory: float = math.nan
+    TE_theory: float = math.nan
+    steady: bool = False
+    measured: bool = False
+    """True once the values come from the running chain (else from the feed settings)."""
+    note: str = ""
+    curve: np.ndarray | None = None
+    """Theory curve, launch frame, ``(n, 2)``."""
+    vertex: tuple[float, float] | None = None
+    """Theory vertex, launch frame."""
+    measured_vertex: tuple[float, float] | None = None
+    tension_y: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    tension_bar: np.ndarray = field(default_factory=lambda: np.zeros(0))
+
+
+class History:
+    """Time series for the live plots (appended per recorder sample, trimmed to a span)."""
+
+    def __init__(self, span: float = HISTORY_SECONDS) -> None:
+        self.span = span
+        self.t: list[float] = []
+        self.speed: list[float] = []
+        self.T0: list[float] = []
+        self.TE: list[float] = []
+        self.vertex_y: list[float] = []
+        self.landing_x: list[float] = []
+        self.speed_in: list[float] = []
+        """Apparatus: chain speed at the pick-up (twice the roller speed; nan otherwise)."""
+        self.speed_out: list[float] = []
+        """Apparatus with a fold: chain speed at the folding roller (nan otherwise)."""
+        self.reaction: list[float] = []
+        """Apparatus 'open': the lower plate's reaction force, N (nan otherwise)."""
+
+    def _lists(self) -> tuple[list[float], ...]:
+        return (self.t, self.speed, self.T0, self.TE, self.vertex_y, self.landing_x,
+                self.speed_in, self.speed_out, self.reaction)
+
+    def clear(self) -> None:
+        for lst in self._lists():
+            lst.clear()
+
+    def append(self, t: float, speed: float, T0: float, TE: float, vy: float, lx: float,
+               speed_in: float = math.nan, speed_out: float = math.nan,
+               reaction: float = math.nan) -> None:
+        for lst, x in zip(self._lists(),
+                          (t, speed, T0, TE, vy, lx, speed_in, speed_out, reaction),
+                          strict=True):
+            lst.append(x)
+        if len(self.t) > 64 and self.t[-1] - self.t[0] > 1.1 * self.span:
+            cut = int(np.searchsorted(np.asarray(self.t), self.t[-1] - self.span))
+            for lst in self._lists():
+                del lst[:cut]
+
+    def arrays(self) -> dict[str, np.ndarray]:
+        return {
+            "t": np.asarray(self.t), "speed": np.asarray(self.speed),
+            "T0": np.asarray(self.T0), "TE": np.asarray(self.TE),
+            "vertex_y": np.asarray(self.vertex_y), "landing_x": np.asarray(self.landing_x),
+            "speed_in": np.asarray(self.speed_in), "speed_out": np.asarray(self.speed_out),
+            "reaction": np.asarray(self.reaction),
+        }
+
+
+def compute_readout(sim: Simulation, recorder: Recorder, history: History) -> Readout:
+    """The numbers and theory overlay the readout shows, from the recorded history."""
+    from chainfountain.theory import Fountain
+
+    cfg = sim.config
+    H = sim.drop
+    g = float(cfg.gravity)
+    r = Readout(t=sim.time, H=H)
+    hist = history.arrays()
+    t = hist["t"]
+    avg_span = 0.25
+    landed = sim.feed.absorbed > 0 or sim.floor_geometry()[3] != "absorbing"
+    if len(t) >= 3 and sim.n_free >= 8 and landed:
+        sel = t >= t[-1] - avg_span
+        v = float(np.nanmean(hist["speed"][sel]))
+        h = float(np.nanmean(hist["vertex_y"][sel]))
+        lx = float(np.nanmean(hist["landing_x"][sel]))
+        r.T0_bar = float(np.nanmean(hist["T0"][sel]))
+        r.TE_bar = float(np.nanmean(hist["TE"][sel]))
+        r.measured = True
+        r.measured_vertex = (float(recorder.samples[-1].vertex_x)
+                             if recorder.samples else math.nan, h)
+        try:
+            f = Fountain.from_geometry(l=lx, h=max(h, 0.0), H=H, v=v, g=g)
+        except (ValueError, ArithmeticError, RuntimeError) as exc:
+            f = None
+            r.note = f"no inverted catenary fits ({exc})"
+    else:
+        f = None
+        ref = sim.reference
+        if ref is not None:
+            try:
+                f = Fountain.from_launch(v=ref.v, alpha0=ref.alpha0, H=H, TE_bar=0.0, g=g)
+                r.note = ("prediction from the feed settings (the chain has not "
+                          "reached the floor yet)" if len(t) else
+                          "prediction from the feed settings (no measurement yet)")
+            except (ValueError, ArithmeticError):
+                f = None
+        if f is None:
+            r.note = "no fountain predicted for this feed"
+    if f is not None:
+        sx, sy = f.start
+        r.v, r.k, r.q, r.h, r.l = f.v, f.k, f.q, f.h, f.l
+        r.T0_theory, r.TE_theory = f.T0_bar, f.TE_bar
+        xs, ys = f.curve(160)
+        r.curve = np.column_stack((np.asarray(xs) - sx, np.asarray(ys) - sy))
+        r.vertex = (-sx, -sy)
+    elif r.measured:
+        r.v = float(np.nanmean(hist["speed"][t >= t[-1] - avg_span]))
+        r.k = g / r.v**2 if r.v > 0 else math.nan
+    if not r.measured and len(t):
+        # measured tensions and speed exist before the chain lands; show them
+        sel = t >= t[-1] - avg_span
+        r.T0_bar = float(np.nanmean(hist["T0"][sel]))
+        r.TE_bar = float(np.nanmean(hist["TE"][sel]))
+    # tension profile: average of the last few samples, launch end first
+    profs = recorder.profiles[-8:]
+    if profs and not sim.dragging:
+        n = min(len(p.tension_bar) for p in profs)
+        if n >= 2:
+            r.tension_bar = np.mean([p.tension_bar[:n] for p in profs], axis=0)
+            r.tension_y = np.mean([p.y[:n] for p in profs], axis=0)
+    if sim.dragging:
+        r.note = "a link is held: tension readings paused"
+        r.T0_bar = r.TE_bar = math.nan
+    r.steady = is_steady(sim, history)
+    return r
+
+
+def is_steady(sim: Simulation, history: History) -> bool:
+    """Vertex height and mean speed stayed within the level's tolerance for a window."""
+    rc = sim.config.recording
+    hist = history.arrays()
+    t = hist["t"]
+    if len(t) < 10 or t[-1] - t[0] < rc.window or sim.dragging:
+        return False
+    sel = t >= t[-1] - 2.0 * rc.window
+    for name in ("vertex_y", "speed"):
+        s = hist[name][sel]
+        if not np.all(np.isfinite(s)):
+            return False
+        ts = steady_time(t[sel], s, rc.steady_tolerance, rc.smoothing, rc.window)
+        if ts is None or ts > t[-1] - rc.window + 1e-9:
+            return False
+    return True
