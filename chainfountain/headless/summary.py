@@ -8,7 +8,9 @@ from collections.abc import Callable
 from typing import Any
 
 from chainfountain.level.io import Level
+from chainfountain.sim.measure import Summary
 from chainfountain.sim.recorder import Recorder
+from chainfountain.sim.reference import LaunchReference
 from chainfountain.sim.world import Simulation
 
 
@@ -83,32 +85,7 @@ def summarize(level: Level, sim: Simulation, rec: Recorder, duration: float,
         "TE_bar": _f(TE_bar),
         "tension_rms": _f(s.tension_rms),
     }
-    if ref is not None:
-        errs = s.errors(ref)
-        out["theory"] = {
-            "h": ref.h,
-            "vertex": [ref.x_rise, ref.h],
-            "l": ref.landing_x,
-            "q": ref.q,
-            "k": ref.k,
-            "v": ref.v,
-            "T0_bar": ref.T0_bar,
-            "TE_bar": ref.TE_bar,
-            "rel_error": {
-                "h": _f(errs["vertex_y"]),
-                "vertex_x": _f(errs["vertex_x"]),
-                "l": _f(errs["landing_x"]),
-                "q": _f(errs["q"]),
-                "speed": _f(errs["speed"]),
-            },
-            "abs_error": {
-                "T0_bar": _f(errs["T0_bar"]),
-                "TE_bar": _f(TE_bar - ref.TE_bar),
-                "tension_rms": _f(s.tension_rms),
-            },
-        }
-    else:
-        out["theory"] = None
+    out["theory"] = _theory(ref, s, TE_bar) if ref is not None else None
     if app is not None:
         from chainfountain.sim.apparatus_report import report
 
@@ -118,6 +95,34 @@ def summarize(level: Level, sim: Simulation, rec: Recorder, duration: float,
             out["apparatus"] = json_safe(rep)
     out["analysis_failed"] = failed
     return out
+
+
+def _theory(ref: LaunchReference, s: Summary, TE_bar: float) -> dict[str, Any]:
+    """``summary.json``'s ``theory``: the paper's fountain for this feed and the window's
+    errors against it (:class:`~chainfountain.sim.reference.LaunchReference`)."""
+    errs = s.errors(ref)
+    return {
+        "h": ref.h,
+        "vertex": [ref.x_rise, ref.h],
+        "l": ref.landing_x,
+        "q": ref.q,
+        "k": ref.k,
+        "v": ref.v,
+        "T0_bar": ref.T0_bar,
+        "TE_bar": ref.TE_bar,
+        "rel_error": {
+            "h": _f(errs["vertex_y"]),
+            "vertex_x": _f(errs["vertex_x"]),
+            "l": _f(errs["landing_x"]),
+            "q": _f(errs["q"]),
+            "speed": _f(errs["speed"]),
+        },
+        "abs_error": {
+            "T0_bar": _f(errs["T0_bar"]),
+            "TE_bar": _f(TE_bar - ref.TE_bar),
+            "tension_rms": _f(s.tension_rms),
+        },
+    }
 
 
 def json_safe(obj: Any) -> Any:
