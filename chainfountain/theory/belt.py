@@ -217,6 +217,68 @@ def _rhs_factory(eps: Eps, k: float):
     return rhs3
 
 
+def _events(y_floor: float):
+    """The integration's events: landing on the floor (terminal) and passing the apex."""
+
+    def floor(_s: float, u: NDArray[np.float64]) -> float:
+        return u[1] - y_floor
+
+    floor.terminal = True  # type: ignore[attr-defined]
+    floor.direction = -1  # type: ignore[attr-defined]
+
+    def apex(_s: float, u: NDArray[np.float64]) -> float:
+        return u[2]  # y' = sin(alpha) changes sign where alpha crosses 0 downwards
+
+    apex.direction = -1  # type: ignore[attr-defined]
+    return floor, apex
+
+
+def _result(sol, n: int, y_floor: float, order: int, eps: Eps, *, k: float, q: float,
+            h: float, H: float, s_cat: float) -> BeltFountain:
+    """``n`` samples of the integrated belt, equally spaced in ``s``, with its apex."""
+    landed = sol.status == 1 and len(sol.t_events[0]) > 0
+    s_end = float(sol.t_events[0][0]) if landed else float(sol.t[-1])
+    s = np.linspace(0.0, s_end, n)
+    U = sol.sol(s)
+    if landed:
+        U[1, -1] = y_floor
+    if len(sol.t_events[1]):
+        s_apex = float(sol.t_events[1][0])
+        x_apex, y_apex = (float(c) for c in sol.sol(s_apex)[:2])
+    else:  # never turned over (possible only without a vertex, e.g. h = 0)
+        i = int(np.argmax(U[1]))
+        s_apex, x_apex, y_apex = float(s[i]), float(U[0, i]), float(U[1, i])
+    x, y, a = U[0], U[1], U[2]
+    T = U[-1]
+    if order == 1:
+        Q = np.zeros_like(s)
+    elif order == 2:
+        Q = -(eps.e0 + eps.e1 * T) * U[3]
+    else:
+        Q = -(eps.e0 + eps.e1 * T) * U[3] - (eps.e2 + eps.e3 * T) * U[4]
+    return BeltFountain(
+        s=s,
+        x=x,
+        y=y,
+        alpha=a,
+        T=T,
+        Q=Q,
+        eps=eps,
+        k=k,
+        q=q,
+        h=h,
+        H=H,
+        landed=landed,
+        info={
+            "nfev": float(sol.nfev),
+            "s_catenary": float(s_cat),
+            "s_apex": s_apex,
+            "x_apex": x_apex,
+            "y_apex": y_apex,
+        },
+    )
+
+
 def belt_fountain(
     q: float,
     h: float,
@@ -261,17 +323,7 @@ def belt_fountain(
     if s_max is None:
         s_max = 3.0 * s_cat
     y_floor = -(h + H)
-
-    def floor(_s: float, u: NDArray[np.float64]) -> float:
-        return u[1] - y_floor
-
-    floor.terminal = True  # type: ignore[attr-defined]
-    floor.direction = -1  # type: ignore[attr-defined]
-
-    def apex(_s: float, u: NDArray[np.float64]) -> float:
-        return u[2]  # y' = sin(alpha) changes sign where alpha crosses 0 downwards
-
-    apex.direction = -1  # type: ignore[attr-defined]
+    floor, apex = _events(y_floor)
 
     if method is None:
         # order 2 is stiff (decay rate (1 - T)/(e0 + e1 T)); orders 1 and 3 are not.
@@ -289,44 +341,4 @@ def belt_fountain(
     )
     if sol.status < 0:
         raise RuntimeError(f"belt integration failed: {sol.message}")
-    landed = sol.status == 1 and len(sol.t_events[0]) > 0
-    s_end = float(sol.t_events[0][0]) if landed else float(sol.t[-1])
-    s = np.linspace(0.0, s_end, n)
-    U = sol.sol(s)
-    if landed:
-        U[1, -1] = y_floor
-    if len(sol.t_events[1]):
-        s_apex = float(sol.t_events[1][0])
-        x_apex, y_apex = (float(c) for c in sol.sol(s_apex)[:2])
-    else:  # never turned over (possible only without a vertex, e.g. h = 0)
-        i = int(np.argmax(U[1]))
-        s_apex, x_apex, y_apex = float(s[i]), float(U[0, i]), float(U[1, i])
-    x, y, a = U[0], U[1], U[2]
-    T = U[-1]
-    if order == 1:
-        Q = np.zeros_like(s)
-    elif order == 2:
-        Q = -(eps.e0 + eps.e1 * T) * U[3]
-    else:
-        Q = -(eps.e0 + eps.e1 * T) * U[3] - (eps.e2 + eps.e3 * T) * U[4]
-    return BeltFountain(
-        s=s,
-        x=x,
-        y=y,
-        alpha=a,
-        T=T,
-        Q=Q,
-        eps=eps,
-        k=k,
-        q=q,
-        h=h,
-        H=H,
-        landed=landed,
-        info={
-            "nfev": float(sol.nfev),
-            "s_catenary": float(s_cat),
-            "s_apex": s_apex,
-            "x_apex": x_apex,
-            "y_apex": y_apex,
-        },
-    )
+    return _result(sol, n, y_floor, order, eps, k=k, q=q, h=h, H=H, s_cat=s_cat)
