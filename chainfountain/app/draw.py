@@ -15,6 +15,7 @@ import pygame
 from chainfountain.app import render
 from chainfountain.app.session import paused_message
 from chainfountain.theory.apparatus import plate_reaction
+from chainfountain.theory.tension import tension_bar
 
 PLOT_EVERY = 4
 """Redraw the live plots every this many frames (15 Hz at 60 frames/s)."""
@@ -192,7 +193,7 @@ class DrawMixin:
             lo = min(float(ys.min()) if len(ys) else -ro.H, -ro.H)
             hi = max(float(ys.max()) if len(ys) else ro.h, ro.h)
             yy = np.linspace(lo, hi, 50)
-            tb = 1.0 - ro.k / ro.q + ro.k * (yy - ro.h)
+            tb = tension_bar(yy - ro.h, ro.q, ro.k)
             series.append(render.Series(yy, tb, render.THEORY, "1 - k/q + k*y"))
         render.draw_plot(surf, r1, "Tbar along the chain", "height above launch (m)", series,
                          ylim=(-0.1, 1.05))

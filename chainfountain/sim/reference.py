@@ -21,6 +21,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from chainfountain.theory.tension import tension_bar
+
 
 @dataclass(frozen=True)
 class LaunchReference:
@@ -79,8 +81,7 @@ class LaunchReference:
 
     def tension_bar(self, y: ArrayLike) -> NDArray[np.float64]:
         """Scaled tension ``1 - k/q + k*y_vertex`` at launch-frame height ``y``."""
-        yv = np.asarray(y, dtype=float) - self.h
-        return 1.0 - self.k / self.q + self.k * yv
+        return tension_bar(np.asarray(y, dtype=float) - self.h, self.q, self.k)
 
     def points_at_arc(self, s: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64],
                                                     NDArray[np.float64]]:
