@@ -38,7 +38,9 @@ def summarize(level: Level, sim: Simulation, rec: Recorder, duration: float,
     """The ``summary.json`` object. Analyses that fail are listed under
     ``analysis_failed`` (name: reason) and their figures are null."""
     failed: dict[str, str] = {}
-    steady = _attempt(failed, "steady-state detection", rec.steady_from, duration)
+    # steady: the run's last averaging window (``recording.window``) is the reference, so a
+    # fountain that formed from its stub is steady from when it formed
+    steady = _attempt(failed, "steady-state detection", rec.steady_from)
     window_start = steady if steady is not None else max(0.0, sim.time - rec.cfg.window)
     s = _attempt(failed, "window averages", rec.summary, sim.time - window_start)
     if s is None:

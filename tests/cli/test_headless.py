@@ -170,3 +170,17 @@ def test_progress_lines_when_not_a_terminal(tmp_path, quick_level, capsys, monke
     assert lines and lines[-1].strip().startswith("quick: 0.20/0.20 sim s (100 %)")
     run_level(quick_level, tmp_path, 0.2, progress=False)
     assert "sim s" not in capsys.readouterr().err
+
+
+@pytest.mark.slow
+def test_a_fountain_formed_from_its_stub_is_steady_from_when_it_formed(tmp_path):
+    """wide_low forms from its stub in about 4 s (research/long_runs.py): its default run
+    reports it steady from then and averages the formed fountain, not the whole run."""
+    from chainfountain.level import library
+
+    lvl = io.load(library.resolve("wide_low"))
+    s = json.loads(run_level(lvl, tmp_path, progress=False).read_text())
+    assert s["duration_s"] == pytest.approx(20.0)
+    assert s["steady"] and 2.0 < s["steady_since_s"] < 8.0, s["steady_since_s"]
+    assert s["window"][0] == pytest.approx(s["steady_since_s"], abs=0.05)
+    assert abs(s["theory"]["rel_error"]["h"]) < 0.01
