@@ -684,6 +684,36 @@ class Apparatus:
         return float(sum(lk.body.velocity.x for lk, _ in g) / len(g))
 
     @property
+    def plate_grooves(self) -> deque[tuple[Link, pymunk.GrooveJoint]]:
+        """``plate = "groove"``: the upper plate strand's links with their groove joints,
+        most downstream first (the newest, at the pick-up roller, last). Read only."""
+        return self._grooves
+
+    @property
+    def upper_held(self) -> list[deque[tuple[Link, pymunk.Constraint]]]:
+        """Upper joint guide: the links (with their joints) each element of
+        :attr:`up_guide` holds, most downstream first. Read only."""
+        return self._uq
+
+    @property
+    def fold_held(self) -> list[deque[tuple[Link, pymunk.Constraint]]]:
+        """'fold' guide: the links (with their joints) each element of :attr:`guide`
+        holds, most downstream first (``[-1]``: the lower plate strand). Read only."""
+        return self._gq
+
+    @property
+    def tail_grooved(self) -> int:
+        """'open' with ``plate = "groove"``: how many links (chain indices ``0 ..
+        tail_grooved-1``, the tail) run in the lower plate's grooves."""
+        return self._lo_n
+
+    @property
+    def turn_held(self) -> deque[tuple[Link, pymunk.SlideJoint]]:
+        """'open' guide: the links held on the turn (chain indices from
+        :attr:`tail_grooved` on) with their slide joints. Read only."""
+        return self._arc
+
+    @property
     def last_mouth_entry(self) -> float:
         """'fold': time (s) at which the last link entered the end guide through its
         mouth (nan before any did)."""
