@@ -51,6 +51,9 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
     (roller-top centre lines), ``end`` (fountain end point), ``launch_u`` (unit launch
     direction), ``walls`` (static segments), ``fountain`` (the predicted fountain used
     for the layout).
+
+    The parts (mixins, one module each) share this object's state: each builds its
+    attributes in its build step and its bookkeeping in its ``_init_*_state``.
     """
 
     fold_capture: tuple[float, float] = FOLD_CAPTURE
@@ -63,6 +66,8 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
     :attr:`fold_capture`."""
 
     def __init__(self, space: pymunk.Space, chain: Chain, cfg: SimConfig) -> None:
+        """Build the apparatus into ``space`` and lay ``chain`` along it, part by part in
+        the order the solver sees them (module docstring)."""
         self._read_config(space, chain, cfg)
         self._predict_fountain()
         path = self._build_upper()
