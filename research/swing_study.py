@@ -16,17 +16,18 @@ mean speed over 0.5-8 s; the speed swing (half the peak-to-peak about a linear t
 over 0.5-3.5 s and over the last 3 s before the end (or before ``--seconds`` minus 1 s);
 and a fit ``v = c0 + c1 t + A exp(sigma t) sin(omega t + phi)`` over 0.5 s to 1 s before
 the end: ``sigma`` (1/s, growth rate of the swing; > 0 grows) and the period.
-``--close-rate`` sets the catch's closing speed (m/s, module constant
-``_FOLD_CLOSE_RATE``, 5 as shipped), ``--band`` its capture band (m, the first
-element of ``_FOLD_CAPTURE``, 0.06 as shipped). "catch lost s" is the time the last
-link entered the end guide through its mouth when that was :data:`_CATCH_LOST` s or more
-before the end (``-`` otherwise). ``--upper-drag c`` (N s/m) adds a damper to the
-pick-up carriage about the steady roller speed, ``-c (v_R - v0/2)``: not part of the
-paper's apparatus, a probe of whether damping the chain before the fountain stops the
-swing. ``--figure PATH`` instead draws the preset's run to its end (first ``--speeds``
-value): the chain speed at the pick-up and at the folding roller, and where each link
-landed in the end guide's mouth against the catch's band. docs/apparatus.md, "Fifteenth
-session" to "Seventeenth session".
+``--close-rate`` sets the catch's closing speed (m/s, the class attribute
+``Apparatus.fold_close_rate``, 5 as shipped), ``--band`` its capture band (m, the first
+element of ``Apparatus.fold_capture``, 0.06 as shipped). "catch lost s" is the time the
+last link entered the end guide through its mouth when that was
+:data:`~chainfountain.sim.apparatus.tuning.CATCH_LOST` s or more before the end (``-``
+otherwise). ``--upper-drag c`` (N s/m) adds a damper to the pick-up carriage about the
+steady roller speed, ``-c (v_R - v0/2)``: not part of the paper's apparatus, a probe of
+whether damping the chain before the fountain stops the swing. ``--figure PATH`` instead
+draws the preset's run to its end (first ``--speeds`` value): the chain speed at the
+pick-up and at the folding roller, and where each link landed in the end guide's mouth
+against the catch's band. docs/apparatus.md, "Fifteenth session" to "Seventeenth
+session".
 """
 
 from __future__ import annotations
@@ -42,15 +43,16 @@ import numpy as np
 from fold_step_study import fold_config, positive  # sibling script (research/ on sys.path)
 from scipy.optimize import curve_fit
 
-import chainfountain.sim.apparatus as apparatus
 from chainfountain.errors import RunEnded
 from chainfountain.sim import Simulation, fastbody
+from chainfountain.sim.apparatus import Apparatus
+from chainfountain.sim.apparatus.tuning import CATCH_LOST
 from chainfountain.sim.config import SimConfig
 
 SAMPLE = 0.01
 
 
-def _upper_drag(app: apparatus.Apparatus, c: float, v0: float) -> None:
+def _upper_drag(app: Apparatus, c: float, v0: float) -> None:
     """Damp the pick-up carriage about ``v0/2`` with ``c`` (N s/m), every step."""
     before = app.before_step
     h = fastbody.handle(app.upper.carriage)
@@ -108,7 +110,7 @@ def figure(cfg: SimConfig, seconds: float, out: str) -> None:
     ax.set_ylim(0.0, 4.5)
     ax.set_ylabel("chain speed (m/s)")
     fresh = t - r[:, 3] < 2.0 * SAMPLE  # a link entered through the mouth in this sample
-    band = 100.0 * apparatus._FOLD_CAPTURE[0]
+    band = 100.0 * Apparatus.fold_capture[0]
     bx.axhspan(-band, band, color="0.9", label="catch band")
     bx.plot(t[fresh], 100.0 * r[fresh, 4], ".", ms=2, color="C2",
             label="landing offset in the mouth (> 0: short)")
@@ -116,7 +118,7 @@ def figure(cfg: SimConfig, seconds: float, out: str) -> None:
     bx.set_ylabel("offset from the turn's radius (cm)")
     bx.set_xlabel("t (s)")
     lost = r[-1, 3]
-    if ended is not None and ended - lost >= apparatus._CATCH_LOST:
+    if ended is not None and ended - lost >= CATCH_LOST:
         for x in (ax, bx):
             x.axvline(lost, color="C3", lw=0.8, ls="--")
         bx.annotate(f"catch lost {lost:.2f} s", (lost, -1.2 * band), color="C3", fontsize=8,
@@ -200,12 +202,12 @@ def main(argv: list[str] | None = None) -> int:
           "| upper guide | ended s | catch lost s | v m/s (0.5-8 s) | swing early m/s "
           "| swing late m/s | sigma 1/s | period s | wall s |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
-    shipped, shipped_band = apparatus._FOLD_CLOSE_RATE, apparatus._FOLD_CAPTURE
+    shipped, shipped_band = Apparatus.fold_close_rate, Apparatus.fold_capture
     for dt, its, mass, v0, rate, band, drag, guide in itertools.product(
             args.dt, args.iterations, args.lower_cart, args.speeds, args.close_rate, args.band,
             args.upper_drag, args.upper_guide):
-        apparatus._FOLD_CLOSE_RATE = shipped if rate is None else rate
-        apparatus._FOLD_CAPTURE = shipped_band if band is None else (band, shipped_band[1])
+        Apparatus.fold_close_rate = shipped if rate is None else rate
+        Apparatus.fold_capture = shipped_band if band is None else (band, shipped_band[1])
         cfg = fold_config(args.level, dt * 1e-3, args.clearance, mass, v0)
         if its is not None:
             cfg = dataclasses.replace(cfg, solver=dataclasses.replace(cfg.solver, iterations=its))
@@ -214,20 +216,20 @@ def main(argv: list[str] | None = None) -> int:
                 cfg.apparatus, upper_guide=guide))
         w0 = time.perf_counter()
         t, v, ended, mouth = trace(cfg, args.seconds, drag)
-        lost = ended is not None and ended - mouth >= apparatus._CATCH_LOST
+        lost = ended is not None and ended - mouth >= CATCH_LOST
         end = ended if ended is not None else args.seconds
         late = (max(0.5, end - 4.0), end - 1.0)
         mean = v[(t >= 0.5) & (t < min(8.0, end))]
         s, period = growth(t, v, 0.5, end - 1.0)
         print(f"| {dt:g} | {cfg.solver.iterations} | {1e3 * cfg.carts[1].mass:g} | "
               f"{cfg.apparatus.speed:g} | "
-              f"{apparatus._FOLD_CLOSE_RATE:g} | {apparatus._FOLD_CAPTURE[0]:g} | {drag:g} | "
+              f"{Apparatus.fold_close_rate:g} | {Apparatus.fold_capture[0]:g} | {drag:g} | "
               f"{cfg.apparatus.upper_guide} | {'-' if ended is None else f'{ended:.2f}'} | "
               f"{f'{mouth:.2f}' if lost else '-'} | "
               f"{float(np.mean(mean)) if len(mean) else math.nan:.3f} | "
               f"{swing(t, v, 0.5, 3.5):.3f} | {swing(t, v, *late):.3f} | {s:+.3f} | "
               f"{period:.2f} | {time.perf_counter() - w0:.0f} |", flush=True)
-    apparatus._FOLD_CLOSE_RATE, apparatus._FOLD_CAPTURE = shipped, shipped_band
+    Apparatus.fold_close_rate, Apparatus.fold_capture = shipped, shipped_band
     return 0
 
 

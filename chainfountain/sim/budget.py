@@ -195,7 +195,7 @@ class EnergyBudget:
             return
         links = app.chain.links
         kind: dict[int, tuple[str, np.ndarray]] = {}  # arc: centre; line, plate: normal
-        for el, q in zip(app.up_guide, app._uq, strict=True):
+        for el, q in zip(app.up_guide, app.upper_held, strict=True):
             if el.kind == "arc":
                 c = np.array(el.a, dtype=float)
                 for lk, _ in q:
@@ -208,7 +208,7 @@ class EnergyBudget:
                 for lk, _ in q:
                     kind[id(lk.body)] = ("line", n)
         up = np.array([0.0, 1.0])
-        for lk, _ in app._grooves:
+        for lk, _ in app.plate_grooves:
             kind[id(lk.body)] = ("plate", up)
         last = -1
         for i, lk in enumerate(links):
@@ -221,7 +221,7 @@ class EnergyBudget:
         n = last + 1
         kinds = [kind.get(id(lk.body)) for lk in links[:n]]
         if app.variant == "open":
-            low = lower_kinds(app, app._lo_n, len(app._arc))
+            low = lower_kinds(app, app.tail_grooved, len(app.turn_held))
             kinds[:len(low)] = low
         end = links[0].body  # the lumped tail's end link is heavier ('open')
         self._pending = (kinds, pre.velocity[:n].copy(), pre.angular_velocity[:n].copy(),

@@ -80,7 +80,7 @@ def run(cfg: SimConfig, mass: float | None, t_switch: float, window: float,
         sim.step()
         if (k + 1) % every:
             continue
-        g = app._grooves  # the newest, at the roller, last
+        g = app.plate_grooves  # the newest, at the roller, last
         m_up, i0 = upstream_mass(sim.state(), sim.chain.mass)
         M_up.append(m_up)
         t.append(sim.time - t_switch)

@@ -247,7 +247,7 @@ class RollerRig:
 
     def _groove(self, link: Link) -> None:
         """Hold ``link``'s centre on the feed line (a frictionless groove joint), out of the
-        collision broadphase: the apparatus's lower plate (``Apparatus._hold``)."""
+        collision broadphase: the apparatus's lower plate (``apparatus.joints.hold``)."""
         y = 3.0 * self.rho + 2.0 * self.cfg.radius + self.cfg.clearance
         j = pymunk.GrooveJoint(self.space.static_body, link.body, (-20.0, y), (20.0, y),
                                (0.0, 0.0))

@@ -136,7 +136,7 @@ class Recorder:
             lower = None
             if app.guided:  # 'open': which links the tail's grooves and the turn hold
                 end = sim.chain.links[0].body
-                lower = (app._lo_n, len(app._arc), end.mass, end.moment)
+                lower = (app.tail_grooved, len(app.turn_held), end.mass, end.moment)
             self._raw.append(("apparatus", sim.time, pre.velocity, post, contacts, roller,
                               pivots, pre.angular_velocity, lower))
             return

@@ -16,7 +16,7 @@ def run_fold(cfg: SimConfig, until: float, clean: tuple[float, float],
     held = []
     while sim.time < until - 1e-9:
         sim.advance(0.1)
-        held.append(len(sim.apparatus._gq[0]))
+        held.append(len(sim.apparatus.fold_held[0]))
     return sim, report(sim, rec, *clean), held, [report(sim, rec, *w) for w in windows]
 
 

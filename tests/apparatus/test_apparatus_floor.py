@@ -67,7 +67,7 @@ def run():
 def _guide_offsets(app) -> list[float]:
     """Distance (m) of each link held by the upper joint guide from its element."""
     out = []
-    for el, q in zip(app.up_guide, app._uq, strict=True):
+    for el, q in zip(app.up_guide, app.upper_held, strict=True):
         for lk, _ in q:
             p = lk.body.position
             if el.kind == "arc":
@@ -240,7 +240,7 @@ def test_upper_channel_is_a_joint_guide_without_shapes(run) -> None:
     _, sim, _, off = run
     app = sim.apparatus
     assert app.upper_guided and app.walls and all(w.space is None for w in app.walls)
-    held = [lk for q in app._uq for lk, _ in q]
+    held = [lk for q in app.upper_held for lk, _ in q]
     # the guide's 0.31 m past the plate grooves hold 15-16 links
     assert len(held) >= 14 and all(lk.shape.space is None for lk in held)
     assert len(off) > 150 and off.max() <= PLAY + 1e-4

@@ -15,7 +15,7 @@ a frictionless joint guide (slide joints to the bend centres with the positions
 projected back onto their limits every step, grooves on the straight parts and
 the lower plate); the folding roller lays the chain back to rest. A link landing
 off the turn's radius is brought onto it within about 12 ms (a stiff funnel,
-``_FOLD_CLOSE_RATE`` = 5 m/s; at 0.5 m/s the landing swing grew faster).
+``Apparatus.fold_close_rate`` = 5 m/s; at 0.5 m/s the landing swing grew faster).
 
 Over 0.2-2.5 s the rollers roll at half the chain speed, the speed is 3.0 m/s
 and steady within the 1 %/s target (+0.79 %/s; +0.81), the fountain's mean shape is
@@ -81,7 +81,7 @@ def test_fold_speed_at_the_design_speed(run) -> None:
 def test_fold_speed_steady_while_clean(run) -> None:
     _, rep, _, _ = run
     # measured +0.79 %/s (walls: +0.81 %/s; +0.62 %/s with 20 resting links ahead of the
-    # pick-up; +1.15 %/s with the old soft catch, _FOLD_CLOSE_RATE 0.5 m/s)
+    # pick-up; +1.15 %/s with the old soft catch, fold_close_rate 0.5 m/s)
     assert abs(rep["measured"]["speed_drift_per_s"]) <= 0.01
 
 

@@ -118,7 +118,7 @@ def test_open_guide_catches_the_chain(runs) -> None:
     for r in runs:
         app = r.sim.apparatus
         assert app.variant == "open" and app.guided and app.lower is None
-        assert app._lo_n >= 25 and app.tail_mass > 0.05  # the tail slides away (lumped)
+        assert app.tail_grooved >= 25 and app.tail_mass > 0.05  # the tail slides away (lumped)
 
 
 def test_open_end_tension_is_the_weight_in_the_turn(runs) -> None:

@@ -41,7 +41,7 @@ import pytest
 from apparatus_runs import run_fold
 
 from chainfountain.level import io
-from chainfountain.sim.apparatus_report import _pivot_offset
+from chainfountain.sim.apparatus_report import pivot_offset
 
 LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_special.toml"
 CLEAN = (0.2, 6.0)
@@ -161,9 +161,9 @@ def test_pivot_offset_recovers_the_missing_force() -> None:
     c = np.array([0.04, -0.07])
     pivots = np.linalg.norm(true, axis=1)
     free = np.arange(3, 38)
-    got = _pivot_offset(true - c, pivots, free)  # the sum misses c
+    got = pivot_offset(true - c, pivots, free)  # the sum misses c
     assert got == pytest.approx(c, abs=1e-9)
     # pivots that no single vector explains: no correction
     noisy = pivots * (1.0 + 0.1 * rng.standard_normal(40))
-    assert _pivot_offset(true - c, noisy, free) is None
-    assert _pivot_offset(true - c, pivots, np.arange(3, 6)) is None
+    assert pivot_offset(true - c, noisy, free) is None
+    assert pivot_offset(true - c, pivots, np.arange(3, 6)) is None

@@ -55,7 +55,7 @@ def run():
         counts.append(len(sim.chain.links))
         xs.append(app.upper.x)
         h = 0.5 * L
-        g = [lk for lk, _ in app._grooves]
+        g = [lk for lk, _ in app.plate_grooves]
         gaps.append(max((a.body.local_to_world((-h, 0.0)) - b.body.local_to_world((h, 0.0))).length
                         for a, b in zip(g[:-1], g[1:], strict=True)))
     return sim, np.array(counts), np.array(xs), np.array(gaps)
@@ -156,7 +156,7 @@ def test_chain_insert_rejoins_the_neighbours() -> None:
 def _strand_gap(app, L: float) -> float:
     """Largest joint gap (m) between neighbouring links on the fold's lower plate."""
     h = 0.5 * L
-    g = [lk for lk, _ in app._gq[-1]]
+    g = [lk for lk, _ in app.fold_held[-1]]
     return max((a.body.local_to_world((h, 0.0)) - b.body.local_to_world((-h, 0.0))).length
                for a, b in zip(g[1:], g[:-1], strict=True))
 
@@ -178,7 +178,7 @@ def fold_runs():
         while sim.time < FOLD_RUN - 1e-9:
             sim.advance(0.1)
             xs.append(app.lower.x)
-            strand.append(len(app._gq[-1]))
+            strand.append(len(app.fold_held[-1]))
             gaps.append(_strand_gap(app, sim.chain.L))
         out[n] = (sim, report(sim, rec, 0.2, FOLD_RUN), np.array(xs), np.array(strand),
                   np.array(gaps))

@@ -1,0 +1,128 @@
+"""'fold': watching the folding roller. A fold whose roller rolls backwards has failed
+(the chain piles up in the lower guide); the run ends with :class:`FoldCollapsed` and
+a message that says why: no or too small a forward push, too small a solver step, or
+(after the fold held) the landing swing, and whether the end guide's catch was lost
+first."""
+
+from __future__ import annotations
+
+import math
+from collections import deque
+
+from chainfountain.errors import RunEnded
+from chainfountain.sim.apparatus.tuning import (
+    CATCH_LOST,
+    COLLAPSE_TIME,
+    FOLD_DT_MIN,
+    HELD,
+    LATE_COLLAPSE,
+    SWING_EVERY,
+    SWING_SAMPLES,
+)
+
+
+class FoldCollapsed(RunEnded):
+    """'fold': the folding roller has rolled backwards for
+    :data:`~.tuning.COLLAPSE_TIME`: the put-down has failed, the chain piles up in the
+    lower guide and the fountain falls out of its catch (raised by
+    :meth:`~chainfountain.sim.apparatus.Apparatus.after_step`)."""
+
+
+class FoldWatch:
+    """The fold's collapse check and messages (a mixin of
+    :class:`~chainfountain.sim.apparatus.Apparatus`)."""
+
+    def _init_watch_state(self) -> None:
+        self._back_t = 0.0
+        """How long (s) the folding roller has been rolling backwards without a break."""
+        self._held_t = 0.0
+        """How long (s) the folding roller has rolled at ``v/2`` (within :data:`~.tuning.HELD`),
+        sampled every :data:`~.tuning.SWING_EVERY` s."""
+        self._held_v: deque[float] = deque(maxlen=SWING_SAMPLES)
+        """Chain speed (m/s) every :data:`~.tuning.SWING_EVERY` s while the fold held: the
+        speed swing the collapse message reports."""
+        self._swing_next = 0.0
+
+    def _check_fold(self, dt: float) -> None:
+        """Raise :class:`FoldCollapsed` once the folding roller has rolled backwards for
+        :data:`~.tuning.COLLAPSE_TIME` (a chain that keeps running into a stopped fold only piles
+        up; nothing after that is the apparatus any more)."""
+        v_R = self.lower.speed
+        if v_R >= 0.0:
+            self._back_t = 0.0
+            if self._t >= self._swing_next:  # the hold is sampled, not read every step
+                self._swing_next = self._t + SWING_EVERY
+                v = self.speed
+                if v > 0.0 and abs(v_R / v - 0.5) <= HELD:
+                    self._held_t += SWING_EVERY
+                    self._held_v.append(v)
+            return
+        self._back_t += dt
+        if self._back_t < COLLAPSE_TIME:
+            return
+        clamped = dt < FOLD_DT_MIN and not self.cfg.fold_clearance
+        if self._held_t >= LATE_COLLAPSE and not clamped:
+            raise FoldCollapsed(self._late_collapse_message(v_R))
+        push = self.lower.force
+        lam, v = self.sim_cfg.chain.linear_density, self.speed
+        pushed = (f"a push of {push / (lam * v * v):.2f} lambda*v^2" if push
+                  else "no lower cart (Tbar_lc = 0)")
+        head = (f"t = {self._t:.2f} s: the folding roller rolls backwards (v_R = {v_R:.2f} "
+                f"m/s, steady is about +{0.5 * v:.2f}) with {pushed}: the put-down has failed "
+                "and the chain piles up in the lower guide. ")
+        if clamped:
+            raise FoldCollapsed(
+                head + f"solver.dt = {dt:g} s is below {FOLD_DT_MIN:g} s, where the folding "
+                "roller locks between the lower plate's grooves and the table (with "
+                "apparatus.fold_clearance = 0 the fold only holds at dt 0.35-0.5 ms; "
+                "docs/apparatus.md): set apparatus.fold_clearance = "
+                "0.002 (with a lighter lower cart) or solver.dt = 0.0005")
+        raise FoldCollapsed(
+            head + "This model's put-down needs a forward push of about 0.3 lambda*v^2 or "
+            "more (docs/apparatus.md); "
+            + ("raise the lower cart mass" if push else
+               "give the level a second [[carts]] entry (the lower cart)") + "."
+            + self._catch_note())
+
+    def _catch_note(self) -> str:
+        """'fold': a sentence for the collapse message if the chain had stopped entering
+        the end guide through its mouth :data:`~.tuning.CATCH_LOST` s or more before the collapse
+        (the fountain landed outside the catch's band and fell into the turn from the
+        side), '' otherwise (or before any link entered: nothing to compare). It states
+        the order, not a cause. Measured (docs/apparatus.md): the
+        catch is lost 1.0-1.3 s before the folding roller rolls back in
+        ``apparatus_special`` (starts 2.97-3.06 m/s, the channel's walls; 1.13 s with the
+        joint guide from 3.0 m/s), 0.47 s before in ``apparatus_limit``."""
+        if (not self.fold_guided or self._mouth_t is None
+                or self._t - self._mouth_t < CATCH_LOST):
+            return ""
+        dr = self._mouth_dr
+        where, shape = ("outside", "narrowed") if dr > 0 else ("inside", "widened")
+        return (f" The end guide's catch had been lost before that: the chain last entered "
+                f"the guide through its mouth at t = {self._mouth_t:.2f} s, "
+                f"{100.0 * abs(dr):.1f} cm {where} the first turn's radius (the catch takes "
+                f"links within {100.0 * self.fold_capture[0]:.0f} cm); the fountain had {shape} "
+                "and after that the chain fell into the turn from the side.")
+
+    def _late_collapse_message(self, v_R: float) -> str:
+        """The collapse of a fold that had held the chain for at least
+        :data:`~.tuning.LATE_COLLAPSE` s: the chain speed swings with a period of 2-3 s and a
+        growing amplitude (the landing swing) until the folding roller loses the chain.
+        The push read at this moment (the chain has run away) says nothing about the
+        balance, so the message gives the speed the fold held and its swing instead."""
+        hv = self._held_v
+        lam = self.sim_cfg.chain.linear_density
+        v_held = sum(hv) / len(hv) if hv else self.speed
+        swing = 0.5 * (max(hv) - min(hv)) if hv else math.nan
+        push = self.lower.force / (lam * v_held * v_held)
+        return (f"t = {self._t:.2f} s: the folding roller lost the chain (v_R = {v_R:.2f} m/s) "
+                f"after holding it at v/2 for {self._held_t:.1f} s in all. In its last "
+                f"{len(hv) * SWING_EVERY:.0f} s of holding, the chain speed was "
+                f"{v_held:.2f} m/s swinging by +-{swing:.2f} m/s (lower cart push "
+                f"{push:.2f} lambda*v^2 at that speed): in this model the landing swing "
+                "(period 2-3 s) grows until the fold fails. A lower cart a few grams "
+                "lighter or heavier, a start 2 % faster or slower, a stiffer catch or longer "
+                "strands only move the failure (5.5-18.3 s for apparatus_special at "
+                "solver.dt 0.5 ms, 6.7-22.5 s with the upper channel's walls; "
+                "docs/apparatus.md)."
+                + self._catch_note())

@@ -1,0 +1,95 @@
+"""The apparatus model's measured pick-up and put-down laws and its speed selection.
+
+Figures of the rollers alone (the rigs of ``research/pickup_study.py``,
+``docs/apparatus.md``), used to predict a run's speed and tensions (the report,
+:mod:`chainfountain.sim.apparatus_report`; the energy budget,
+:mod:`chainfountain.sim.budget`); the simulation itself does not read them.
+"""
+
+from __future__ import annotations
+
+import math
+
+PICKUP_BAR = 0.27
+"""Measured pick-up force at alpha = 0 over ``lambda*v**2`` (``docs/apparatus.md``;
+paper: 1/2, loss-free energy balance 1/4)."""
+PUTDOWN_BAR = 0.24
+"""Measured put-down force at alpha = 0 over ``lambda*v**2`` with a forward push,
+extrapolated to no push (``docs/apparatus.md``; by pivots 0.244 + 0.50*Fbar_c, the
+loss-free 1/4 + Fbar_c/2; paper: 1/2 + Fbar_c)."""
+
+PICKUP_RIG_2CM = (0.266, 0.0230)
+"""Pick-up (unfolding) exit tension at alpha = 0 with the apparatus presets' chain (2 cm
+rod links, ``lambda`` = :data:`RIG_2CM_LAMBDA`, friction 0.6, 20 g roller, dt 0.5 ms, 10
+iterations), ``(p_inf, R)`` of ``Tbar = p_inf + R/(lambda*v**2) + G*Fbar_c`` with ``R``
+in N: a loss-free unfolding (1/4) with a little discretisation excess, a
+speed-independent rolling resistance ``R`` and the cart term (:data:`CART_GAIN_2CM`).
+Weighted fit to 19 rig runs of 6 s at 2.6-5.1 m/s and ``Fbar_c`` 0-0.5
+(``research/pickup_study.py --pickup-2cm-law``; ``docs/apparatus.md``), read through the
+contacts with pymunk's stale impulses of re-touching contacts taken out
+(:meth:`~chainfountain.sim.measure.ChainReader.arm`)."""
+RIG_2CM_LAMBDA = 0.05
+"""Linear density (kg/m) of the chain :data:`PICKUP_RIG_2CM` was measured with."""
+PICKUP_RIG_2CM_ERR = 0.002
+"""Standard uncertainty of :func:`pickup_rig_2cm` at 2.6-3.2 m/s (0.003 at 5.1 m/s), from
+the fit's covariance scaled by its chi2/dof of 6.5 (the single runs scatter by 0.0065)."""
+CART_GAIN_2CM = 0.526
+"""Rise of the pick-up exit tension per unit cart force in the same fit (the paper: 1;
+the loss-free power balance ``F_c v_R/v``: 1/2). No curvature: a ``sqrt(Fbar_c)`` or
+``Fbar_c**2`` term fits as 0.014 +- 0.018 and -0.04 +- 0.06."""
+CART_GAIN_2CM_ERR = 0.010
+
+PUTDOWN_RIG_2CM = (0.172, 0.618)
+"""Put-down (folding) entry tension at alpha = 0 with 2 cm links: ``Tbar = d + G_d*Fbar_c``
+(intercept ``d``, cart gain ``G_d``), fitted to rig runs at 3 m/s, dt 0.5 ms, 10
+iterations, ``Fbar_c = 0.3, 0.4, 0.5`` (3-s averages, about +-0.02 each; the strand
+tension from the pivot forces, ``research/pickup_study.py --putdown-2cm``;
+``docs/apparatus.md``). Below ``Fbar_c`` of about 0.25 the roller falls behind and the
+chain piles up (not steady). Read through the rig's contacts with pymunk's stale
+impulses taken out, the same runs give 0.354 / 0.419 / 0.472 against the pivots' 0.357 /
+0.422 / 0.481; with the stale impulses left in, the contacts overstate the tension
+under a cart."""
+
+
+def pickup_rig_2cm(v: float) -> float:
+    """:data:`PICKUP_RIG_2CM` at chain speed ``v`` (m/s), no cart: ``p_inf + R/(lambda
+    v**2)``."""
+    p_inf, R = PICKUP_RIG_2CM
+    return p_inf + R / (RIG_2CM_LAMBDA * v * v)
+
+
+def pickup_rig_2cm_drag(v: float, lam: float) -> float:
+    """``d(p(v)*lambda*v**2)/dv`` of :data:`PICKUP_RIG_2CM` at speed ``v`` (N s/m): how
+    fast the pick-up's exit tension rises with the chain speed, the cart aside. The
+    rolling resistance does not depend on the speed, so this is ``2*p_inf*lambda*v``."""
+    return 2.0 * PICKUP_RIG_2CM[0] * lam * v
+
+
+def rig_exit_tension(v: float, lam: float, F_uc: float) -> float:
+    """Pick-up exit tension (N) the 2 cm rig law gives at chain speed ``v`` (m/s), linear
+    density ``lam`` and cart force ``F_uc`` (N): ``p(v) lambda v**2 + G F_uc``
+    (:func:`pickup_rig_2cm`, :data:`CART_GAIN_2CM`; paper ``(1/2 + Tbar_uc) lambda v**2``)."""
+    return pickup_rig_2cm(v) * lam * v * v + CART_GAIN_2CM * F_uc
+
+
+def selected_speed(g: float, H: float, xi2: float, F_uc: float, lam: float,
+                   p: float | None = None, gain: float = 1.0, dp: float = 0.0) -> float:
+    """Speed a free-ended ('floor', Tbar_E = 0) apparatus selects.
+
+    Steady state needs the fountain's ``Tbar_0 = Tbar_E + k*H = k*H`` (paper: along
+    the catenary ``Tbar_0 - Tbar_E = k*H``) to equal the mechanism's
+    ``Tbar_0 = p + G*Tbar_uc + xi2*k*H`` (paper, apparatus section, with the pick-up
+    intercept ``p`` and cart gain ``G``; paper ``p = 1/2``, ``G = 1``), so
+    ``v**2 = (g*H*(1 - xi2) - G*F_uc/lambda)/p``. With ``p=None`` the rig law
+    :func:`pickup_rig_2cm` ``+ dp`` is used, ``p_inf + dp + R/(lambda_rig v**2)``:
+    ``v**2 = (g*H*(1 - xi2) - G*F_uc/lambda - R/lambda_rig)/(p_inf + dp)``. nan if
+    there is no positive root.
+    """
+    num = g * H * (1.0 - xi2) - gain * F_uc / lam
+    if p is None:
+        p_inf, R = PICKUP_RIG_2CM
+        num -= R / RIG_2CM_LAMBDA
+        p = p_inf + dp
+    if num <= 0 or p <= 0:
+        return math.nan
+    return math.sqrt(num / p)

@@ -1,0 +1,162 @@
+"""Treadmills (``plate_links > 0`` with ``plate = "groove"``): the upper plate strand is
+kept from shrinking and ('fold') the lower one from growing, by putting links into or
+taking them out of the middle of the grooved strand and moving the roller's side back,
+so the rollers stay near their starts and a run may last any time."""
+
+from __future__ import annotations
+
+import math
+
+import pymunk
+
+from chainfountain.sim import fastbody
+from chainfountain.sim.apparatus.tuning import PRELOAD_STEPS
+
+
+class Treadmills:
+    """The plate treadmills (a mixin of :class:`~chainfountain.sim.apparatus.Apparatus`)."""
+
+    def _init_treadmill_state(self) -> None:
+        self.moved_back = 0
+        """Treadmill: links added to the upper plate strand."""
+        self.shifted = 0.0
+        """Treadmill: distance (m) the pick-up roller unit was moved back."""
+        self.cut = 0
+        """'fold' treadmill: links taken out of the lower plate strand."""
+        self.shifted_lo = 0.0
+        """'fold' treadmill: distance (m) the folding roller unit was moved back."""
+        self._preload: list[list] = []
+        """Treadmill: ``[down, up, force N, steps left]`` of joints made in the strand."""
+
+    def travel(self, i: int) -> float:
+        """Distance (m) roller ``i`` (0 upper, 1 lower) has rolled since the start,
+        the treadmills' moves back included."""
+        u = (self.upper, self.lower)[i]
+        if u is None:
+            return 0.0
+        return abs(u.x - self.start_x[i] + (self.shifted, self.shifted_lo)[i])
+
+    def _shift_back(self, bodies: list[pymunk.Body], dx: float) -> None:
+        """Move ``bodies`` by ``dx`` (m) in ``-x`` (velocities unchanged)."""
+        get_p, set_p, handle = fastbody.get_position, fastbody.set_position, fastbody.handle
+        for b in bodies:
+            h = handle(b)
+            p = get_p(h)
+            set_p(h, (p.x - dx, p.y))
+
+    def _treadmill_upper(self) -> None:
+        """Keep the upper plate strand from shrinking: once the pick-up roller has moved
+        half a link length past its start, insert a link into the middle of the grooved
+        strand and move everything upstream of it (strand, wrap, resting chain, roller
+        and carriage) back by one link length. The strand is straight, horizontal and
+        frictionless and all its links move at the chain speed, so the new link (the
+        mean velocity of its neighbours, laid exactly into the gap) changes nothing but
+        the strand's length; the pick-up (roller on the resting chain) is moved rigidly
+        and is untouched."""
+        up = self.upper
+        L = self.L
+        g = self._grooves
+        if up.x - self.start_x[0] < 0.5 * L or len(g) < 4:
+            return
+        chain = self.chain
+        links = chain.links
+        m = len(g) // 2
+        a_link = g[m][0]
+        i = chain.ids.index(a_link.id)
+        b_link = links[i + 1]
+        if g[m + 1][0] is not b_link:
+            return  # not a contiguous strand (should not happen): skip this step
+        h = 0.5 * L
+        pa = a_link.body.local_to_world((-h, 0.0))
+        pb = b_link.body.local_to_world((h, 0.0))
+        dy = pa.y - pb.y
+        dx = math.sqrt(max(L * L - dy * dy, 0.0)) - (pa.x - pb.x)
+        self._shift_back([lk.body for lk in links[i + 1:]] + [up.roller, up.carriage], dx)
+        self.shifted += dx
+        pb = pymunk.Vec2d(pb.x - dx, pb.y)
+        ab = a_link.body
+        F = a_link.up_joint.impulse / self.sim_cfg.solver.dt if a_link.up_joint else 0.0
+        vel = 0.5 * (ab.velocity + b_link.body.velocity)
+        new = chain.make_body((0.5 * (pa.x + pb.x), 0.5 * (pa.y + pb.y)),
+                              math.atan2(pa.y - pb.y, pa.x - pb.x), velocity=tuple(vel))
+        chain.insert(i + 1, new, with_shape=False)  # grooved: out of the broadphase
+        self._preload += [[a_link, new, F, PRELOAD_STEPS], [new, b_link, F, PRELOAD_STEPS]]
+        g.insert(m + 1, (new, self._groove_joint(new.body)))
+        self._g_next += 1
+        self.added += 1
+        self.moved_back += 1
+
+    def _treadmill_lower(self) -> None:
+        """'fold': keep the lower plate strand from growing, the mirror of
+        :meth:`_treadmill_upper`. Once the folding roller has moved one link length past
+        its start, take two neighbouring links out of the middle of the grooved strand
+        and move everything downstream of them (strand, wrap, laid chain, roller and
+        carriage) back by the gap, so the roller stays within about a link of its start.
+
+        Two, not one: the grooves hold the link centres on the line and leave the angles
+        free, and the strand settles into a regular zigzag (angles alternating by about
+        +-0.07 rad). Cutting one link leaves its neighbours' free ends 1.3 mm apart in
+        ``y``, which the joints close only slowly; cutting two keeps the zigzag's phase
+        and the ends meet. Of the pairs near the middle, the one whose ends meet best in
+        ``y`` is cut. The strand is straight, horizontal, frictionless and moves as one,
+        so the cut changes only its length."""
+        lo = self.lower
+        L = self.L
+        q = self._gq[-1]
+        if lo.x - self.start_x[1] < L or len(q) < 10:
+            return
+        chain = self.chain
+        links = chain.links
+        h = 0.5 * L
+        best = None
+        for m in range(len(q) // 2 - 3, len(q) // 2 + 3):
+            dn, up = q[m - 1][0], q[m + 2][0]
+            i = chain.ids.index(q[m][0].id)
+            if links[i - 1] is not dn or links[i + 1] is not q[m + 1][0] or \
+                    links[i + 2] is not up:
+                continue  # not contiguous (should not happen)
+            pd = dn.body.local_to_world((-h, 0.0))
+            pu = up.body.local_to_world((h, 0.0))
+            if best is None or abs(pd.y - pu.y) < best[0]:
+                best = (abs(pd.y - pu.y), m, i, pd.x - pu.x)
+        if best is None:
+            return
+        _, m, i, dx = best
+        c = links[i + 1]
+        F = c.up_joint.impulse / self.sim_cfg.solver.dt if c.up_joint else 0.0
+        self._shift_back([lk.body for lk in links[:i]] + [lo.roller, lo.carriage], dx)
+        self.shifted_lo += dx
+        for k in (m + 1, m):
+            self.space.remove(q[k][1])
+            del q[k]
+        chain.remove(i + 1)
+        chain.remove(i)
+        self._preload.append([links[i - 1], links[i], F, PRELOAD_STEPS])
+        self._cap_next -= 2
+        self._fly_next -= 2
+        self._g_next -= 2
+        self.cut += 2
+
+    def _apply_preload(self) -> None:
+        """Treadmill: the internal force pair ``F`` (tension: pulls ``down`` back along
+        its axis, ``up`` forward) on each new strand joint, fading linearly. Equal and
+        opposite at the joint, so it changes no physics; it stands in for the solver's
+        warm start, which a new pymunk joint lacks."""
+        h = 0.5 * self.L
+        keep = []
+        handle, force = fastbody.handle, fastbody.apply_force_at_world_point
+        for item in self._preload:
+            down, up, F, n = item
+            if down.up_joint is None or down.body.space is None or up.body.space is None:
+                continue
+            f = F * n / PRELOAD_STEPS
+            hd = handle(down.body)
+            a = fastbody.get_angle(hd)
+            fx, fy = f * math.cos(a), f * math.sin(a)
+            p = fastbody.local_to_world(hd, (-h, 0.0))
+            force(hd, (-fx, -fy), p)
+            force(handle(up.body), (fx, fy), p)
+            item[3] = n - 1
+            if n > 1:
+                keep.append(item)
+        self._preload = keep

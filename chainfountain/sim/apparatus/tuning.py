@@ -1,0 +1,91 @@
+"""The apparatus model's numeric choices: sizes, bands, rates and times that are not in
+the paper, each with the reason for its value (``docs/apparatus.md`` has the runs).
+
+Constants only; the code that uses them is in the part's module. Two of them are read
+through :class:`~chainfountain.sim.apparatus.Apparatus` class attributes so that a
+study can vary them (:attr:`~chainfountain.sim.apparatus.Apparatus.fold_capture`,
+:attr:`~chainfountain.sim.apparatus.Apparatus.fold_close_rate`;
+``research/swing_study.py``).
+"""
+
+from __future__ import annotations
+
+import math
+
+WALL_R = 0.002
+"""Radius of channel wall segments (m)."""
+FUNNEL = (0.06, 0.02)
+"""Length and half-opening (m) of the funnel before the end channel's mouth."""
+CATCH = (0.05, 0.0)
+"""Length along the landing tangent and outward flare (m) by which the 'open' variant's
+one-sided catch wall reaches up above the end channel's mouth (the fountain above its
+end lies outside the tangent, on the catenary's convex side)."""
+OPEN_CAPTURE = (0.02, math.radians(3.0))
+"""'open' joint guide: capture band (m) around the turn's radius and angular margin
+before the mouth (rad) within which a falling link is taken into the guide."""
+OPEN_CLOSE_RATE = 0.2
+"""Speed (m/s) at which the outer limit of a link captured outside the 'open' guide's
+radius closes in to it."""
+FOLD_CAPTURE = (0.06, math.radians(3.0))
+"""'fold' joint guide: capture band (m) and angular margin (rad) of the first turn.
+Wider than 'open''s: the fountain's landing point wanders by several centimetres
+(docs/apparatus.md), and a link captured off the radius
+is held there (its limits close in at :data:`FOLD_CLOSE_RATE`), so a wide band costs
+nothing while the chain lands on the radius."""
+FOLD_CLOSE_RATE = 5.0
+"""Speed (m/s) at which the limits of a link captured off a joint guide's turn (the
+'fold' guide's; the upper joint guide's too) close in to ``R -+ PLAY``: a 6-cm offset
+closes in 12 ms, while the link moves about two link lengths, so the catch acts as a
+stiff funnel at the mouth. Measured
+(docs/apparatus.md): at a close rate of 0.5 m/s the landing point's oscillation grew
+until the catch was lost at about 4.3 s (both treadmills on); at 2, 5 and 20 m/s the
+run held to 8 s, at 5 m/s to about 13 s."""
+TAIL_KEEP = 30
+"""'open': links kept in the lower plate grooves; the tail beyond is lumped into the
+end link (:meth:`~.open_tail.OpenTail._lump_tail`)."""
+LO_START = 0.15
+"""'fold': start distance (m) of the folding roller from the end channel's exit."""
+COLLAPSE_TIME = 0.05
+"""'fold': the run ends (:class:`~.fold_watch.FoldCollapsed`) once the folding roller
+has rolled backwards for this long (s). In the shipped fold presets it never does (it rolls
+forward at about ``v/2`` throughout); without a forward push it falls behind at once
+and rolls back within about 1 s (``apparatus_limit``, docs/apparatus.md)."""
+FOLD_RELEASE = 0.5
+"""'fold' with grooves: a lower-plate link leaves its groove (and gets its collision shape
+back) once its centre is this many link lengths before the folding roller's top."""
+FOLD_DT_MIN = 3.5e-4
+"""'fold': smallest solver step (s) at which this model's fold was measured to hold.
+The fold is not converged in the step: ``apparatus_fold`` and ``apparatus_special``
+hold for 3 s at dt 0.35-0.5 ms, lose their folding roller at about 2.1 s at 0.25 ms
+(``apparatus_special`` with its joint guide: at 0.65 s) and within 0.2 s at 0.1 ms
+(docs/apparatus.md); the put-down rig alone is converged down to 0.03 ms. With
+``fold_clearance = 0`` only: the cause is the folding roller locking between the plate
+grooves and the table."""
+HELD = 0.1
+"""'fold': the folding roller counts as holding the chain while ``|v_R/v - 1/2|`` is at
+most this (the collapse message tells a fold that never held from one that held and was
+then lost)."""
+SWING_EVERY, SWING_SAMPLES = 0.05, 100
+"""'fold': sampling interval (s) and count of the speed history the collapse message
+reads the speed swing from (the last 5 s in which the fold held)."""
+LATE_COLLAPSE = 2.0
+"""'fold': a collapse after the folding roller has held the chain this long (s) is
+reported as the landing swing's, not as a missing push (docs/apparatus.md)."""
+CATCH_LOST = 0.1
+"""'fold': a collapse this long (s) or longer after the last link entered the end guide
+through its mouth (normally one does every ``L/v``, about 7 ms) was preceded by a lost
+catch, and the collapse message says so (docs/apparatus.md)."""
+PRELOAD_STEPS = 40
+"""Treadmill: a joint made in the tensioned plate strand starts with the tension of the
+joint it replaces as an internal force pair, faded out over this many steps (the
+solver's warm start then carries it; in 'fold' trials a cold joint in a plate strand
+every 13 steps made the lower turn yield sooner)."""
+UP_RELEASE = 0.5
+"""Upper joint guide: a link leaves the guide's straight once its centre is this many
+link lengths short of the fountain start, i.e. once its front joint has left the guide,
+so the free fountain starts at ``(0, 0)`` as with the channel's walls. Measured
+(``apparatus_floor``, 2-6 s; docs/apparatus.md): the vertex is
++5.4 % off the catenary through the ends when links leave at their centre (0), +0.1 %
+at 0.5, -1.6 % at 0.6, -6.0 % at 1 (the walls: +1.7 %)."""
+CLEAR = 0.0008
+"""Clearance between a link capsule and each channel wall (m)."""
