@@ -4,8 +4,8 @@ Runs :func:`chainfountain.sim.cart_step.cart_step` on ``apparatus_floor`` (long 
 ``plate_links = 0``, unless ``--plate-links``) for each cart mass and prints, per window,
 the measured deceleration over the predicted one for the energy balance (gain 1/2, with
 and without the pick-up's speed dependence), ``CART_GAIN_2CM`` (the rig law's steady
-gain for these links, 0.526 since the twenty-second session; 0.68 before, read through
-biased contacts: ``docs/apparatus.md``, "Contact impulses") and the paper's momentum
+gain for these links, 0.526; 0.68 when read through biased contacts:
+``docs/apparatus.md``, "Contact impulses") and the paper's momentum
 law (gain 1), beside the pair's tension readings. ``docs/apparatus.md``,
 "Unbalanced carts", quotes it::
 

@@ -26,7 +26,7 @@ runs the put-down rig alone (2 cm links, 3 m/s, push ``--push`` ``lambda v^2``; 
 groove``: the strand held on a groove line as on the apparatus's lower plate,
 ``--clearance`` above the roller's top) at the same steps, with ``--iterations`` (10 by
 default; several values give a row each).
-docs/apparatus.md, "Twelfth session", "Thirteenth session" and "Seventeenth session".
+docs/apparatus.md, "The fold depends on the time step" and "The landing swing".
 """
 
 from __future__ import annotations

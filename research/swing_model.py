@@ -12,12 +12,11 @@ mean vertex height over 1 s to the end (the catenary parameter ``a = h/(1/cos(th
 :func:`chainfountain.theory.swing.swing_mode` for the paper's rig laws (``p = d =
 1/2``) and for this model's (the pick-up's ``lambda v^2``-part ``p`` = 0.27 from
 ``PICKUP_RIG_2CM``, its ``p_inf``: the rolling resistance does not grow with the speed;
-0.23 from the law of sessions 7-21; or 0.28 from the zero-force fit over 2-5 m/s; the
-put-down's ``d`` = 0.172 from ``PUTDOWN_RIG_2CM`` taken to scale as ``lambda v^2``, which
-was measured at 3 m/s only), with and without the seventeenth session's measured lag of
-the launch tension (0.039 s). What the simulation measured for ``apparatus_special``
-(docs/apparatus.md, "Fifteenth session" to "Seventeenth session", "Twentieth session"):
-period 2.08-2.22 s, growth +0.14 /s (walls) and +0.02 ... +0.26 /s (joint guide, starts
+or 0.28 from the zero-force fit over 2-5 m/s; the put-down's ``d`` = 0.172 from
+``PUTDOWN_RIG_2CM`` taken to scale as ``lambda v^2``, which was measured at 3 m/s only),
+with and without the launch tension's measured lag (0.039 s). What the simulation
+measured for ``apparatus_special`` (docs/apparatus.md, "The landing swing"): period
+2.08-2.22 s, growth +0.14 /s (walls) and +0.02 ... +0.26 /s (joint guide, starts
 2.97-3.06 m/s), the pick-up strand swinging 2.6 times as far as the fold strand and
 137-138 deg from it.
 """
@@ -36,7 +35,7 @@ from chainfountain.sim.apparatus import PUTDOWN_RIG_2CM, pickup_rig_2cm_drag
 from chainfountain.theory.swing import fountain_spring, swing_mode
 
 MEASURED_LAG = 0.039
-"""Lag of the launch tension behind the stored chain (s), seventeenth session."""
+"""Measured lag of the launch tension behind the stored chain (s)."""
 PICKUP_ZERO_FORCE_P = 0.28
 """``lambda v^2``-part of the pick-up's exit tension from the zero-force rig runs at
 2.0-5.0 m/s (``0.28 + 0.0175 N/(lambda v^2)``, docs/apparatus.md, "Rig law for the

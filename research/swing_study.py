@@ -26,8 +26,7 @@ steady roller speed, ``-c (v_R - v0/2)``: not part of the paper's apparatus, a p
 whether damping the chain before the fountain stops the swing. ``--figure PATH`` instead
 draws the preset's run to its end (first ``--speeds`` value): the chain speed at the
 pick-up and at the folding roller, and where each link landed in the end guide's mouth
-against the catch's band. docs/apparatus.md, "Fifteenth session" to "Seventeenth
-session".
+against the catch's band. docs/apparatus.md, "The landing swing".
 """
 
 from __future__ import annotations

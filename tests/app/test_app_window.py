@@ -250,8 +250,8 @@ def test_quit_keeps_the_clip_and_the_changed_setup(tmp_path, monkeypatch):
 
 
 def test_status_keeps_a_long_stop_reason_from_its_head():
-    """A fold's collapse message runs to 8-10 rows in the view; the window used to show the
-    last 6 rows of all messages, which cut off the head that says what failed."""
+    """A fold's collapse message runs to 8-10 rows in the view; the status keeps its head,
+    which says what failed, rather than the last 6 rows of all messages, which cut it off."""
     import textwrap
 
     reason = "t = 15.53 s: the folding roller lost the chain. " + "Why it did. " * 80 + "End."

@@ -21,9 +21,9 @@ def run_fold(cfg: SimConfig, until: float, clean: tuple[float, float],
 
 
 DESIGN_RIG_2CM = ((2.6, 0.331), (2.9, 0.315), 0.68)
-"""The 2 cm rig law the fountain D and limit presets' upper carts were sized with (sessions
-7-21): pick-up ``p`` linear in ``v`` through the two points, cart gain 0.68, read through
-the rig's contacts before their stale impulses were taken out. The presets keep those
+"""The 2 cm rig law the fountain D and limit presets' upper carts were sized with: pick-up
+``p`` linear in ``v`` through the two points, cart gain 0.68, read through the rig's
+contacts with their stale impulses left in. The presets keep those
 carts (their runs are measured with them); the report predicts with
 :data:`chainfountain.sim.apparatus.PICKUP_RIG_2CM`."""
 

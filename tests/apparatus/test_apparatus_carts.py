@@ -6,7 +6,7 @@ its selected speed; at ``t = 1 s`` the upper cart is made heavier live (9 g -> 6
 ``Delta F_uc = 0.25 N``) and the chain's speed (the rigid strand in the plate grooves)
 is compared with an unswitched run over the next 0.6 s.
 
-What the runs show (twenty-first session):
+What the runs show:
 
 - The chain in flight does not take part. The tension at the fountain start (pivot
   impulses of the 4 joints there) rises by only 0.005 N, against 0.117 N at the pick-up's
@@ -16,9 +16,9 @@ What the runs show (twenty-first session):
 - The pick-up passes the step on as an ideal rolling pulley does: the exit tension rises
   by 0.52 of ``Delta F`` once the roller unit's inertia and the pick-up's own speed
   dependence are taken out (energy balance: 1/2; the rig's steady law for these links,
-  :data:`~chainfountain.sim.apparatus.CART_GAIN_2CM`: 0.526. Until the twenty-second
-  session that gain was 0.68, read through contacts whose stale impulses overstated the
-  tension under a cart: ``docs/apparatus.md``, "Contact impulses").
+  :data:`~chainfountain.sim.apparatus.CART_GAIN_2CM`: 0.526; read through contacts
+  whose stale impulses overstate the tension under a cart, it is 0.68:
+  ``docs/apparatus.md``, "Contact impulses").
 
 So the prediction is the energy balance of the strand and roller unit
 (:func:`chainfountain.theory.apparatus.cart_step_speed` with ``gain = 1/2``, the mass of

@@ -22,8 +22,8 @@ What is asserted is what the simulation does (``docs/apparatus.md``):
   between the plate and the free end, most of it (0.0108) in the upper guide's arc,
   whose velocity-level slide joints are not energy-neutral on a discrete curved path;
   with that loss added to ``p_inf`` the rig law gives 2.983 m/s (+0.4 %, within two
-  sigma). Until the twenty-second session the rig law, read through biased contacts,
-  happened to predict 3.034 (-1.2 %, within two sigma).
+  sigma). The rig law read through biased contacts predicts 3.034 (-1.2 %, within two
+  sigma), close by chance.
 """
 
 from __future__ import annotations
@@ -249,11 +249,12 @@ def test_upper_channel_is_a_joint_guide_without_shapes(run) -> None:
 def test_joint_guide_adds_the_weight_of_the_rise_in_the_steady_window(run) -> None:
     """Frictionless: ``T0 - T_exit = xi2 k H``; measured 0.170 against 0.164 (the heavy
     preset: 0.183 against 0.195). The exit tension is read from the pivots on the grooved
-    plate since the twenty-first session; the sum through the pick-up roller's contacts
-    read 0.185 (0.180), biased by pymunk's stale impulses of contacts that touch again
-    (docs/apparatus.md, "Contact impulses"). The tolerance is that older reading's scatter
-    between equivalent runs, 0.161-0.196 against 0.164-0.165 in ten runs with the release
-    point (0-1 link) or the start speed changed (docs/apparatus.md, "Eighteenth session"):
+    plate; the sum through the pick-up roller's uncorrected contacts reads 0.185 (0.180),
+    biased by pymunk's stale impulses of contacts that touch again (docs/apparatus.md,
+    "Contact impulses"). The tolerance is that contact reading's scatter between
+    equivalent runs, 0.161-0.196 against 0.164-0.165 in ten runs with the release point
+    (0-1 link) or the start speed changed (research/notes/apparatus_notebook.md, "the
+    upper channel as a joint guide"):
     it catches a reconstruction gone wrong (without the upstream sum the exit tension read
     0.92, the gain -0.25) but cannot resolve the walls' drag of about 0.02, which the 2 %
     faster chain shows."""

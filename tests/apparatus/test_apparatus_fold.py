@@ -8,8 +8,8 @@ paper's special case ``xi3 = 1/2`` is `apparatus_special`, with a 58 g lower car
 17.5 g and lower
 cart 41 g on 30 deg tracks (41 g is the measured balance, with the upper channel's
 walls; the rig laws' balance ``T_in = T_exit`` asks for 34 g, with which the chain
-slows). The upper channel is a frictionless joint guide (``upper_guide = "joints"``,
-since the twentieth session; the figures with the walls are in brackets). The lower
+slows). The upper channel is a frictionless joint guide (``upper_guide = "joints"``;
+the figures with the walls are in brackets). The lower
 channel is
 a frictionless joint guide (slide joints to the bend centres with the positions
 projected back onto their limits every step, grooves on the straight parts and
@@ -117,7 +117,7 @@ def test_fold_fountain_carries_kH(run) -> None:
     _, rep, _, _ = run
     m = rep["measured"]
     # steady state: Tbar_0 - Tbar_E = k*H (energy); measured 0.542 against 0.542 (walls:
-    # 0.519 against 0.541 in the twentieth session, 0.525 when first written here;
-    # 0.554 with 20 resting links ahead of the pick-up; with the old soft catch 0.591
+    # 0.519 against 0.541; 0.554 with 20 resting links ahead of the pick-up; with the
+    # old soft catch 0.591
     # against 0.540, before the projection 0.421 against 0.551)
     assert m["T0_bar"] - m["TE_bar"] == pytest.approx(m["kH"], abs=0.06)

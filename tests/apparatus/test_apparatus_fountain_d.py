@@ -3,7 +3,7 @@
 Both presets use the 'floor' variant with the absorbing end (the paper's "idealized
 beaker, real floor", Fig. "pulley_experiment_equiv_ground", left) at full scale,
 ``H = 2 m``, launched at fountain D's angle (82.0 deg) from a guide ``xi2*H = 0.6 m``
-above the pick-up roller; the upper cart is the mass the 2 cm rig law of sessions 7-21
+above the pick-up roller; the upper cart is the mass the design 2 cm rig law
 (extrapolated from 2.6-2.9 m/s, :data:`apparatus_runs.DESIGN_RIG_2CM`) needs for the
 preset's speed.
 

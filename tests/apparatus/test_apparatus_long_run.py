@@ -2,14 +2,14 @@
 
 ``apparatus_special`` runs with both plates as treadmills, so nothing in the machine
 runs out, and a classroom run may go on for as long as the window is open. In this model
-it does not go on for ever (fifteenth session, docs/apparatus.md): the chain speed
+it does not go on for ever (docs/apparatus.md, "The landing swing"): the chain speed
 carries an oscillation of period about 2.1 s (the landing swing: the fountain stores and
 gives back up to 12 links, its vertex moves between 0.08 and 0.19 m; measured with the
 channel's walls) whose amplitude grows until the folding roller loses the chain. The
-collapse message used to blame a missing push ("raise the lower cart mass", read at the
-run-away speed); it now says how long the fold held and how large the swing had grown.
+collapse message says how long the fold held and how large the swing had grown; it does
+not blame a missing push ("raise the lower cart mass", as the run-away speed suggests).
 
-Twentieth session: the preset's upper channel is now a joint guide, and this is its
+The preset's upper channel is a joint guide, and this is its
 run (``chainfountain run apparatus_special --duration 25``): 3.020 m/s over 0.5-8 s, the
 swing +-0.042 m/s over 0.5-3.5 s, +-0.132 over 9.5-12.5 s, +-0.187 over 12.5-15.5 s; the
 last link to enter the end guide through its mouth did so at 17.14 s, 5.9 cm inside the
@@ -18,10 +18,10 @@ the folding roller rolled back at 18.27 s, having held the chain at ``v/2`` for 
 Started 2.94 / 2.97 / 3.03 / 3.06 m/s it ends at 5.54 s / holds 30 s / 17.97 / 13.37 s
 (``research/swing_study.py --speeds``).
 
-With the channel's walls (until the nineteenth session) the same test read 3.008 m/s,
+With the channel's walls (``upper_guide = "walls"``) the same run measured 3.008 m/s,
 the swing +-0.089 then +-0.259 m/s, the catch lost at 14.37 s 5.9 cm *outside* the
 radius (the fountain had narrowed) and the collapse at 15.53 s (started 2 % slower or
-faster: 12.0 s and 6.7 s; seventeenth session).
+faster: 12.0 s and 6.7 s).
 """
 
 from __future__ import annotations

@@ -18,8 +18,7 @@ horizontally. Over the first 0.8 s (the run later loses its catch, see the docs)
 - the lower plate's reaction grows as the chain moving away, ``lambda g v`` per second.
 
 The guided links (tail grooves, turn) are read exactly, with the energy budget's impulse
-sweep (since the twenty-fourth session; before, their shear was neglected, which read
-``Tbar_0 - Tbar_E`` 0.47 and the exit tension 0.342).
+sweep (neglecting their shear reads ``Tbar_0 - Tbar_E`` 0.47 and the exit tension 0.342).
 
 With the upper joint guide the energy budget (:func:`~chainfountain.sim.budget.open_windows`,
 an exact impulse sweep from the lumped tail's end to the upper plate) finds where the
@@ -217,7 +216,7 @@ the chain gains 0.044 m/s^2 more than the law with the loss says, not understood
 before the fountain leaves the catch (about 2 s with the joint guide)."""
 A_FIT_SIGMA = 0.015
 """Standard error (m/s^2) of a 0.4-s window's speed slope: the strand speed's residual
-about the fit is 9-12 mm/s with a correlation time of about 10 ms (scratch run sampled
+about the fit is 9-12 mm/s with a correlation time of about 10 ms (measured sampling
 every 2 ms), so about 40 independent samples over 0.115 s of spread in time."""
 
 

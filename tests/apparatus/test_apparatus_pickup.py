@@ -3,10 +3,9 @@
 
 What is asserted is the measured law (see ``docs/apparatus.md``), not a fit. The strand
 tension is read from the solver's pivot impulses (:attr:`RigResult.pivot_bar`). The
-reading summed through the contacts (:attr:`RigResult.force_bar`) carried pymunk's stale
-impulses of contacts that touch again, which made a cart force look fully passed on
-until the twenty-first session; since the twenty-second it takes them out and agrees
-(``test_contact_reading_corrects_retouching_contacts``).
+reading summed through the contacts (:attr:`RigResult.force_bar`) takes out pymunk's stale
+impulses of contacts that touch again (left in, they make a cart force look fully passed
+on) and agrees with it (``test_contact_reading_corrects_retouching_contacts``).
 
 - roller speed ``v_R = v/(1 + cos(alpha))`` (paper) within 3 %;
 - pick-up force: equals the paper's ``lambda*v^2/(1 + cos(alpha))`` only at
@@ -106,8 +105,8 @@ def test_contact_reading_corrects_retouching_contacts(monkeypatch) -> None:
     again and again. ``ChainReader.arm`` captures those starting impulses in a pre-solve
     callback, so the reading through the contacts is the pivot reading (0.5263 and
     0.5263 at ``F_c = 0.5``). Without it the contacts overstate the strand tension
-    (0.73 against 0.53), as this project's readings did until the twenty-second
-    session; the capture only reads: the pivot reading is the same to the last digit."""
+    (0.73 against 0.53); the capture only reads: the pivot reading is the same to the
+    last digit."""
     from chainfountain.sim.measure import ChainReader
 
     r = rig("pickup", 0.0, 0.5)
@@ -128,7 +127,7 @@ def test_rig_refuses_to_run_out_of_chain() -> None:
 
 
 def test_grooved_feed_holds_the_strand_until_the_roller() -> None:
-    """Put-down with the apparatus's feed (thirteenth session): strand links run on the
+    """Put-down with the apparatus's feed: strand links run on the
     groove line (``clearance`` above the roller-top centre line) without shapes, and each
     leaves its groove, shape back, once it is ``release`` links from the roller's top."""
     from chainfountain.sim.config import ChainConfig, SolverConfig

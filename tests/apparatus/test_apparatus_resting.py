@@ -1,6 +1,6 @@
 """Resting chain in the solver: ``apparatus.rest_links`` behind the folding roller,
 ``apparatus.pickup_rest_links`` ahead of the pick-up roller (docs/apparatus.md,
-"Eighth session")."""
+"Level fields worth knowing")."""
 
 from __future__ import annotations
 

@@ -1,7 +1,7 @@
 """The paper's special case ``xi2 = xi3 = 1/2`` of the full arrangement.
 
 The `apparatus_special` preset: the `apparatus_fold` chain (2 cm links, dt 0.5 ms;
-15 solver iterations against the fold preset's 20, ninth session), the lower plate
+15 solver iterations against the fold preset's 20), the lower plate
 level with the upper one
 (``xi3 = 1/2``, a 0.25 m rise after landing), both plates as treadmills
 (``plate_links = 20``), upper cart 17.5 g and lower cart 58 g on 30 deg tracks.
@@ -9,27 +9,25 @@ level with the upper one
 The paper's balance for this case is ``Tbar_uc = Tbar_lc``; this model's pick-up
 and put-down need the lower cart to push ``0.44 lambda v^2`` harder (58 g is the
 measured balance, at 20 and at 15 iterations: 54 g and 66 g lose the catch, 62 g
-runs at 3.07 m/s). Sessions
-before this one tried only lower carts of 28-41 g and concluded that the special
-case does not fold; it does, with the heavier cart.
+runs at 3.07 m/s). The special case does fold, with this heavier cart.
 
 Over 0.2-6.0 s (measured, 15 iterations, 8 resting links ahead of the pick-up
-roller, the upper channel a joint guide since the twentieth session): speed 3.021 m/s,
+roller, the upper channel a joint guide): speed 3.021 m/s,
 drift +0.21 %/s, rollers at 0.4999 / 0.5010 of the chain speed, vertex +0.06 % off the
 catenary through the measured ends, ``Tbar_0`` 0.709, ``Tbar_E`` 0.183, the first turn
 holds at least 18 links. ``Tbar_0 - Tbar_E`` is 0.527 against ``k H`` = 0.537, within
 the fold test's 0.06. The landing point swings as in `apparatus_fold`, so 0.5-s windows
 are off by up to 4.8 %.
 
-With the channel's walls (the build until the nineteenth session; `apparatus_fold`
-keeps it) the same run read 3.016 m/s, vertex -0.29 %, ``Tbar_0`` 0.716, ``Tbar_E``
-0.192, ``Tbar_0 - Tbar_E`` 0.524 against 0.539, and 0.5-s windows up to 16.1 % off
-(0.703, 0.201 and 0.502 before the nineteenth session corrected the lower guide's
-reconstruction with the pivot impulses; with 20 resting links ahead it was 0.477, a
-strict xfail). With the joint guide the uncorrected reconstruction reads 0.386, which
-``test_special_fountain_carries_kH`` would fail. Runs started 1e-6 or 2e-6 faster or
-slower stayed within the spread of the same runs at 20 iterations (walls;
-docs/apparatus.md, "Ninth session").
+With the channel's walls (``upper_guide = "walls"``) the same run measured 3.016 m/s,
+vertex -0.29 %, ``Tbar_0`` 0.716, ``Tbar_E`` 0.192, ``Tbar_0 - Tbar_E`` 0.524 against
+0.539, and 0.5-s windows up to 16.1 % off (0.703, 0.201 and 0.502 without the pivot
+impulses' correction of the lower guide's reconstruction; 0.477 with 20 resting links
+ahead, which fails the check). With the joint guide the uncorrected reconstruction
+reads 0.386, which ``test_special_fountain_carries_kH`` would fail. Runs started 1e-6
+or 2e-6 faster or slower stayed within the spread of the same runs at 20 iterations
+(walls; ``research/notes/apparatus_notebook.md``, "15 solver iterations for
+`apparatus_special`").
 """
 
 from __future__ import annotations
@@ -132,17 +130,16 @@ def test_special_fountain_carries_kH(run) -> None:
     _, rep, _, _ = run
     m = rep["measured"]
     # steady state: Tbar_0 - Tbar_E = k*H (energy), the fold test's tolerance. Measured
-    # 0.527 against 0.537 (Tbar_E 0.183). Without the nineteenth session's pivot
-    # correction the joint-guide build reads 0.386 and fails this. With the channel's
-    # walls (until the nineteenth session): 0.524 against 0.539; runs started 1e-6 and
-    # 2e-6 faster or 1e-6 slower gave 0.475-0.512 (0.481-0.509 at 20 iterations), and
-    # with 20 resting links ahead of the pick-up 0.474-0.489 (a strict xfail then); the
-    # treadmills read Tbar_E about 0.03 high (docs/apparatus.md, "Eighth session",
-    # "Ninth session"). Fourteenth session (walls): started 1-2 % faster or slower
-    # (2.94-3.06 m/s), Tbar_0 - Tbar_E - k H over 0.5-6 s is -0.157, -0.083, (3.0 m/s:
-    # -0.030), +0.018, +0.027: two of the five starts miss this tolerance, so it holds
-    # for this run, not for the preset (fold_step_study.py --speeds; docs/apparatus.md,
-    # "Fourteenth session")
+    # 0.527 against 0.537 (Tbar_E 0.183). Without the pivot correction the joint-guide
+    # build reads 0.386 and fails this. With the channel's walls: 0.524 against 0.539;
+    # runs started 1e-6 and 2e-6 faster or 1e-6 slower gave 0.475-0.512 (0.481-0.509 at
+    # 20 iterations), and with 20 resting links ahead of the pick-up 0.474-0.489; the
+    # treadmills read Tbar_E about 0.03 high (research/notes/apparatus_notebook.md,
+    # "fewer instructions per step", "15 solver iterations"). With the walls, started
+    # 1-2 % faster or slower (2.94-3.06 m/s), Tbar_0 - Tbar_E - k H over 0.5-6 s is
+    # -0.157, -0.083, (3.0 m/s: -0.030), +0.018, +0.027: two of the five starts miss this
+    # tolerance, so it holds for this run, not for the preset (fold_step_study.py
+    # --speeds; research/notes/apparatus_notebook.md, "perturbed starts")
     assert m["T0_bar"] - m["TE_bar"] == pytest.approx(m["kH"], abs=0.06)
 
 

@@ -210,7 +210,7 @@ def test_cuts_keep_the_lower_strand_joined(fold_runs) -> None:
     *_, gaps_real = fold_runs[0]
     # largest joint gap on the lower plate, every 0.1 s: the cut closes the gap where
     # the two free ends meet best in y, so the strand stays as tight as without cuts
-    # (a cut whose ends meet only in x opened 0.7 mm per cut in the session-3 trial)
+    # (a cut whose ends meet only in x opens 0.7 mm per cut)
     assert gaps.max() < 2.0 * gaps_real.max() + 1e-4
 
 
@@ -218,7 +218,7 @@ def test_fold_treadmill_keeps_the_speed_and_kH(fold_runs) -> None:
     (_, tm, *_), (_, real, *_) = fold_runs[20], fold_runs[0]
     a, b = tm["measured"], real["measured"]
     # measured over 0.2-2.5 s: v 3.0159 against 3.0103 m/s (3.0173 against 3.0077 with
-    # 20 resting links ahead of the pick-up; over 6 s in scratch runs 3.031 against
+    # 20 resting links ahead of the pick-up; over 6 s 3.031 against
     # 3.014-3.017); the windowed shape wanders chaotically, so only means
     assert a["v"] == pytest.approx(b["v"], rel=0.01)
     # Tbar_0 - Tbar_E = k H in both (the fold test's tolerance): 0.515 against 0.539 with

@@ -144,7 +144,6 @@ def test_open_arrangement_writes_its_reaction(tmp_path):
                      progress=False)
     s = json.loads(path.read_text())
     # a short run is not "steady" because its last samples settle: it is averaged whole
-    # (until the twenty-fifth session: "steady since 0.59 s", a two-sample window)
     assert not s["steady"] and s["window"][1] - s["window"][0] > 0.5
     assert s["outputs"][-2:] == ["apparatus.csv", "reaction.png"]
     assert all((tmp_path / f).exists() for f in s["outputs"])

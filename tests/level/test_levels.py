@@ -140,7 +140,7 @@ def test_apparatus_bad_files_one_clear_line(tmp_path, key, new, field, shown, al
     if key in ("variant", "fold_clearance"):  # the preset leaves it at its default, 0
         text = _replace_key(text, "plate_links", "plate_links = 20\nfold_clearance = 0.002")
     if key in ("plate", "upper_guide"):  # no treadmill: a contact plate may have none
-        assert 'upper_guide = "joints"' in text  # the preset's (twentieth session)
+        assert 'upper_guide = "joints"' in text  # the preset's
         text = _replace_key(text, "plate_links", "plate_links = 0")
     bad = tmp_path / "bad.toml"
     bad.write_text(_replace_key(text, key, new))
