@@ -124,8 +124,8 @@ def test_fold_with_clearance_agrees_at_half_the_step():
 @pytest.mark.xfail(strict=True, raises=(FoldCollapsed, AssertionError),
                    reason="the apparatus's fold is not converged in the step: at dt 0.25 ms "
                    "the special preset's folding roller falls behind and the run ends at "
-                   "0.65 s (2.1 s with the channel's walls; docs/apparatus.md, 'Twelfth "
-                   "session')")
+                   "0.65 s (2.1 s with the channel's walls; docs/apparatus.md, 'The fold "
+                   "depends on the time step')")
 def test_special_fold_holds_at_half_the_step():
     """The special preset at half its step (0.25 ms) should run as at 0.5 ms: no
     collapse in 2.5 s, the folding roller at ``v/2``, the speed steady."""
