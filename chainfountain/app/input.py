@@ -17,7 +17,17 @@ class InputMixin:
     """Event handling of :class:`~chainfountain.app.window.App` (uses its state)."""
 
     def _text_focused(self) -> bool:
-        return any(isinstance(e, UITextEntryLine) for e in self.ui.get_focus_set() or ())
+        """A text field has the keyboard (pygame_gui keeps an unfocused field in its focus
+        set after Enter: only a field that says it is focused counts)."""
+        return any(isinstance(e, UITextEntryLine) and e.is_focused
+                   for e in self.ui.get_focus_set() or ())
+
+    def release_keyboard(self) -> None:
+        """Give the keys back to the scene: no text field keeps the focus."""
+        for e in list(self.ui.get_focus_set() or ()):
+            if isinstance(e, UITextEntryLine):
+                e.unfocus()
+        self.ui.set_focus_set(None)
 
     def handle(self, ev: pygame.event.Event) -> None:
         """Process one pygame event."""
@@ -103,10 +113,11 @@ class InputMixin:
                     self.session.say(f"{row.spec.label}: {text!r} is not a number; "
                                      f"allowed: {row.spec.allowed()}")
                     self._show_value(row)
+                    self.release_keyboard()
                     return
                 self._pending.pop(row.spec.path, None)
                 self.set_field(row.spec.path, v)
-                row.entry.unfocus()
+                self.release_keyboard()
                 return
 
     def _on_key(self, ev: pygame.event.Event) -> None:
@@ -119,9 +130,7 @@ class InputMixin:
             elif self.close_dialogs():
                 pass
             elif self._text_focused():
-                for e in list(self.ui.get_focus_set() or ()):
-                    if isinstance(e, UITextEntryLine):
-                        e.unfocus()
+                self.release_keyboard()
             else:
                 self.request_quit()
             return

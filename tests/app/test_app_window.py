@@ -298,3 +298,40 @@ def test_open_arrangement_plots_the_plate_reaction(tmp_path, monkeypatch):
     s = Session(io.load(library.resolve("apparatus_special")))
     s.advance(0.05)
     assert len(s.history.t) > 0 and not np.isfinite(s.history.arrays()["reaction"]).any()
+
+
+def _type_into(app: App, row, text: str, end: int) -> None:
+    """Click a field, replace its text by ``text`` as a person types, end with ``end``."""
+    click(app, row.entry.rect.center)
+    assert app._text_focused()
+    for _ in range(12):
+        key(app, pygame.K_BACKSPACE)
+    for ch in text:
+        pygame.event.post(pygame.event.Event(pygame.TEXTINPUT, text=ch))
+        app.run_frame()
+    key(app, end, unicode="\r" if end == pygame.K_RETURN else "")
+    app.run_frame()  # the field's own event (entry finished) arrives one frame later
+
+
+@pytest.mark.parametrize("end", [pygame.K_RETURN, pygame.K_ESCAPE], ids=["enter", "esc"])
+def test_every_key_works_after_typing_in_any_field(app, end):
+    """Enter or Esc in a field gives the keys back to the scene: after each field of the
+    panel is typed into, Space, H, T and F act at once (no click on the scene needed)."""
+    for row in app.rows:
+        _type_into(app, row, row.entry.get_text() or "1", end)
+        assert not app._text_focused(), row.spec.path
+        paused = app.session.paused
+        key(app, pygame.K_SPACE)
+        assert app.session.paused != paused, row.spec.path
+        key(app, pygame.K_h)
+        assert app.show_help, row.spec.path
+        key(app, pygame.K_h)
+        theory = app.show_theory
+        key(app, pygame.K_t)
+        assert app.show_theory != theory, row.spec.path
+        key(app, pygame.K_t)
+        app.camera.zoom(3.0, app.scene_rect.center)
+        scale = app.camera.scale
+        key(app, pygame.K_f)
+        assert app.camera.scale != scale, row.spec.path
+    assert app.running  # Esc in a field released it and did not quit
