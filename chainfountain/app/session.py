@@ -58,9 +58,9 @@ def default_level() -> Level:
 
 
 def paused_message(reason: str) -> str:
-    """The status line for a run that stopped itself: ``reason`` (the exception's text)
-    and that the window is paused."""
-    return f"{reason.rstrip('.')}; paused"
+    """The status line for a run that stopped itself: ``reason`` (the exception's text),
+    that the window is paused and how to go on."""
+    return f"{reason.rstrip('.')}; paused: press R to start again"
 
 
 @dataclass
@@ -130,8 +130,12 @@ class Session:
         return text
 
     def reset(self) -> None:
-        """Rebuild the scene from the current setup (time back to 0)."""
+        """Rebuild the scene from the current setup (time back to 0); a run that had
+        stopped itself starts again."""
+        stopped = self.stopped is not None
         self._build()
+        if stopped:
+            self.paused = False
         self.say("reset: t = 0")
 
     def load_level(self, level: Level, source: Path | None = None) -> bool:
@@ -264,6 +268,10 @@ class Session:
         return f
 
     def toggle_pause(self) -> bool:
+        """Pause or run; a run that stopped itself stays paused and says how to go on."""
+        if self.stopped is not None and self.paused:
+            self.say(paused_message(self.stopped))
+            return True
         self.paused = not self.paused
         self._acc = 0.0
         self.say("paused" if self.paused else "running")

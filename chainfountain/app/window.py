@@ -368,6 +368,9 @@ class App(InputMixin, DrawMixin):
             t0 = time.perf_counter()
             s.tick(wall_dt, budget)
             self.physics_time = time.perf_counter() - t0
+        play = "Play" if s.paused else "Pause"
+        if self.buttons["play"].text != play:
+            self.buttons["play"].set_text(play)
         self.ui.update(wall_dt)
         for err in self.saver.errors:
             s.say(err)

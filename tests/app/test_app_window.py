@@ -12,7 +12,7 @@ import pygame_gui  # noqa: E402
 import pytest  # noqa: E402
 
 from chainfountain.app import render  # noqa: E402
-from chainfountain.app.session import Session  # noqa: E402
+from chainfountain.app.session import Session, paused_message  # noqa: E402
 from chainfountain.app.window import STOP_ROWS, App, status_rows  # noqa: E402
 from chainfountain.level import io  # noqa: E402
 from chainfountain.sim.config import SimConfig  # noqa: E402
@@ -255,7 +255,7 @@ def test_status_keeps_a_long_stop_reason_from_its_head():
     import textwrap
 
     reason = "t = 15.53 s: the folding roller lost the chain. " + "Why it did. " * 80 + "End."
-    msgs = [reason.rstrip(".") + "; paused", "running", "paused"]
+    msgs = [paused_message(reason), "running", "paused"]
 
     def wrap(m: str) -> list[str]:
         return textwrap.wrap(m, 70)
@@ -265,8 +265,8 @@ def test_status_keeps_a_long_stop_reason_from_its_head():
     assert len(wrap(reason)) > STOP_ROWS and len(rows) == STOP_ROWS + 1
     assert rows[-1] == "paused"  # the newest other message, once
     short = "t = 1.00 s: the table is used up."
-    rows = status_rows([short.rstrip(".") + "; paused"], short, wrap)
-    assert rows == ["t = 1.00 s: the table is used up; paused"]
+    rows = status_rows([paused_message(short)], short, wrap)
+    assert rows == ["t = 1.00 s: the table is used up; paused: press R to start again"]
     # not stopped: the newest messages' last 6 rows, as before
     rows = status_rows(["a " * 200, "b"], None, wrap)
     assert len(rows) == 6 and rows[-1] == "b"
@@ -335,3 +335,30 @@ def test_every_key_works_after_typing_in_any_field(app, end):
         key(app, pygame.K_f)
         assert app.camera.scale != scale, row.spec.path
     assert app.running  # Esc in a field released it and did not quit
+
+
+def test_play_button_says_what_it_does(app):
+    button = app.buttons["play"]
+    app.run_frame()
+    assert not app.session.paused and button.text == "Pause"
+    key(app, pygame.K_SPACE)
+    assert app.session.paused and button.text == "Play"
+    click(app, button.rect.center)
+    assert not app.session.paused and button.text == "Pause"
+
+
+def test_a_run_that_stopped_itself_says_press_r(app, monkeypatch):
+    from chainfountain.errors import UserError
+
+    def used_up() -> None:
+        raise UserError("t = 0.10 s: the table is used up.")
+
+    monkeypatch.setattr(app.session.sim, "step", used_up)
+    app.run_frame()
+    s = app.session
+    assert s.paused and s.stopped and app.buttons["play"].text == "Play"
+    key(app, pygame.K_SPACE)  # Space cannot run a stopped run: it says what to do
+    assert s.paused and "press R to start again" in s.messages[-1][1]
+    key(app, pygame.K_r)
+    app.run_frame()
+    assert s.stopped is None and not s.paused and s.sim.time > 0
