@@ -72,7 +72,7 @@ def _smooth(y: np.ndarray, n: int) -> np.ndarray:
 
 
 class DrawMixin:
-    """Drawing of :class:`~chainfountain.app.window.App` (reads its state and session)."""
+    """Drawing of :class:`~chainfountain.app.window.App` (reads its own state and the session)."""
 
     def draw(self) -> None:
         """Draw the whole window into ``self.screen``."""
