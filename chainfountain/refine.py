@@ -21,11 +21,14 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from chainfountain.errors import UserError
-from chainfountain.sim.config import SimConfig
+
+if TYPE_CHECKING:
+    from chainfountain.sim.config import SimConfig
 
 SETTLE = 1.5
 """Simulated seconds from the catenary start before averaging (as tests/sim/test_sim_feed.py)."""
@@ -33,9 +36,6 @@ WINDOW = 2.0
 """Simulated seconds averaged."""
 BLOCKS = 4
 """Blocks of the window for the statistical error of its mean."""
-MIN_LINK_LENGTH = 1e-3
-"""The smallest link length a level may have (``chain.link_length``)."""
-
 FIGURES: dict[str, str] = {
     "h": "vertex height h (relative error)",
     "vertex_x": "vertex x (relative error)",
@@ -45,9 +45,14 @@ FIGURES: dict[str, str] = {
 }
 """Figures compared with the paper's catenary, keyed as in ``summary.json``."""
 
-METHOD = ("refinement: the level at (L, dt) and at (L/2, dt/2), each started on the "
-          f"predicted catenary, settled {SETTLE:g} s and averaged {WINDOW:g} s; "
-          "discretisation error of (L, dt) = 2 (f(L) - f(L/2)) (first order)")
+
+
+def method(settle: float, window: float, refinements: int) -> str:
+    """How the estimate was made, in words (``converge.json``, ``summary.json``)."""
+    ladder = ", ".join(["(L, dt)"] + [f"(L/{2**i}, dt/{2**i})" for i in range(1, refinements)])
+    return (f"refinement: the level at {ladder}, each started on the predicted catenary, "
+            f"settled {settle:g} s and averaged {window:g} s; discretisation error of "
+            "(L, dt) = 2 (f(L) - f(L/2)) (first order)")
 
 
 @dataclass
@@ -72,6 +77,8 @@ class Refinement:
     """The ladder of runs and the first-order estimate for the coarsest."""
 
     level: str
+    settle: float = SETTLE
+    window: float = WINDOW
     runs: list[RefinementRun] = field(default_factory=list)
 
     def discretisation_error(self) -> dict[str, float]:
@@ -118,7 +125,8 @@ class Refinement:
 
     def as_dict(self) -> dict:
         """JSON-ready form (``converge.json``, ``summary.json``'s ``error_bars``)."""
-        out: dict = {"method": METHOD, "level": self.level,
+        out: dict = {"method": method(self.settle, self.window, len(self.runs)),
+                     "level": self.level,
                      "runs": [vars(r) for r in self.runs]}
         if len(self.runs) >= 2:
             out["discretisation_error"] = self.discretisation_error()
@@ -131,17 +139,27 @@ class Refinement:
 
 
 def refined_config(cfg: SimConfig, factor: int, level: str = "level") -> SimConfig:
-    """``cfg`` with link length and step divided by ``factor``, started on the catenary."""
+    """``cfg`` with link length and step divided by ``factor``, started on the catenary
+    (:class:`~chainfountain.errors.UserError` when the level is not fed, or the link would
+    be shorter than the schema allows)."""
+    from chainfountain.fields import allowed_text, in_range
+    from chainfountain.level.io import field_meta
+
     if cfg.kind != "feed":
         raise UserError(f"{level}: kind = {cfg.kind!r}; allowed: refinement works on fed "
                         "levels (kind 'feed'), whose fountain the paper predicts from the feed")
     out = copy.deepcopy(cfg)
     out.chain.link_length = cfg.chain.link_length / factor
-    if out.chain.link_length < MIN_LINK_LENGTH - 1e-15:
+    meta = field_meta("chain.link_length")
+    if not in_range(out.chain.link_length, meta):
+        most = 1
+        while in_range(cfg.chain.link_length / 2**most, meta):
+            most += 1
         raise UserError(
-            f"{level}: chain.link_length = {cfg.chain.link_length:g} m refined {factor} times "
-            f"is {out.chain.link_length:g} m; allowed: at least {MIN_LINK_LENGTH:g} m (use "
-            "fewer refinements)")
+            f"--refinements {int(math.log2(factor)) + 1}: {level}'s chain.link_length "
+            f"{cfg.chain.link_length:g} m / {factor} = {out.chain.link_length:g} m, but a link "
+            f"length must be {allowed_text(meta)}; allowed: at most {most} refinements for "
+            "this level")
     out.chain.link_radius = min(cfg.chain.link_radius, 0.4 * out.chain.link_length)
     out.solver.dt = cfg.solver.dt / factor
     out.initial.mode = "catenary"
@@ -190,7 +208,7 @@ def refine(cfg: SimConfig, level: str = "level", *, refinements: int = 2,
     if refinements < 2:
         raise UserError(f"refinements = {refinements}; allowed: at least 2")
     configs = [refined_config(cfg, 2**i, level) for i in range(refinements)]
-    out = Refinement(level=level)
+    out = Refinement(level=level, settle=settle, window=window)
     for i, c in enumerate(configs):
         if progress is not None:
             progress(f"run {i + 1}/{refinements}: L = {c.chain.link_length * 1e3:g} mm, "

@@ -109,7 +109,9 @@ def main(argv: list[str] | None = None) -> int:
               + (f"  beyond the bound: {', '.join(fails)}" if fails else ""))
     print("bounds (issue 35): " + ", ".join(f"{f} {v:.1%}" for f, v in LIMITS.items()))
     if a.json:
-        a.json.write_text(json.dumps(results, indent=1))
+        from chainfountain.headless import json_safe
+
+        a.json.write_text(json.dumps(json_safe(results), indent=1))
     return 0 if ok else 1
 
 

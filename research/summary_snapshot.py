@@ -13,7 +13,8 @@ Usage::
     python research/summary_snapshot.py --out after.json           # on the new code
     python research/summary_snapshot.py --compare before.json after.json
 
-About 3 minutes at the default 0.5 s (the near-critical fountain D presets dominate).
+About 8 minutes at the default 3 s, long enough for the steady-state path (the
+near-critical fountain D presets dominate).
 """
 
 from __future__ import annotations
@@ -85,7 +86,7 @@ def compare(a: dict, b: dict) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--duration", type=float, default=0.5)
+    ap.add_argument("--duration", type=float, default=3.0)
     ap.add_argument("--out", type=Path)
     ap.add_argument("--compare", nargs=2, type=Path, metavar=("BEFORE", "AFTER"))
     a = ap.parse_args(argv)

@@ -57,7 +57,6 @@ KEYS: tuple[tuple[str, str], ...] = (
 )
 
 
-
 def _smooth(y: np.ndarray, n: int) -> np.ndarray:
     """Trailing moving average over ``n`` samples (NaN-free input assumed)."""
     if len(y) < 2 or n <= 1:

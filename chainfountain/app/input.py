@@ -8,9 +8,7 @@ import time
 
 import pygame
 import pygame_gui
-from pygame_gui.elements import (
-    UITextEntryLine,
-)
+from pygame_gui.elements import UITextEntryLine
 
 
 class InputMixin:
@@ -23,10 +21,8 @@ class InputMixin:
                    for e in self.ui.get_focus_set() or ())
 
     def release_keyboard(self) -> None:
-        """Give the keys back to the scene: no text field keeps the focus."""
-        for e in list(self.ui.get_focus_set() or ()):
-            if isinstance(e, UITextEntryLine):
-                e.unfocus()
+        """Give the keys back to the scene: no text field keeps the focus (the manager
+        unfocuses every element it drops from its focus set)."""
         self.ui.set_focus_set(None)
 
     def handle(self, ev: pygame.event.Event) -> None:

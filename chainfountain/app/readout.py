@@ -157,14 +157,14 @@ def compute_readout(sim: Simulation, recorder: Recorder, history: History) -> Re
     if sim.dragging:
         r.note = "a link is held: tension readings paused"
         r.T0_bar = r.TE_bar = math.nan
-    r.steady = is_steady(sim, history)
+    r.steady = is_steady(sim, hist)
     return r
 
 
-def is_steady(sim: Simulation, history: History) -> bool:
-    """Vertex height and mean speed stayed within the level's tolerance for a window."""
+def is_steady(sim: Simulation, hist: dict[str, np.ndarray]) -> bool:
+    """Vertex height and mean speed (``hist``: :meth:`History.arrays`) stayed within the
+    level's tolerance for a window."""
     rc = sim.config.recording
-    hist = history.arrays()
     t = hist["t"]
     if len(t) < 10 or t[-1] - t[0] < rc.window or sim.dragging:
         return False

@@ -28,7 +28,6 @@ from chainfountain.app.readout import (
     History,
     Readout,
     compute_readout,
-    is_steady,
 )
 from chainfountain.errors import UserError
 from chainfountain.level import io
@@ -269,7 +268,7 @@ class Session:
 
     def toggle_pause(self) -> bool:
         """Pause or run; a run that stopped itself stays paused and says how to go on."""
-        if self.stopped is not None and self.paused:
+        if self.stopped is not None:  # a run that stopped itself is paused
             self.say(paused_message(self.stopped))
             return True
         self.paused = not self.paused
@@ -431,15 +430,8 @@ class Session:
             self._readout.t = self.sim.time
             return self._readout
         self._readout_key = key
-        self._readout = self._compute_readout()
+        self._readout = compute_readout(self.sim, self.recorder, self.history)
         return self._readout
-
-    def _compute_readout(self) -> Readout:
-        return compute_readout(self.sim, self.recorder, self.history)
-
-    def is_steady(self) -> bool:
-        """Vertex height and mean speed stayed within the level's tolerance for a window."""
-        return is_steady(self.sim, self.history)
 
     def setup_copy(self) -> Level:
         """A copy of the current setup as a level (what Ctrl+S writes)."""

@@ -33,7 +33,7 @@ from chainfountain.app import paths, render
 from chainfountain.app.capture import BackgroundSaver, ClipRecorder, mp4_available, timestamp
 from chainfountain.app.capture import unique_path as _unique
 from chainfountain.app.controls import SLIDER_STEPS, FieldSpec, control_fields
-from chainfountain.app.draw import KEYS, PLOT_EVERY, STOP_ROWS, DrawMixin, status_rows
+from chainfountain.app.draw import DrawMixin
 from chainfountain.app.input import InputMixin
 from chainfountain.app.session import Session
 
@@ -44,7 +44,6 @@ MIN_FPS = 30
 """The frame rate may drop to this before the simulation runs slower than requested."""
 REBUILD_DELAY = 0.35
 """Seconds a rebuild-only slider must rest before the scene is rebuilt."""
-
 
 
 @dataclass
@@ -60,7 +59,6 @@ class ControlRow:
 def _tooltip(spec: FieldSpec) -> str:
     how = "applies live" if spec.live else "rebuilds the scene"
     return html.escape(f"{spec.path}: {spec.doc}. Allowed: {spec.allowed()}. Changing it {how}.")
-
 
 
 class App(InputMixin, DrawMixin):
@@ -457,5 +455,3 @@ class App(InputMixin, DrawMixin):
         pygame.display.quit()
         return notes
 
-
-__all__ = ["KEYS", "PLOT_EVERY", "STOP_ROWS", "App", "ControlRow", "status_rows"]

@@ -44,7 +44,7 @@ def _pct(x: float | None, absolute: bool) -> str:
 
 def format_table(res) -> str:
     """The ladder and the estimate as plain text."""
-    from chainfountain.refine import FIGURES
+    from chainfountain.refine import BLOCKS, FIGURES
 
     names = {"h": "vertex y", "vertex_x": "vertex x", "l": "landing", "speed": "speed",
              "T0_bar": "Tbar_0"}
@@ -71,7 +71,7 @@ def format_table(res) -> str:
         lines.append(f"{'observed order':21s} " + " ".join(
             f"{'-' if order[f] is None else format(order[f], '.2f'):>9s}" for f in FIGURES))
     lines.append("estimate: 2 (f(L) - f(L/2)), first order in L and dt together; "
-                 "statistical: standard error of the window means (4 blocks); error bar: "
+                 f"statistical: standard error of the window means ({BLOCKS} blocks); error bar: "
                  "|estimate| + 2 x statistical (* not resolved: the estimate is within twice "
                  "its statistical error; a longer --window resolves more)")
     return "\n".join(lines)

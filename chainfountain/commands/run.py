@@ -63,10 +63,13 @@ def run(args: argparse.Namespace) -> int:
             f"{level.sim.kind!r}: the apparatus lays its chain along its own path; to start a "
             "perturbed run, change apparatus.speed slightly); allowed: only with kind 'feed' "
             "levels")
-    if args.error_bars and level.sim.kind != "feed":
-        raise UserError(
-            f"argument --error-bars: {level.meta.name!r} is kind {level.sim.kind!r}; allowed: "
-            "only with kind 'feed' levels, whose fountain the paper predicts from the feed")
+    if args.error_bars:
+        from chainfountain.refine import refined_config
+
+        try:  # the refinement's checks, before anything is written
+            refined_config(level.sim, 2, level.meta.name)
+        except UserError as exc:
+            raise UserError(f"argument --error-bars: {exc}") from None
     out = prepare_out_dir(args.out or default_out_dir(level))
     bars = None
     if args.error_bars:

@@ -12,8 +12,9 @@ import pygame_gui  # noqa: E402
 import pytest  # noqa: E402
 
 from chainfountain.app import render  # noqa: E402
+from chainfountain.app.draw import STOP_ROWS, status_rows  # noqa: E402
 from chainfountain.app.session import Session, paused_message  # noqa: E402
-from chainfountain.app.window import STOP_ROWS, App, status_rows  # noqa: E402
+from chainfountain.app.window import App  # noqa: E402
 from chainfountain.level import io  # noqa: E402
 from chainfountain.sim.config import SimConfig  # noqa: E402
 
