@@ -291,7 +291,12 @@ variant a slider would change nothing (xi3 is the lower table's height, and only
 
 
 def unused_fields(config: Any) -> set[str]:
-    """Field paths that ``config`` has but does not use (see :data:`ONLY_FOR_VARIANT`)."""
+    """Field paths that ``config`` has but does not use (see :data:`ONLY_FOR_VARIANT`;
+    a fed level's machine fields unless ``feed.drive = "ideal_floor"``)."""
+    if getattr(config, "kind", None) == "feed":
+        if config.feed.drive == "ideal_floor":
+            return {"feed.end_tension"}  # the real floor takes the chain without pull
+        return {"feed.xi2", "feed.cart_force", "feed.machine_mass"}
     if getattr(config, "kind", None) != "apparatus":
         return set()
     variant = config.apparatus.variant

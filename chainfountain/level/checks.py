@@ -7,7 +7,7 @@ import dataclasses
 import math
 
 from chainfountain.level.model import Level, _fail
-from chainfountain.sim.config import KINDS, InitialConfig, SimConfig
+from chainfountain.sim.config import KINDS, FeedConfig, InitialConfig, SimConfig
 
 MAX_LINKS = 20_000
 """Most chain links a level may put into the simulation at its start (the chain in
@@ -168,12 +168,49 @@ def _check_feed(level: Level, where: str) -> None:
               f"fall past the solid floor's end; allowed: a width > 2*l = {2.0 * f.l:.4g} m "
               "(the floor is centred on the launch point)")
     _check_blocks_in_scene(sim, where)
+    _check_drive(level, where)
     init, default_init = sim.initial, InitialConfig()
     if init.mode == "catenary" and init.stub_length != default_init.stub_length:
         _fail(where, "initial.stub_length",
               f"{init.stub_length!r} m has no effect with initial.mode = 'catenary' (the chain "
               f"starts on the predicted fountain); allowed: {default_init.stub_length!r}, or "
               "initial.mode = 'stub'")
+
+
+DRIVE_FIELDS = ("xi2", "cart_force", "machine_mass")
+"""Feed fields only the ideal floor machine (``feed.drive = "ideal_floor"``) uses."""
+
+
+def _check_drive(level: Level, where: str) -> None:
+    """The ideal floor machine's settings: used only by it, and selecting a fountain."""
+    from chainfountain.theory.apparatus import ideal_floor_speed
+
+    sim = level.sim
+    feed, defaults = sim.feed, FeedConfig()
+    if feed.drive != "ideal_floor":
+        for name in DRIVE_FIELDS:
+            if getattr(feed, name) != getattr(defaults, name):
+                _fail(where, f"feed.{name}",
+                      f"{getattr(feed, name)!r} has no effect with feed.drive = "
+                      f"{feed.drive!r}; allowed: {getattr(defaults, name)!r}, or feed.drive = "
+                      "'ideal_floor'")
+        return
+    if feed.floor != "absorbing" or feed.end_tension != 0.0:
+        field = "feed.floor" if feed.floor != "absorbing" else "feed.end_tension"
+        _fail(where, field,
+              f"{getattr(feed, field.split('.')[1])!r} with feed.drive = 'ideal_floor' (the "
+              "paper's real floor takes the chain without pull); allowed: feed.floor = "
+              "'absorbing' with feed.end_tension = 0")
+    lam, g, H = sim.chain.linear_density, sim.gravity, feed.drop
+    share = feed.xi2 + feed.cart_force / (lam * g * H)
+    if share >= 0.5:
+        v = ideal_floor_speed(H, feed.xi2, feed.cart_force, lam, g)
+        shown = f"{v:.4g} m/s" if math.isfinite(v) else "no speed"
+        _fail(where, "feed.xi2",
+              f"{feed.xi2!r} with feed.cart_force = {feed.cart_force:g} N selects {shown}, "
+              f"too slow for a fountain over feed.drop = {H:g} m (xi2 + F_uc/(lambda*g*H) = "
+              f"{share:.4g}; k*H < 1 needs < 0.5); allowed: xi2 < "
+              f"{max(0.0, 0.5 - feed.cart_force / (lam * g * H)):.4g} with this cart")
 
 
 def _check_apparatus(level: Level, where: str) -> None:

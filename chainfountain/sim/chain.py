@@ -19,6 +19,7 @@ scaled tension exceeds 1/2, and leaves smooth bending alone.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import pymunk
@@ -129,7 +130,9 @@ class Chain:
         dynamic; no spring object when both are zero."""
         c = self.cfg.bending_stiffness
         d = self.cfg.bending_damping
-        if (self.wave_damping > 0.0 and down.body.body_type == pymunk.Body.DYNAMIC
+        if math.isinf(down.body.moment) and math.isinf(up.body.moment):
+            c = d = 0.0  # neither can turn (the ideal machine's guide): nothing to spring
+        elif (self.wave_damping > 0.0 and down.body.body_type == pymunk.Body.DYNAMIC
                 and up.body.body_type == pymunk.Body.DYNAMIC):
             d += self.wave_damping
         spring = down.up_spring

@@ -109,6 +109,27 @@ class FeedConfig:
         2, unit="1", doc="Kinematic links kept inside the guide (upstream of the launch point)",
         min=1, max=20,
     )
+    drive: str = param(
+        "motor", unit="", doc="What moves the chain: 'motor', the guide runs at feed.speed; "
+        "'ideal_floor', the paper's idealized beaker with a real floor: the chain is picked "
+        "up at the loss-free rate (lambda*v^2/2), lifted feed.xi2*H and held back by a cart "
+        "(feed.cart_force), so the fountain selects v^2 = 2g(H(1 - xi2) - F_uc/(lambda*g)); "
+        "feed.speed is then the start speed",
+        choices=("motor", "ideal_floor"),
+    )
+    xi2: float = param(
+        0.0, unit="1", doc="Drive 'ideal_floor': height the chain is lifted before the "
+        "start, as a fraction xi2 of H (the paper's upper table offset)", min=0.0, max=0.5,
+        min_inclusive=True, max_inclusive=False,
+    )
+    cart_force: float = param(
+        0.0, unit="N", doc="Drive 'ideal_floor': force F_uc of the upper cart holding the "
+        "chain back", min=0.0, max=100.0,
+    )
+    machine_mass: float = param(
+        0.05, unit="kg", doc="Drive 'ideal_floor': inertia of the cart and the upstream "
+        "strand (sets how fast the speed settles, not where)", min=0.001, max=100.0,
+    )
 
 
 @dataclass

@@ -21,8 +21,10 @@ from chainfountain.sim.chain import Chain
 from chainfountain.sim.config import SimConfig
 from chainfountain.sim.feed import Feed
 from chainfountain.sim.measure import ChainReader, ChainState, link_ends, polyline
+from chainfountain.sim.piston import Piston
 from chainfountain.sim.reference import LaunchReference
 from chainfountain.sim.watchdog import CHECK_INTERVAL, Limits, Watchdog, limits_for
+from chainfountain.theory.apparatus import ideal_floor_speed
 
 
 class Observer(Protocol):
@@ -97,6 +99,7 @@ class Simulation:
         self.watchdog = Watchdog(space, self._limits())
         """Stops the run when it diverges (:mod:`chainfountain.sim.watchdog`)."""
         self.apparatus: Apparatus | None = None
+        self.piston: Piston | None = None
         if cfg.kind == "apparatus":
             self._build_apparatus()
             return
@@ -112,15 +115,12 @@ class Simulation:
         self.rollers = [Roller.add(space, r) for r in cfg.rollers]
         self.carts = [Cart.add(space, c, error_bias=cfg.solver.joint_error_bias)
                       for c in cfg.carts]
-        try:
-            self.reference: LaunchReference | None = LaunchReference.from_launch(
-                cfg.feed.speed, cfg.feed.launch_angle, cfg.feed.drop, cfg.gravity,
-                TE_bar=cfg.feed.end_tension)
-        except ValueError:
-            self.reference = None
+        self.reference: LaunchReference | None = self._feed_reference(cfg.feed.speed)
         self.feed = Feed(self.chain, cfg.feed)
         self.feed.initialise(cfg.initial, self.reference)
         self.feed.set_reference(self.reference)
+        if cfg.feed.drive == "ideal_floor":
+            self.piston = Piston(self)
         self.reader = ChainReader(space, self.chain)
         self.time = 0.0
         self.steps = 0
@@ -247,16 +247,28 @@ class Simulation:
                 body.velocity = (vx + scale * rng.standard_normal(),
                                  vy + scale * rng.standard_normal())
 
-    def set_feed_speed(self, v: float) -> None:
-        """Change the feed speed live (m/s); the reference is recomputed."""
-        self.feed.set_speed(v)
-        self.watchdog.limits = self._limits()
+    def _feed_reference(self, v: float) -> LaunchReference | None:
+        """The paper's fountain for this feed at speed ``v``; with the ideal floor machine
+        (``feed.drive = "ideal_floor"``) at the speed the machine selects, whatever ``v``."""
+        f = self.config.feed
+        if f.drive == "ideal_floor":
+            v = ideal_floor_speed(f.drop, f.xi2, f.cart_force,
+                                  self.config.chain.linear_density, self.config.gravity)
         try:
-            self.reference = LaunchReference.from_launch(
-                v, self.config.feed.launch_angle, self.config.feed.drop, self.g,
-                TE_bar=self.config.feed.end_tension)
+            return LaunchReference.from_launch(v, f.launch_angle, f.drop, self.config.gravity,
+                                               TE_bar=f.end_tension)
         except ValueError:
-            self.reference = None
+            return None
+
+    def set_feed_speed(self, v: float) -> None:
+        """Change the feed speed live (m/s); the reference is recomputed. With the ideal
+        floor machine this pushes the chain to ``v``, and the machine settles back."""
+        if self.piston is not None:
+            self.piston.set_speed(v)
+        else:
+            self.feed.set_speed(v)
+        self.watchdog.limits = self._limits()
+        self.reference = self._feed_reference(v)
         self.feed.set_reference(self.reference)
         self.chain.wave_damping = self._wave_damping(v)
         self.chain.set_bending()  # refits every damper to the new speed

@@ -46,6 +46,15 @@ def apparatus_T0_bar(T_uc: float, xi2: float, k: float, H: float) -> float:
     return 0.5 + T_uc + xi2 * k * H
 
 
+def ideal_floor_speed(H: float, xi2: float, F_uc: float, lam: float, g: float = G0) -> float:
+    """Speed the idealized beaker with a real floor selects (section "Idealized beaker,
+    real floor"): ``Tbar_0 = 1/2 + Tbar_uc + xi2 k H`` meets the fountain's
+    ``Tbar_0 = k H`` (``Tbar_E = 0``), so ``v^2 = 2 g (H (1 - xi2) - F_uc/(lambda g))``.
+    ``nan`` when the cart holds the chain (no positive ``v^2``)."""
+    v2 = 2.0 * g * (H * (1.0 - xi2) - F_uc / (lam * g))
+    return math.sqrt(v2) if v2 > 0.0 else math.nan
+
+
 def balanced_upper_cart(T_lc: float, xi2: float, xi3: float, k: float, H: float) -> float:
     """Steady-state condition: ``Tbar_uc = Tbar_lc + k*H*(1 - xi2 - xi3)``."""
     return T_lc + k * H * (1.0 - xi2 - xi3)

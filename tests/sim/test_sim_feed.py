@@ -15,7 +15,9 @@ from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.measure import Summary
 
 FEED_LEVELS = [p for p in sorted(library.shipped_dir().glob("*.toml"))
-               if io.load(p).sim.kind == "feed"]
+               if io.load(p).sim.kind == "feed" and io.load(p).sim.feed.drive == "motor"]
+"""The motor-driven fed levels (the ideal floor machine selects its own speed:
+tests/sim/test_ideal_floor.py)."""
 
 SETTLE = 1.5
 WINDOW = 2.0

@@ -1,0 +1,127 @@
+"""The paper's idealized beaker with a real floor as a guide the chain itself moves.
+
+With ``feed.drive = "ideal_floor"`` a fed level's guide is a *piston*: its links are
+dynamic bodies held on the launch line by groove joints (they cannot turn), jointed to
+each other and to the fountain, so the solver finds the tension at the launch point. The
+machine's law acts on them as an external force along the line,
+
+    -(lambda v^2/2 + F_uc + lambda g xi2 H),
+
+the loss-free pick-up from rest, the upper cart and the lift to the start (paper, section
+"Idealized beaker, real floor"; their own weight is cancelled: the law carries the lift),
+with the cart's and upstream strand's inertia (``feed.machine_mass``) shared among them.
+The fountain's ``Tbar_0 = k H`` then selects ``v^2 = 2 g (H (1 - xi2) - F_uc/(lambda g))``
+(:func:`chainfountain.theory.apparatus.ideal_floor_speed`). A guide link whose centre
+passes the launch point is released into the fountain; a new one joins at the back.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import pymunk
+
+from chainfountain.sim.chain import Link
+
+GROOVE_REACH = 100.0
+"""Half-length of the guide's groove along the launch line (m): far beyond any guide."""
+
+
+class Piston:
+    """Turns the fed level's kinematic guide of ``sim`` into the ideal machine's piston."""
+
+    def __init__(self, sim: Any) -> None:
+        """``sim``: the :class:`~chainfountain.sim.world.Simulation` being built (its feed
+        laid out); the piston takes over the feed's steps."""
+        self.sim = sim
+        feed, chain = sim.feed, sim.chain
+        self.u = feed.u
+        self.n_nominal = feed.n_guide
+        self.grooves: dict[int, pymunk.GrooveJoint] = {}
+        n = len(chain.links)
+        for i in range(n - feed.n_guide, n):
+            self._hold(chain.links[i])
+        for i in range(n - feed.n_guide, n - 1):
+            chain.join(i)  # no spring: neither link can turn (Chain refits none)
+        feed.before_step = self.before_step
+        feed.after_step = self.after_step
+
+    def _hold(self, link: Link) -> None:
+        """Make ``link`` a piston link: dynamic, on the groove, unable to turn."""
+        chain, cfg = self.sim.chain, self.sim.config
+        if link.body.body_type != pymunk.Body.DYNAMIC:
+            chain.make_dynamic(link)
+        b = link.body
+        b.mass = chain.mass + cfg.feed.machine_mass / self.n_nominal
+        b.moment = float("inf")
+        b.angular_velocity = 0.0
+        ux, uy = self.u
+        groove = pymunk.GrooveJoint(self.sim.space.static_body, b,
+                                    (-GROOVE_REACH * ux, -GROOVE_REACH * uy),
+                                    (GROOVE_REACH * ux, GROOVE_REACH * uy), (0.0, 0.0))
+        groove.error_bias = cfg.solver.joint_error_bias
+        self.sim.space.add(groove)
+        self.grooves[link.id] = groove
+
+    @property
+    def speed(self) -> float:
+        """The chain's speed in the guide (m/s)."""
+        return float(self.sim.chain.links[-1].body.velocity.dot(self.u))
+
+    def law_force(self, v: float) -> float:
+        """The machine's pull back on the chain at speed ``v`` (N, along the launch line)."""
+        f = self.sim.config.feed
+        lam = self.sim.chain.cfg.linear_density
+        return 0.5 * lam * v * v + f.cart_force + lam * self.sim.g * f.xi2 * f.drop
+
+    def set_speed(self, v: float) -> None:
+        """Push the chain to ``v`` (m/s): every link's velocity and turning rate scale by
+        ``v`` over the present speed (the whole chain speeds up along itself, as a push
+        on the machine does); the machine then settles back to its own speed."""
+        now = self.speed
+        if now <= 0.0 or v <= 0.0:
+            return
+        f = v / now
+        for link in self.sim.chain.links:
+            b = link.body
+            b.velocity = (f * b.velocity.x, f * b.velocity.y)
+            b.angular_velocity = f * b.angular_velocity
+        self.sim.feed.cfg.speed = float(v)
+
+    def before_step(self) -> None:
+        chain, g = self.sim.chain, self.sim.g
+        guide = chain.links[len(chain.links) - self.sim.feed.n_guide:]
+        for link in guide:  # the law carries the lift: cancel the guide links' weight
+            b = link.body
+            b.apply_force_at_world_point((0.0, b.mass * g), b.position)
+        F = -self.law_force(self.speed)
+        ux, uy = self.u
+        rear = guide[-1].body
+        rear.apply_force_at_world_point((F * ux, F * uy), rear.position)
+
+    def after_step(self, dt: float) -> None:
+        chain, feed = self.sim.chain, self.sim.feed
+        L = chain.L
+        ux, uy = self.u
+        v = self.speed
+        feed.cfg.speed = v
+        front = chain.links[len(chain.links) - feed.n_guide]
+        if front.body.position.dot(self.u) >= 0.0:  # centre past the launch point: release
+            self.sim.space.remove(self.grooves.pop(front.id))
+            b = front.body
+            b.mass, b.moment = chain.mass, chain.moment
+            b.angular_velocity = feed.launch_omega
+            feed.n_guide -= 1
+            i = len(chain.links) - feed.n_guide - 1
+            chain.refit_spring(i - 1)  # the fountain's last joint
+            chain.refit_spring(i)  # the released link to the next piston link
+            s = chain.links[-1].body.position.dot(self.u) - L
+            new = chain.make_body((s * ux, s * uy), feed.cfg.launch_angle,
+                                  velocity=(v * ux, v * uy))
+            chain.append(new)
+            self._hold(new)
+            chain.refit_spring(len(chain.links) - 2)  # none between two piston links
+            feed.n_guide += 1
+            feed.fed_links += 1
+        if feed.cfg.floor == "absorbing":
+            feed._absorb()
