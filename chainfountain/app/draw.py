@@ -42,7 +42,7 @@ KEYS: tuple[tuple[str, str], ...] = (
     ("Shift+Right", "one physics step dt"),
     ("S", "slow motion: 1 -> 1/2 -> 1/4 -> 1"),
     ("R", "reset the scene (t = 0)"),
-    ("F", "fit the view to the fountain"),
+    ("F", "fit the view to the fountain and follow it again"),
     ("T", "theory overlay on / off"),
     ("Mouse wheel", "zoom about the pointer"),
     ("Drag (empty space)", "pan; right or middle drag also pans"),

@@ -176,6 +176,7 @@ class InputMixin:
             pos = pygame.mouse.get_pos()
             if not self._over_ui(pos) and ev.y:
                 cam.zoom(1.15 ** max(-5, min(5, ev.y)), pos)
+                self.follow = False  # the user's view now (F follows again)
             return
         if ev.type == pygame.MOUSEBUTTONDOWN:
             if consumed or self._over_ui(ev.pos) or ev.button not in (1, 2, 3):
@@ -190,6 +191,7 @@ class InputMixin:
                 s.drag_to(cam.to_world(*ev.pos))
             elif self._drag_mode == "pan":
                 cam.pan(ev.pos[0] - self._last_mouse[0], ev.pos[1] - self._last_mouse[1])
+                self.follow = False
             self._last_mouse = ev.pos
         elif ev.type == pygame.MOUSEBUTTONUP:
             if self._drag_mode == "link":

@@ -42,6 +42,8 @@ RIGHT_W = 390
 DEFAULT_SIZE = (1280, 760)
 MIN_FPS = 30
 """The frame rate may drop to this before the simulation runs slower than requested."""
+FOLLOW_EVERY = 30
+"""Frames between checks that the view still shows the fountain (0.5 s at 60 frames/s)."""
 REBUILD_DELAY = 0.35
 """Seconds a rebuild-only slider must rest before the scene is rebuilt."""
 
@@ -117,6 +119,8 @@ class App(InputMixin, DrawMixin):
         self.load_window: UIWindow | None = None
         self.load_list: UISelectionList | None = None
         self._load_items: dict[str, Path] = {}
+        self.follow = True
+        """The view follows the fountain until the user pans or zooms (F follows again)."""
         self._layout()
         self.fit_view()
 
@@ -193,8 +197,23 @@ class App(InputMixin, DrawMixin):
         row.entry.set_text(row.spec.fmt(row.spec.to_display(v)))
 
     def fit_view(self) -> None:
-        """Fit the camera to the scene."""
+        """Fit the camera to the scene, and follow the fountain from now on."""
         self.camera.fit(*render.scene_bounds(self.session.sim, self.session.readout()))
+        self.follow = True
+
+    def follow_view(self) -> None:
+        """While following: refit when part of the scene has left the view, or when the
+        scene fills less than a fifth of it (a fountain that shrank or settled)."""
+        x0, y0, x1, y1 = render.scene_bounds(self.session.sim, None)
+        c = self.camera
+        (ax, ay), (bx, by) = c.to_screen(np.array([[x0, y0], [x1, y1]]))
+        r = self.scene_rect
+        left, right = min(ax, bx), max(ax, bx)
+        top, bottom = min(ay, by), max(ay, by)
+        out = left < r.left - 2 or right > r.right + 2 or top < r.top - 2 or bottom > r.bottom + 2
+        small = (right - left) * (bottom - top) < 0.2 * r.w * r.h
+        if out or small:
+            self.fit_view()
 
     # ------------------------------------------------------------------ commands
     def set_field(self, path: str, value: float) -> None:
@@ -218,6 +237,7 @@ class App(InputMixin, DrawMixin):
     def reset(self) -> None:
         self.session.reset()
         self._pending.clear()
+        self.fit_view()
 
     def toggle_pause(self) -> None:
         self.session.toggle_pause()
@@ -348,7 +368,9 @@ class App(InputMixin, DrawMixin):
 
     # ------------------------------------------------------------------ frame
     def update(self, wall_dt: float) -> None:
-        """Apply debounced rebuilds and run the physics for one frame."""
+        """Apply debounced rebuilds, run the physics for one frame, follow the fountain."""
+        if self.follow and self.frame % FOLLOW_EVERY == 0 and self._drag_mode is None:
+            self.follow_view()
         now = time.perf_counter()
         for path, (v, t0) in list(self._pending.items()):
             if now - t0 >= REBUILD_DELAY or self.offscreen:

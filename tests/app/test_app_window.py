@@ -7,6 +7,7 @@ import os
 os.environ["SDL_VIDEODRIVER"] = "dummy"
 os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
 
+import numpy as np  # noqa: E402
 import pygame  # noqa: E402
 import pygame_gui  # noqa: E402
 import pytest  # noqa: E402
@@ -363,3 +364,38 @@ def test_a_run_that_stopped_itself_says_press_r(app, monkeypatch):
     key(app, pygame.K_r)
     app.run_frame()
     assert s.stopped is None and not s.paused and s.sim.time > 0
+
+
+def _scene_in_view(app: App) -> bool:
+    x0, y0, x1, y1 = render.scene_bounds(app.session.sim, None)
+    (ax, ay), (bx, by) = app.camera.to_screen(np.array([[x0, y0], [x1, y1]]))
+    r = app.scene_rect.inflate(4, 4)
+    return r.collidepoint(ax, ay) and r.collidepoint(bx, by)
+
+
+def test_view_follows_the_fountain_until_the_user_pans(app):
+    """The view refits when the fountain leaves it; after the user pans it stays where
+    the user put it, until F."""
+    from chainfountain.app.window import FOLLOW_EVERY
+
+    app.run_frame()
+    app.camera.fit(10.0, 10.0, 10.1, 10.1)  # the view somewhere else (as after a change)
+    assert not _scene_in_view(app)
+    for _ in range(FOLLOW_EVERY + 1):
+        app.run_frame()
+    assert app.follow and _scene_in_view(app)
+    # the user pans with the right button on empty space
+    start = (app.scene_rect.right - 20, app.scene_rect.bottom - 20)
+    pygame.event.post(pygame.event.Event(pygame.MOUSEBUTTONDOWN, pos=start, button=3))
+    pygame.event.post(pygame.event.Event(pygame.MOUSEMOTION, pos=(start[0] - 300, start[1]),
+                                         rel=(-300, 0), buttons=(0, 0, 1)))
+    pygame.event.post(pygame.event.Event(pygame.MOUSEBUTTONUP, pos=(start[0] - 300, start[1]),
+                                         button=3))
+    app.run_frame()
+    assert not app.follow
+    app.camera.fit(10.0, 10.0, 10.1, 10.1)
+    for _ in range(FOLLOW_EVERY + 1):
+        app.run_frame()
+    assert not _scene_in_view(app)  # left where the user put it
+    key(app, pygame.K_f)
+    assert app.follow and _scene_in_view(app)
