@@ -4,8 +4,8 @@ machine, not a motor, sets the speed, and it selects the one the paper predicts,
 
 The selected speed is a stable equilibrium of the machine: the run's mean over a long
 window is what is asserted (measured with ``research/ideal_floor.py`` and
-``chainfountain run ideal_floor``: -0.03 % at ``xi2 = 0.3``, +0.02 % at ``xi2 = 0.1``,
-single-window scatter 0.05 %).
+``chainfountain run ideal_floor``: +0.01 % at ``xi2 = 0.3``, +0.05 % at ``xi2 = 0.1``,
+scatter of the speed 0.04 %).
 """
 
 from __future__ import annotations
