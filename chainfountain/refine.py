@@ -70,6 +70,8 @@ class RefinementRun:
     stretch: float
     """Largest total joint gap over the chain length in the window."""
     realtime_factor: float
+    spread: float = math.nan
+    """Window mean of the instantaneous link-speed spread ``(max - min)/mean``."""
 
 
 @dataclass
@@ -162,8 +164,29 @@ def refined_config(cfg: SimConfig, factor: int, level: str = "level") -> SimConf
             "this level")
     out.chain.link_radius = min(cfg.chain.link_radius, 0.4 * out.chain.link_length)
     out.solver.dt = cfg.solver.dt / factor
+    out.solver.accuracy = 0.0
     out.initial.mode = "catenary"
+    _converged_iterations(out)
     return out
+
+
+def _converged_iterations(cfg: SimConfig) -> None:
+    """Raise ``cfg``'s solver iterations to what the finer chain needs to converge
+    (:func:`chainfountain.sim.accuracy.iterations_needed`): twice the links at half the step
+    need more iterations, and an unconverged solve would lower the fountain and spoil the
+    estimate."""
+    from chainfountain.sim import accuracy
+    from chainfountain.sim.reference import LaunchReference
+
+    f = cfg.feed
+    try:
+        ref = LaunchReference.from_launch(f.speed, f.launch_angle, f.drop, cfg.gravity,
+                                          TE_bar=f.end_tension)
+    except ValueError:
+        return
+    n = round(accuracy.flight_length(ref) / cfg.chain.link_length)
+    h = cfg.solver.dt / cfg.solver.substeps
+    cfg.solver.iterations = max(cfg.solver.iterations, accuracy.iterations_needed(n, h))
 
 
 def measure(cfg: SimConfig, factor: int = 1, *, settle: float = SETTLE,
@@ -198,6 +221,8 @@ def measure(cfg: SimConfig, factor: int = 1, *, settle: float = SETTLE,
         links=sim.n_links, errors=errors, stat=stat,
         stretch=float(np.max(rec.series("stretch"))),
         realtime_factor=(settle + window) / wall if wall > 0 else math.nan,
+        spread=float(np.mean((rec.series("speed_max") - rec.series("speed_min"))
+                             / rec.series("speed_mean"))),
     )
 
 
