@@ -62,6 +62,11 @@ def paused_message(reason: str) -> str:
     return f"{reason.rstrip('.')}; paused: press R to start again"
 
 
+HAND_SETTINGS = frozenset({"chain.link_length", "solver.dt", "solver.iterations",
+                           "solver.substeps"})
+"""Fields ``solver.accuracy`` chooses; setting one by hand turns the accuracy off."""
+
+
 @dataclass
 class Applied:
     """Result of :meth:`Session.set_field`."""
@@ -206,6 +211,10 @@ class Session:
             v = int(v)
         cand = copy.deepcopy(self.level.sim)
         set_value(cand, path, v)
+        by_hand = path in HAND_SETTINGS and cand.solver.accuracy > 0.0 and v != old
+        if by_hand:
+            # the user takes over what solver.accuracy chose; saved, the level keeps it
+            cand.solver.accuracy = 0.0
         try:
             io.check_consistency(Level(meta=self.level.meta, sim=cand), "setting")
         except LevelError as exc:
@@ -227,6 +236,8 @@ class Session:
             live = False
         if clamp_msg:
             msg = f"{clamp_msg}; {msg}"
+        if by_hand:
+            msg += "; solver.accuracy off (settings by hand)"
         return Applied(path, float(v), True, live, self.say(msg))
 
     def _apply_live(self, path: str, v: float) -> bool:

@@ -15,7 +15,7 @@ from chainfountain import atomic
 from chainfountain.errors import OutputError, UserError
 from chainfountain.headless import files
 from chainfountain.headless.stepping import Ending, _signals_deferred, simulate
-from chainfountain.headless.summary import _attempt, _f, json_safe, summarize
+from chainfountain.headless.summary import _attempt, _f, json_safe, model_error, summarize
 from chainfountain.level.io import Level
 from chainfountain.sim.recorder import Recorder
 from chainfountain.sim.world import Simulation
@@ -134,6 +134,7 @@ def _write_outputs(level: Level, out_dir: Path, duration: float, sim: Simulation
         summary["error_bars"] = json_safe(error_bars) if error_bars is not None else {
             "method": None, "how": "not estimated: chainfountain run LEVEL --error-bars, or "
             "chainfountain converge LEVEL"}
+        summary["error_model"] = _attempt(analysis_failed, "error model", model_error, level)
     if ended is not None:
         summary["ended_early"] = {"t_s": _f(sim.time), "cause": ended.cause,
                                   "reason": ended.reason}
@@ -218,4 +219,13 @@ def describe_outputs(summary_path: Path) -> str:
             f"  discretisation error bars at this link length and step (refinement): vertex "
             f"height {bar(d.get('h'))}, vertex x {bar(d.get('vertex_x'))}, landing "
             f"{bar(d.get('l'))}")
+    m = s.get("error_model") or {}
+    if m.get("bounds"):
+        b = m["bounds"]
+        lines.append(
+            f"  discretisation error (error model) at this link length, step and iterations: "
+            f"vertex height +-{100 * b['h']:.2f} %, vertex x +-{100 * b['vertex_x']:.2f} %, "
+            f"landing +-{100 * b['l']:.2f} %")
+    elif m.get("solver_converged") is False:
+        lines.append(f"  WARNING: {m['why_none']}")
     return "\n".join(lines)

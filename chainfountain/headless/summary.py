@@ -136,3 +136,45 @@ def json_safe(obj: Any) -> Any:
     if isinstance(obj, bool) or obj is None or isinstance(obj, str):
         return obj
     return _f(obj)
+
+
+def model_error(level: Level) -> dict[str, Any]:
+    """``summary.json``'s ``error_model``: what the error model
+    (:mod:`chainfountain.sim.accuracy`) says about a fed level's settings, or why it says
+    nothing."""
+    from chainfountain.sim import accuracy
+
+    sim = level.sim
+    out: dict[str, Any] = {"source": "error model (chainfountain.sim.accuracy, fitted by "
+                           "research/error_model.py)", "bounds": None}
+    f = sim.feed
+    if f.drive != "motor" or f.floor != "absorbing" or sim.rollers or sim.carts:
+        out["why_none"] = ("the model covers motor-fed fountains on an absorbing floor only; "
+                           "use chainfountain converge LEVEL")
+        return out
+    try:
+        ref = LaunchReference.from_launch(f.speed, f.launch_angle, f.drop, sim.gravity,
+                                          TE_bar=f.end_tension)
+    except ValueError as exc:
+        out["why_none"] = f"no fountain: {exc}"
+        return out
+    why = accuracy.in_domain(ref)
+    if why is not None:
+        out["why_none"] = why
+        return out
+    sv = sim.solver
+    est = accuracy.estimate(ref, accuracy.Settings(sim.chain.link_length, sv.dt / sv.substeps,
+                                                   sv.iterations))
+    out["links_in_flight"] = est.links
+    out["solver_converged"] = est.converged
+    out["iterations_needed"] = accuracy.iterations_needed(est.links, sv.dt / sv.substeps)
+    if not est.converged:
+        out["why_none"] = (f"the solver does not converge on {est.links} links at "
+                           f"{sv.iterations} iterations (needs {out['iterations_needed']}): the "
+                           "fountain may sit up to a few per cent low; raise solver.iterations "
+                           "or set solver.accuracy")
+        return out
+    names = {"vertex_y": "h", "vertex_x": "vertex_x", "landing_x": "l"}
+    out["predicted"] = {names[k]: _f(v) for k, v in est.errors.items()}
+    out["bounds"] = {names[k]: _f(v) for k, v in est.bounds.items()}
+    return out

@@ -5,9 +5,13 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from typing import TYPE_CHECKING
 
 from chainfountain.level.model import Level, _fail
 from chainfountain.sim.config import KINDS, FeedConfig, InitialConfig, SimConfig
+
+if TYPE_CHECKING:
+    from chainfountain.sim.accuracy import Estimate
 
 MAX_LINKS = 20_000
 """Most chain links a level may put into the simulation at its start (the chain in
@@ -27,6 +31,7 @@ def check_consistency(level: Level, where: str) -> None:
         _check_apparatus(level, where)
     if sim.kind == "feed":
         _check_feed(level, where)
+    _check_accuracy_scope(sim, where)
 
 
 def _check_other_kind(sim: SimConfig, where: str) -> None:
@@ -361,3 +366,58 @@ def _check_apparatus_size(sim: SimConfig, where: str) -> None:
               f"roller travel (v/2 for the duration): {n:.0f} links at the start; allowed: at "
               f"most {MAX_LINKS} links, here a duration <= {max(room, 0.0):.4g} s (or "
               "apparatus.plate_links > 0, a treadmill, for runs of any length)")
+
+
+def _check_accuracy_scope(sim: SimConfig, where: str) -> None:
+    """``solver.accuracy`` only where its error model was measured: a motor-fed fountain
+    landing on an absorbing floor, without blocks in the scene or self-collision."""
+    if sim.solver.accuracy == 0.0:
+        return
+    why = None
+    if sim.kind != "feed":
+        why = f"kind = {sim.kind!r}"
+    elif sim.feed.floor != "absorbing":
+        why = f"feed.floor = {sim.feed.floor!r}"
+    elif sim.feed.drive != "motor":
+        why = f"feed.drive = {sim.feed.drive!r}"
+    elif sim.rollers or sim.carts:
+        why = "rollers or carts in the scene"
+    elif sim.chain.self_collision:
+        why = "chain.self_collision = true"
+    if why is not None:
+        _fail(where, "solver.accuracy",
+              f"{sim.solver.accuracy!r} with {why}: the error model covers motor-fed fountains "
+              "on an absorbing floor only; allowed: 0 (use the level's own link length, step "
+              "and iterations)")
+
+
+def apply_accuracy(level: Level, where: str) -> Estimate | None:
+    """Choose link length, step and iterations for ``solver.accuracy`` (when above 0) and
+    write them into ``level.sim``; returns the error model's estimate for them.
+
+    A fountain the model cannot reach the accuracy for is refused with the best bound it
+    can reach (:func:`chainfountain.sim.accuracy.choose`)."""
+    from chainfountain.sim import accuracy
+    from chainfountain.sim.reference import LaunchReference
+
+    sim = level.sim
+    acc = sim.solver.accuracy
+    if acc == 0.0 or sim.kind != "feed":
+        return None
+    f = sim.feed
+    ref = LaunchReference.from_launch(f.speed, f.launch_angle, f.drop, sim.gravity,
+                                      TE_bar=f.end_tension)
+    try:
+        est = accuracy.choose(ref, acc)
+    except accuracy.OutOfReach as exc:
+        least = (f"at least {math.ceil(exc.best * 1e4) / 1e4:g}, or 0" if math.isfinite(exc.best)
+                 else "0")
+        _fail(where, "solver.accuracy", f"{acc!r}: {exc}; allowed: {least} (0: the level's own "
+              "settings, with `chainfountain converge LEVEL` for their error)")
+    s = est.settings
+    sim.chain.link_length = s.link_length
+    sim.chain.link_radius = min(sim.chain.link_radius, 0.4 * s.link_length)
+    sim.solver.dt = s.dt
+    sim.solver.substeps = 1
+    sim.solver.iterations = s.iterations
+    return est

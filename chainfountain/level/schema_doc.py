@@ -91,7 +91,12 @@ def schema_markdown() -> str:
         "`[initial]` other than its defaults, `[[rollers]]`, carts beyond those its rollers "
         "take (`carts[0]`; `carts[1]` in 'fold'), and `apparatus.xi3` "
         "(other than 'fold'), `apparatus.end_pull` (other than 'open'), `apparatus.end` "
-        "and `apparatus.floor_width` (other than 'floor') away from their defaults.",
+        "and `apparatus.floor_width` (other than 'floor') away from their defaults;",
+        "- `solver.accuracy` above 0 (motor-fed levels on an absorbing floor only) replaces "
+        "`chain.link_length`, `solver.dt` and `solver.iterations` with the cheapest settings "
+        "whose error-model bounds are within it (`chainfountain.sim.accuracy`, "
+        "`docs/convergence.md`); a level whose accuracy the model cannot reach, or whose "
+        "fountain is near-critical (`k/q < 0.06`), is refused with the best bound it reaches.",
         "",
         "| key | unit | default | allowed | live | meaning |",
         "|---|---|---|---|---|---|",

@@ -160,6 +160,13 @@ class SolverConfig:
     collision_slop: float = param(
         1e-4, unit="m", doc="Allowed contact overlap", min=0.0, max=0.01, live=True
     )
+    accuracy: float = param(
+        0.0, unit="1", doc="Accuracy wanted of a fed fountain (relative, e.g. 0.005): when "
+        "above 0, chain.link_length, solver.dt and solver.iterations are chosen when the level "
+        "loads, the cheapest whose error-model bounds on vertex height, vertex x and landing "
+        "are all within it (chainfountain.sim.accuracy; fed levels with an absorbing floor "
+        "only); 0 keeps the level's own settings", min=0.0, max=0.1,
+    )
     wave_damping: float = param(
         1e-3, unit="1", doc="Damping D of link-scale bending waves: every joint between two "
         "moving links gets a rotary damper D*lambda*v*L**2 (v the level's speed, L the link "

@@ -240,3 +240,16 @@ def test_apparatus_history_has_the_roller_speeds() -> None:
     f = Session(small_level())
     f.advance(0.1)
     assert len(f.history.t) > 2 and np.isnan(f.history.arrays()["speed_in"]).all()
+
+
+def test_setting_link_length_by_hand_turns_the_accuracy_off():
+    lvl = io.load(Path(__file__).resolve().parents[2] / "levels" / "wide_low.toml")
+    assert lvl.sim.solver.accuracy > 0
+    s = Session(lvl)
+    r = s.set_field("chain.link_length", 0.03)
+    assert r.ok and s.level.sim.chain.link_length == 0.03
+    assert s.level.sim.solver.accuracy == 0.0
+    assert "solver.accuracy off" in r.message
+    # a saved copy keeps the hand-set link length
+    again = io.loads(io.dumps(s.level))
+    assert again.sim.chain.link_length == 0.03

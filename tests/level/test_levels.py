@@ -31,6 +31,21 @@ def test_shipped_levels_load_and_round_trip(path):
     assert io.loads(io.dumps(lvl)) == lvl
 
 
+@pytest.mark.parametrize("path", LEVELS, ids=[p.stem for p in LEVELS])
+def test_shipped_level_files_show_the_settings_they_run(path):
+    """A level with ``solver.accuracy`` writes the settings the error model chooses for it,
+    so that what its file (and its description) says is what runs."""
+    import tomllib
+
+    raw = tomllib.loads(path.read_text())
+    if raw.get("solver", {}).get("accuracy", 0.0) == 0.0:
+        return
+    sim = io.load(path).sim
+    assert raw["chain"]["link_length"] == sim.chain.link_length
+    assert raw["solver"]["dt"] == sim.solver.dt
+    assert raw["solver"]["iterations"] == sim.solver.iterations
+
+
 BAD = [
     ("link_length", "link_length = -0.02", "chain.link_length", "-0.02"),
     ("link_length", "link_length = nan", "chain.link_length", "nan"),

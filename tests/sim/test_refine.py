@@ -29,7 +29,11 @@ def test_refined_config_halves_link_and_step_and_starts_on_the_catenary() -> Non
     assert fine.chain.link_length == cfg.chain.link_length / 2
     assert fine.solver.dt == cfg.solver.dt / 2
     assert fine.initial.mode == "catenary"
-    assert cfg.chain.link_length == 0.02  # the level itself is untouched
+    assert cfg.chain.link_length == 0.05  # the level itself is untouched
+    # twice the links at half the step: the iterations the solver needs to converge
+    # (chainfountain.sim.accuracy.iterations_needed: 17 for classroom's 330 links at 125 us)
+    assert fine.solver.iterations == 17 > cfg.solver.iterations
+    assert fine.solver.accuracy == 0.0  # the refined run keeps its settings
 
 
 @pytest.mark.slow
@@ -78,6 +82,7 @@ def test_run_error_bars_only_on_fed_levels() -> None:
 def test_run_with_error_bars_writes_them_next_to_the_figures(tmp_path) -> None:
     lvl = io.load(library.resolve("wide_low"))
     lvl.sim.solver.dt = 1e-3  # a coarse, cheap run: the estimate is about the settings
+    lvl.sim.solver.accuracy = 0.0  # (else the loader chooses the step again)
     path = io.save(lvl, tmp_path / "coarse.toml")
     r = _cli("run", str(path), "--error-bars", "--duration", "0.5", "--quiet",
              "--out", str(tmp_path / "o"))
