@@ -13,10 +13,16 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from chainfountain.level import io
+from chainfountain.sim import accuracy as accuracy_model
 from chainfountain.sim.config import ChainConfig, FeedConfig, SimConfig, SolverConfig
+from chainfountain.sim.reference import LaunchReference
 from chainfountain.theory.design import Design
+
+if TYPE_CHECKING:
+    from chainfountain.sim.accuracy import Estimate
 
 MAX_QL = 0.1
 """Largest q*L (link length times vertex curvature) the defaults accept (docs/convergence.md)."""
@@ -60,12 +66,38 @@ def iterations_for(links_in_flight: int, dt: float = MAX_DT) -> int:
     return 10 if links_in_flight <= 250 or dt <= 2e-5 else 24
 
 
-def design_sim_config(d: Design) -> SimConfig:
-    """The fed level's configuration for a design."""
+DESIGN_ACCURACY = 0.005
+"""Accuracy ``chainfountain design`` asks of the error model by default (relative)."""
+
+
+def design_estimate(d: Design, accuracy: float = DESIGN_ACCURACY) -> Estimate | None:
+    """The error model's cheapest settings for the design's fountain at ``accuracy``
+    (:func:`chainfountain.sim.accuracy.choose`), or ``None`` for a near-critical fountain
+    outside the model (then :func:`time_step_for` picks the step).
+
+    Raises :class:`~chainfountain.sim.accuracy.OutOfReach` when the model cannot reach the
+    accuracy."""
     f = d.fountain
-    L = link_length_for(f.q)
-    n_flight = int(math.ceil(f.length / L))
-    dt = time_step_for(f.q, f.k, f.v)
+    ref = LaunchReference.from_launch(f.v, f.alpha0, f.H, f.g, TE_bar=max(0.0, f.TE_bar))
+    if accuracy_model.in_domain(ref) is not None:
+        return None
+    return accuracy_model.choose(ref, accuracy)
+
+
+def design_sim_config(d: Design, accuracy: float = DESIGN_ACCURACY) -> SimConfig:
+    """The fed level's configuration for a design: link length, step and iterations from
+    the error model for ``accuracy`` (``solver.accuracy``), or, for a near-critical
+    fountain, from :func:`link_length_for`, :func:`time_step_for` and
+    :func:`iterations_for`."""
+    f = d.fountain
+    est = design_estimate(d, accuracy)
+    if est is not None:
+        s = est.settings
+        L, dt, iterations, acc = s.link_length, s.dt, s.iterations, accuracy
+    else:
+        L = link_length_for(f.q)
+        dt = time_step_for(f.q, f.k, f.v)
+        iterations, acc = iterations_for(int(math.ceil(f.length / L)), dt), 0.0
     return SimConfig(
         kind="feed",
         gravity=f.g,
@@ -75,7 +107,7 @@ def design_sim_config(d: Design) -> SimConfig:
         feed=FeedConfig(speed=f.v, launch_angle=f.alpha0, drop=f.H,
                         end_tension=max(0.0, f.TE_bar),
                         floor_width=max(1.0, 2.5 * f.l)),
-        solver=SolverConfig(dt=dt, iterations=iterations_for(n_flight, dt)),
+        solver=SolverConfig(dt=dt, iterations=iterations, accuracy=acc),
     )
 
 
@@ -108,8 +140,9 @@ def near_critical_note(d: Design) -> str:
             "to keep the vertex from creeping: it runs well below real time.")
 
 
-def write_design_level(d: Design, path: str | Path, name: str | None = None) -> Path:
+def write_design_level(d: Design, path: str | Path, name: str | None = None,
+                       accuracy: float = DESIGN_ACCURACY) -> Path:
     """Write the design as a fed level file (validated, atomically)."""
     p = Path(path)
-    level = io.make_level(name or p.stem, describe(d), design_sim_config(d))
+    level = io.make_level(name or p.stem, describe(d), design_sim_config(d, accuracy))
     return io.save(level, p)

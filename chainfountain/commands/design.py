@@ -41,6 +41,11 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="cart track angle in degrees (default 30)")
     p.add_argument("--out", type=path_arg("a level file"), default=None, metavar="LEVEL.toml",
                    help="write a level that generates the fountain (run/play accept it)")
+    p.add_argument("--accuracy", type=number("a relative accuracy", min=0.0, max=0.1,
+                                             min_inclusive=False), default=0.005,
+                   help="accuracy the written level's settings are chosen for (relative; "
+                   "default 0.005): link length, step and iterations from the error model "
+                   "(solver.accuracy)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=run)
 
@@ -86,10 +91,30 @@ def run(args: argparse.Namespace) -> int:
         raise UserError(geometry_error(args, f"the solver fails ({exc})")) from None
     finite_or_refuse(out, args)
     if args.out is not None:
-        from chainfountain.design_level import near_critical_note, write_design_level
+        from chainfountain.design_level import (
+            design_estimate,
+            near_critical_note,
+            write_design_level,
+        )
+        from chainfountain.sim.accuracy import OutOfReach
 
         try:
-            out["level"] = str(write_design_level(d, args.out))
+            est = design_estimate(d, args.accuracy)
+        except OutOfReach as exc:
+            least = (f"at least {math.ceil(exc.best * 1e4) / 1e4:g}" if math.isfinite(exc.best)
+                     else "a fountain inside the model")
+            raise UserError(f"argument --accuracy: {args.accuracy:g}: {exc}; allowed: "
+                            f"{least}") from None
+        if est is not None:
+            st = est.settings
+            out["level_settings"] = {
+                "link_length": st.link_length, "dt": st.dt, "iterations": st.iterations,
+                "links_in_flight": est.links, "accuracy": args.accuracy,
+                "error_model_bounds": {"h": est.bounds["vertex_y"],
+                                       "vertex_x": est.bounds["vertex_x"],
+                                       "l": est.bounds["landing_x"]}}
+        try:
+            out["level"] = str(write_design_level(d, args.out, accuracy=args.accuracy))
         except OSError as exc:
             raise OutputError(f"argument --out: cannot write {str(args.out)!r} "
                               f"({exc.strerror or exc})") from None
@@ -117,6 +142,14 @@ def run(args: argparse.Namespace) -> int:
     if "level" in out:
         print(f"wrote {out['level']} (fed level: guide at v and alpha0, floor pulling with "
               f"Tbar_E); try: chainfountain run {out['level']}")
+        ls = out.get("level_settings")
+        if ls:
+            b = ls["error_model_bounds"]
+            print(f"  settings for {100 * ls['accuracy']:g} % (error model): "
+                  f"{ls['link_length'] * 1e3:g} mm links ({ls['links_in_flight']} in flight), "
+                  f"dt = {ls['dt'] * 1e6:g} us, {ls['iterations']} iterations; vertex height "
+                  f"+-{100 * b['h']:.2f} %, vertex x +-{100 * b['vertex_x']:.2f} %, landing "
+                  f"+-{100 * b['l']:.2f} %")
         note = near_critical_note(d)
         if note:
             print(" ", note.strip())

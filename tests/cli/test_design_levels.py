@@ -1,10 +1,15 @@
-"""Design acceptance (issue 6): a designed level, run headless, gives the target fountain.
+"""Design acceptance (issue 6): a designed level, run headless, gives the target fountain
+within the accuracy ``design`` promises.
 
-Each target ``(l, h, H, v)`` goes through ``chainfountain design --out``; the
-written level is simulated (settle, then average) and must reproduce the target
-vertex height within 3 % and the target speed within 2 %.
+Each target ``(l, h, H, v)`` goes through ``chainfountain design --out --json``; the written
+level is simulated from the catenary (settle 1.5 s, average 2 s). For a target inside the
+error model (:mod:`chainfountain.sim.accuracy`) the vertex height, vertex x and landing must
+lie within the bounds ``design`` prints for the level's settings (``level_settings``); the
+near-critical fountain D, outside the model, has height and landing within 3 %. The speed
+within 0.1 %.
 """
 
+import json
 import math
 
 import pytest
@@ -30,15 +35,24 @@ TARGETS = [
 def test_designed_level_reproduces_target(tmp_path, capsys, l, h, H, v):  # noqa: E741
     path = tmp_path / "designed.toml"
     assert main(["design", "--l", str(l), "--h", str(h), "--H", str(H), "--v", str(v),
-                 "--out", str(path)]) == 0
-    assert "wrote" in capsys.readouterr().out
+                 "--out", str(path), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["level"] == str(path)
     level = io.load(path)
+    level.sim.initial.mode = "catenary"
     sim = Simulation(level.sim)
     sim.advance(SETTLE)
     rec = Recorder(sim)
     sim.advance(WINDOW)
     s = rec.summary(window=WINDOW)
+    ref = sim.reference
     assert s.stretch_max <= 1e-3
-    assert s.vertex_y == pytest.approx(h, rel=0.03)
-    assert s.speed_mean == pytest.approx(v, rel=0.02)
-    assert s.landing_x == pytest.approx(l, rel=0.03)
+    assert s.speed_mean == pytest.approx(v, rel=1e-3)
+    got = {"h": s.vertex_y / h - 1.0, "vertex_x": s.vertex_x / ref.x_rise - 1.0,
+           "l": s.landing_x / l - 1.0}
+    settings = out.get("level_settings")
+    # fountain D: height and landing within 3 %; its vertex x is 3-4 % off over this
+    # window (docs/convergence.md, "Near-critical fountains")
+    bounds = settings["error_model_bounds"] if settings else {"h": 0.03, "l": 0.03}
+    for fig, bound in bounds.items():
+        assert abs(got[fig]) <= bound, (fig, got[fig], bound)
