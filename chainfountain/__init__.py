@@ -6,3 +6,13 @@ the pymunk model, ``chainfountain.app`` the pygame-ce front end.
 """
 
 __version__ = "0.1.0"
+
+
+def __getattr__(name: str):  # noqa: ANN202 - lazy, so that `import chainfountain` stays light
+    """``chainfountain.run`` and ``chainfountain.with_changes``: :mod:`chainfountain.study`'s
+    Python API (imported on first use)."""
+    if name in ("run", "with_changes", "RunResult"):
+        from chainfountain import study
+
+        return getattr(study, name)
+    raise AttributeError(f"module 'chainfountain' has no attribute {name!r}")

@@ -6,11 +6,20 @@ import sys
 from collections.abc import Sequence
 
 from chainfountain import __version__
-from chainfountain.commands import converge, design, figures, levels, play, run, theory
+from chainfountain.commands import (
+    converge,
+    design,
+    figures,
+    levels,
+    play,
+    run,
+    sweep,
+    theory,
+)
 from chainfountain.commands.args import OneLineParser
 from chainfountain.errors import OutputError, UserError
 
-_COMMANDS = [play, theory, design, levels, run, converge, figures]
+_COMMANDS = [play, theory, design, levels, run, converge, sweep, figures]
 
 
 def build_parser() -> OneLineParser:

@@ -27,6 +27,7 @@ from chainfountain.headless.run import (
     describe_outputs,
     exit_status,
     prepare_out_dir,
+    run_and_record,
     run_level,
 )
 from chainfountain.headless.stepping import (
@@ -43,6 +44,6 @@ __all__ = [
     "DEFAULT_DURATION", "DEFAULT_OUTPUTS", "EXIT_STATUS", "FORMING_DURATION",
     "LOG_PROGRESS_EVERY", "MAX_PROFILES", "MAX_SAMPLES", "MAX_TENSION_SAMPLES", "Ending",
     "Interrupted", "default_duration", "default_out_dir", "describe_outputs", "exit_status",
-    "json_safe", "prepare_out_dir", "run_level", "simulate", "summarize",
+    "json_safe", "prepare_out_dir", "run_and_record", "run_level", "simulate", "summarize",
     "write_reaction_figure", "write_snapshot",
 ]

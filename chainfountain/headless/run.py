@@ -94,18 +94,30 @@ def run_level(level: Level, out_dir: Path, duration: float | None = None, *,
     noted, not obeyed). :func:`exit_status` gives the command's status. Raises
     :class:`OutputError` when ``summary.json`` itself cannot be written. ``error_bars``
     (:meth:`chainfountain.refine.Refinement.as_dict`) goes into ``summary.json`` as is."""
+    return run_and_record(level, out_dir, duration, seed=seed, progress=progress,
+                          error_bars=error_bars)[0]
+
+
+def run_and_record(level: Level, out_dir: Path, duration: float | None = None, *,
+                   seed: int | None = None, progress: bool = True,
+                   error_bars: dict | None = None,
+                   snapshot: bool = True) -> tuple[Path, Recorder]:
+    """:func:`run_level`, also returning the run's recorder (its time series in memory);
+    ``snapshot=False`` leaves out ``snapshot.png`` (drawing it is most of a short run's
+    cost: 0.3 s of 0.42 s for 0.5 s of ``wide_low``)."""
     duration = default_duration(level) if duration is None else float(duration)
     out_dir = prepare_out_dir(out_dir)
     sim, rec, wall, ended = simulate(level, duration, seed=seed, progress=progress)
     received: list[int] = []
     with _signals_deferred(received):
-        path = _write_outputs(level, out_dir, duration, sim, rec, wall, ended, error_bars)
-    return path
+        path = _write_outputs(level, out_dir, duration, sim, rec, wall, ended, error_bars,
+                              snapshot)
+    return path, rec
 
 
 def _write_outputs(level: Level, out_dir: Path, duration: float, sim: Simulation,
                    rec: Recorder, wall: float, ended: Ending | None,
-                   error_bars: dict | None = None) -> Path:
+                   error_bars: dict | None = None, snapshot: bool = True) -> Path:
     """Every output of a finished (or stopped) run, raw data first; see :func:`run_level`."""
     lam = level.sim.chain.linear_density
     app = sim.apparatus
@@ -148,7 +160,7 @@ def _write_outputs(level: Level, out_dir: Path, duration: float, sim: Simulation
              f"v = {summary.get('speed_mean') or 0:.3f} m/s"
              + ("" if summary.get("steady") else " (not steady)")
              + ("" if ended is None else " - ended early"))
-    if "vertex" in summary:
+    if snapshot and "vertex" in summary:
         put("snapshot.png", files.write_snapshot, sim, summary, title)
     if app is not None and app.variant == "open" and "apparatus" in summary:
         put("reaction.png", files.write_reaction_figure, rec, summary, lam, level.sim.gravity,

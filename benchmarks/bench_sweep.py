@@ -1,0 +1,66 @@
+"""Speed of ``chainfountain sweep``: a 64-point sweep of a fed level on 1 and 2 processes.
+
+Usage::
+
+    .venv/bin/python benchmarks/bench_sweep.py [--points 64] [--duration 0.5] [--level wide_low]
+
+The sweep varies ``feed.speed`` and ``feed.launch_angle`` of ``--level`` on an 8 x 8 grid
+(``--points`` rounds to a square), each point ``--duration`` simulated seconds from the
+level's own start. It runs once with ``--jobs 1`` and once with ``--jobs 2`` into fresh
+folders and prints the wall time of each, the speed-up, and the share of the wall time
+spent outside the points' simulations (imports, start-up, writing, the table).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--points", type=int, default=64)
+    ap.add_argument("--duration", type=float, default=0.5)
+    ap.add_argument("--level", default="wide_low")
+    a = ap.parse_args(argv)
+    side = max(1, round(math.sqrt(a.points)))
+    speeds = ", ".join(f"{v:.3f}" for v in np.linspace(3.8, 4.6, side))
+    angles = ", ".join(f"{v:.4f}" for v in np.radians(np.linspace(55.0, 65.0, side)))
+    text = (f'base = "{a.level}"\nduration = {a.duration}\n[grid]\n'
+            f'"feed.speed" = [{speeds}]\n"feed.launch_angle" = [{angles}]\n')
+    import pyarrow.parquet as pq
+
+    print(f"{side * side}-point sweep of {a.level}, {a.duration:g} s per point")
+    walls = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        sweep = Path(tmp) / "bench.toml"
+        sweep.write_text(text)
+        for jobs in (1, 2):
+            out = Path(tmp) / f"out{jobs}"
+            t0 = time.perf_counter()
+            r = subprocess.run([sys.executable, "-m", "chainfountain", "sweep", str(sweep),
+                                "--jobs", str(jobs), "--out", str(out), "--quiet"],
+                               capture_output=True, text=True)
+            wall = time.perf_counter() - t0
+            if r.returncode != 0:
+                print(r.stderr)
+                return 1
+            t = pq.read_table(out / "results.parquet").to_pydict()
+            sim_wall = float(np.nansum(np.array(t["wall_s"], dtype=float)))
+            walls[jobs] = wall
+            outside = 1.0 - sim_wall / (wall * jobs)
+            print(f"  --jobs {jobs}: {wall:6.1f} s wall, simulations {sim_wall:6.1f} s of "
+                  f"process time; outside the simulations {outside:.0%}")
+    print(f"  speed-up 2 processes / 1: {walls[1] / walls[2]:.2f}x")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,83 @@
+"""Studies: a run as a Python call (``chainfountain.study.run``) and ``chainfountain sweep``
+(a level over a grid of fields, in parallel, resumable, into a Parquet and CSV table)."""
+
+from __future__ import annotations
+
+import csv
+import subprocess
+import sys
+
+import pytest
+
+from chainfountain.level.model import LevelError
+from chainfountain.study import run, with_changes
+from chainfountain.study.api import load
+
+
+def _cli(*args: str, cwd=None) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "chainfountain", *args], cwd=cwd,
+                          capture_output=True, text=True, timeout=600)
+
+
+def test_run_returns_summary_series_and_paths(tmp_path):
+    r = run("wide_low", duration=0.3, changes={"feed.speed": 4.5}, out=tmp_path / "o")
+    assert r.ok and r.level.sim.feed.speed == 4.5
+    assert r.summary["theory"]["v"] == 4.5 and r.error("h") is not None
+    assert len(r.series["t"]) == len(r.series["speed_mean"]) > 10
+    assert r.paths["summary.json"].is_file() and r.paths["speed.csv"].is_file()
+
+
+@pytest.mark.parametrize("changes, words", [
+    ({"feed.sped": 4.5}, ["feed.sped", "unknown key", "speed"]),
+    ({"feed.speed": 1.0}, ["feed.speed", "1.0", "allowed"]),
+    ({"carts[3].mass": 1.0}, ["carts[3].mass", "index below 0"]),
+    ({"feed speed": 1.0}, ["not a field path"]),
+])
+def test_changes_are_validated_as_a_level_file(changes, words):
+    with pytest.raises(LevelError) as exc:
+        with_changes(load("wide_low"), changes)
+    for w in words:
+        assert w in str(exc.value), (w, str(exc.value))
+
+
+def test_sweep_runs_records_refusals_and_resumes(tmp_path):
+    (tmp_path / "s.toml").write_text(
+        'base = "wide_low"\nduration = 0.2\n[grid]\n"feed.speed" = [2.0, 4.0, 4.5]\n')
+    r = _cli("sweep", "s.toml", "--jobs", "2", "--out", "out", "--quiet", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert "2 done, 1 refused" in r.stdout and "p00000 refused: " in r.stdout
+    assert "feed.speed: 2.0 m/s cannot make a fountain" in r.stdout
+    rows = list(csv.DictReader((tmp_path / "out" / "results.csv").open()))
+    assert [row["status"] for row in rows] == ["refused", "done", "done"]
+    assert [float(row["feed.speed"]) for row in rows] == [2.0, 4.0, 4.5]
+    assert float(rows[1]["theory_v"]) == 4.0 and rows[1]["theory_rel_error_h"]
+    import pyarrow.parquet as pq
+
+    table = pq.read_table(tmp_path / "out" / "results.parquet")
+    assert table.num_rows == 3 and "theory_rel_error_h" in table.column_names
+    assert (tmp_path / "out" / "results.png").is_file()
+    # a rerun runs nothing and rewrites the same table
+    r2 = _cli("sweep", "s.toml", "--out", "out", "--quiet", cwd=tmp_path)
+    assert r2.returncode == 0 and "3 recorded before, 0 to run" in r2.stderr
+    assert list(csv.DictReader((tmp_path / "out" / "results.csv").open())) == rows
+
+
+@pytest.mark.parametrize("text, words", [
+    ('base = "wide_low"\n', ["grid", "missing or empty"]),
+    ('base = "wide_low"\nspeed = 3\n[grid]\n"feed.speed" = [4.0]\n', ["speed", "unknown key"]),
+    ('base = "nope"\n[grid]\n"feed.speed" = [4.0]\n', ["base", "no such level"]),
+    ('base = "wide_low"\n[grid]\n"feed.sped" = [4.0]\n', ["feed.sped", "unknown key"]),
+    ('base = "wide_low"\n[grid]\n"feed.speed" = 4.0\n', ["grid.feed.speed", "non-empty list"]),
+    ('base = "wide_low"\nduration = -1\n[grid]\n"feed.speed" = [4.0]\n', ["duration", "-1"]),
+    ('base = "apparatus_floor"\nseeds = [1]\n[grid]\n"apparatus.speed" = [3.0]\n',
+     ["seeds", "no effect"]),
+    ('base = "wide_low"\n[grid\n', ["not valid TOML"]),
+])
+def test_bad_sweep_files_one_line_and_nothing_written(tmp_path, text, words):
+    (tmp_path / "s.toml").write_text(text)
+    r = _cli("sweep", "s.toml", "--out", "out", cwd=tmp_path)
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1, r.stderr
+    for w in words:
+        assert w in r.stderr, (w, r.stderr)
+    assert not (tmp_path / "out").exists()
