@@ -52,8 +52,7 @@ def main(argv: list[str] | None = None) -> int:
     for name in a.levels:
         cfg = io.load(LEVELS / f"{name}.toml").sim
         f = cfg.feed
-        ref = LaunchReference.from_launch(f.speed, f.launch_angle, f.drop, cfg.gravity,
-                                          TE_bar=f.end_tension)
+        ref = LaunchReference.of_feed(f, cfg.gravity)
         rows = [("level", cfg.chain.link_length, cfg.solver.dt, cfg.solver.iterations)]
         rows += SETTINGS.get(name, [])
         for label, L, dt, it in rows:

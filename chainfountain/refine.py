@@ -180,8 +180,7 @@ def _converged_iterations(cfg: SimConfig) -> None:
 
     f = cfg.feed
     try:
-        ref = LaunchReference.from_launch(f.speed, f.launch_angle, f.drop, cfg.gravity,
-                                          TE_bar=f.end_tension)
+        ref = LaunchReference.of_feed(f, cfg.gravity)
     except ValueError:
         return
     n = round(accuracy.flight_length(ref) / cfg.chain.link_length)

@@ -153,8 +153,7 @@ def model_error(level: Level) -> dict[str, Any]:
                            "use chainfountain converge LEVEL")
         return out
     try:
-        ref = LaunchReference.from_launch(f.speed, f.launch_angle, f.drop, sim.gravity,
-                                          TE_bar=f.end_tension)
+        ref = LaunchReference.of_feed(f, sim.gravity)
     except ValueError as exc:
         out["why_none"] = f"no fountain: {exc}"
         return out

@@ -405,8 +405,7 @@ def apply_accuracy(level: Level, where: str) -> Estimate | None:
     if acc == 0.0 or sim.kind != "feed":
         return None
     f = sim.feed
-    ref = LaunchReference.from_launch(f.speed, f.launch_angle, f.drop, sim.gravity,
-                                      TE_bar=f.end_tension)
+    ref = LaunchReference.of_feed(f, sim.gravity)
     try:
         est = accuracy.choose(ref, acc)
     except accuracy.OutOfReach as exc:

@@ -17,11 +17,15 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from chainfountain.theory.tension import tension_bar
+
+if TYPE_CHECKING:
+    from chainfountain.sim.config import FeedConfig
 
 
 @dataclass(frozen=True)
@@ -48,6 +52,13 @@ class LaunchReference:
         f = Fountain.from_launch(v=v, alpha0=alpha0, H=H, TE_bar=TE_bar, g=g)
         return cls(v=v, alpha0=alpha0, H=H, g=g, k=float(f.k), q=float(f.q), h=float(f.h),
                    T0_bar=float(f.T0_bar), TE_bar=float(TE_bar))
+
+    @classmethod
+    def of_feed(cls, feed: FeedConfig, g: float) -> LaunchReference:
+        """The paper's fountain for a motor feed's speed, angle, drop and end tension
+        (:meth:`from_launch`; ``ValueError`` when there is none)."""
+        return cls.from_launch(feed.speed, feed.launch_angle, feed.drop, g,
+                               TE_bar=feed.end_tension)
 
     @property
     def x_rise(self) -> float:
