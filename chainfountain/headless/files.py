@@ -27,20 +27,23 @@ def write_tensions(path: Path, rec: Recorder, lam: float) -> None:
         return
     idx = np.unique(np.linspace(0, len(profs) - 1, min(MAX_TENSION_SAMPLES, len(profs)))
                     .round().astype(int))
-    buf = _io.StringIO()
-    w = csv.writer(buf, lineterminator="\n")
-    w.writerow(["t", "joint", "s", "x", "y", "tension_N", "tension_bar"])
     t_samples = np.array([smp.t for smp in samples])
+    blocks = []
     for i in idx:
         p = profs[i]
         smp = samples[int(np.argmin(np.abs(t_samples - p.t)))]
         v = smp.speed_mean if smp.speed_mean > 0 else 1.0
         xy = np.column_stack([p.x, p.y])
         s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(xy, axis=0), axis=1))])
-        scale = lam * v * v
-        for j in range(len(p.tension_bar)):
-            w.writerow([f"{smp.t:.6g}", j, f"{s[j]:.6g}", f"{p.x[j]:.6g}", f"{p.y[j]:.6g}",
-                        f"{p.tension_bar[j] * scale:.6g}", f"{p.tension_bar[j]:.6g}"])
+        n = len(p.tension_bar)
+        tb = np.asarray(p.tension_bar, dtype=float)
+        blocks.append(np.column_stack([np.full(n, smp.t), np.arange(n), s[:n], p.x[:n],
+                                       p.y[:n], tb * (lam * v * v), tb]))
+    buf = _io.StringIO()
+    buf.write("t,joint,s,x,y,tension_N,tension_bar\n")
+    # one formatted write of the whole table (row by row, 82,000 rows took 0.5 s)
+    np.savetxt(buf, np.vstack(blocks), fmt=["%.6g", "%d", "%.6g", "%.6g", "%.6g", "%.6g",
+                                            "%.6g"], delimiter=",")
     atomic.write_text(path, buf.getvalue())
 
 
