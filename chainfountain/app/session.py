@@ -16,9 +16,11 @@ import copy
 import dataclasses
 import math
 import time
+import tomllib
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -32,6 +34,7 @@ from chainfountain.app.readout import (
 from chainfountain.errors import UserError
 from chainfountain.level import io
 from chainfountain.level.io import Level, LevelError
+from chainfountain.sim.config import SimConfig
 from chainfountain.sim.recorder import Recorder
 from chainfountain.sim.world import Simulation
 
@@ -65,6 +68,43 @@ def paused_message(reason: str) -> str:
 HAND_SETTINGS = frozenset({"chain.link_length", "solver.dt", "solver.iterations",
                            "solver.substeps"})
 """Fields ``solver.accuracy`` chooses; setting one by hand turns the accuracy off."""
+
+
+def changed_fields(before: SimConfig, after: SimConfig) -> list[tuple[str, Any, Any]]:
+    """Every level field whose value differs, as ``(dotted path, before, after)``."""
+    def flat(sim: SimConfig) -> dict[str, Any]:
+        out: dict[str, Any] = {}
+
+        def walk(prefix: str, obj: Any) -> None:
+            if isinstance(obj, dict):
+                for k, v in obj.items():
+                    walk(f"{prefix}.{k}" if prefix else k, v)
+            elif isinstance(obj, list) and obj and all(isinstance(x, dict) for x in obj):
+                for i, v in enumerate(obj):
+                    walk(f"{prefix}[{i}]", v)
+            else:
+                out[prefix] = obj
+
+        data = tomllib.loads(io.dumps(io.make_level("x", "", sim)))
+        data.pop("meta", None)
+        walk("", data)
+        return out
+
+    a, b = flat(before), flat(after)
+    return [(k, a.get(k), b.get(k)) for k in sorted(set(a) | set(b)) if a.get(k) != b.get(k)]
+
+
+def saved_description(origin: Level, sim: SimConfig) -> str:
+    """The description a saved level gets: the original one when nothing changed, else a
+    first sentence naming the level it came from and each changed field (the original
+    description, kept after it, describes the original settings)."""
+    changes = changed_fields(origin.sim, sim)
+    if not changes:
+        return origin.meta.description
+    listed = "; ".join(f"{k} {old!r} -> {new!r}" for k, old, new in changes[:12])
+    more = f" and {len(changes) - 12} more" if len(changes) > 12 else ""
+    return (f"Level {origin.meta.name!r} with changes ({listed}{more}). Its description, "
+            f"for the original settings: {origin.meta.description}")
 
 
 @dataclass
@@ -108,6 +148,8 @@ class Session:
         self._consumed = 0
         self.level = copy.deepcopy(level)
         self.source = source
+        self._origin = copy.deepcopy(level)
+        """The level as loaded or last saved (what its description describes)."""
         self._build()
 
     # ------------------------------------------------------------------ building
@@ -155,6 +197,7 @@ class Session:
             self.say(f"cannot open {level.meta.name!r}: {exc}")
             return False
         self.dirty = False
+        self._origin = copy.deepcopy(level)
         self.say(f"opened level {level.meta.name!r}" + (f" ({source})" if source else ""))
         return True
 
@@ -176,7 +219,8 @@ class Session:
         folder = folder if folder is not None else paths.user_levels_dir(create=True)
         folder.mkdir(parents=True, exist_ok=True)
         path = folder / f"{paths.safe_name(name)}.toml"
-        level = io.make_level(name, self.level.meta.description, copy.deepcopy(self.level.sim))
+        level = io.make_level(name, saved_description(self._origin, self.level.sim),
+                              copy.deepcopy(self.level.sim))
         try:
             io.save(level, path)
         except (LevelError, OSError) as exc:
@@ -185,6 +229,7 @@ class Session:
         self.level = level
         self.source = path
         self.dirty = False
+        self._origin = copy.deepcopy(level)
         self.say(f"saved {path}")
         return path
 

@@ -253,3 +253,14 @@ def test_setting_link_length_by_hand_turns_the_accuracy_off():
     # a saved copy keeps the hand-set link length
     again = io.loads(io.dumps(s.level))
     assert again.sim.chain.link_length == 0.03
+
+
+def test_a_changed_level_is_saved_with_a_description_of_its_changes(tmp_path):
+    lvl = io.load(Path(__file__).resolve().parents[2] / "levels" / "wide_low.toml")
+    s = Session(lvl)
+    path = s.save("same", tmp_path)
+    assert io.load(path).meta.description == lvl.meta.description  # unchanged: as it was
+    assert s.set_field("feed.speed", 4.5).ok
+    desc = io.load(s.save("faster", tmp_path)).meta.description
+    assert desc.startswith("Level 'same' with changes (feed.speed 4.0 -> 4.5)")
+    assert desc.endswith(lvl.meta.description)
