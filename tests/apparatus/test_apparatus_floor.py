@@ -261,3 +261,18 @@ def test_joint_guide_adds_the_weight_of_the_rise_in_the_steady_window(run) -> No
     _, sim, rec, _ = run
     m = report(sim, rec, *STEADY)["measured"]
     assert m["T0_bar"] - m["T_pickup_exit_bar"] == pytest.approx(m["xi2"] * m["kH"], abs=0.04)
+
+
+def test_too_heavy_a_cart_stops_the_chain_with_one_plain_sentence(tmp_path):
+    """A 30 g upper cart holds the chain back harder than the fall pulls it on: the chain
+    slows from 2.9 m/s and stops at about 5 s, and the run ends saying so and what to
+    change (not a chain left hanging with no message)."""
+    import chainfountain
+
+    r = chainfountain.run("apparatus_floor", duration=8, changes={"carts[0].mass": 0.03},
+                          out=tmp_path / "o")
+    ended = r.summary["ended_early"]
+    assert ended is not None and ended["cause"] == "machine"
+    assert "the chain has stopped" in ended["reason"]
+    assert "upper cart 30 g" in ended["reason"] and "carts[0].mass" in ended["reason"]
+    assert "\n" not in ended["reason"]

@@ -25,6 +25,7 @@ from chainfountain.sim.apparatus.fold import FoldPart
 from chainfountain.sim.apparatus.fold_watch import FoldWatch
 from chainfountain.sim.apparatus.grooves import PlateGrooves
 from chainfountain.sim.apparatus.open_tail import OpenTail
+from chainfountain.sim.apparatus.stall_watch import StallWatch
 from chainfountain.sim.apparatus.treadmill import Treadmills
 from chainfountain.sim.apparatus.tuning import FOLD_CAPTURE, FOLD_CLOSE_RATE
 from chainfountain.sim.apparatus.upper import UpperPart
@@ -42,7 +43,7 @@ class TableUsedUp(RunEnded):
 
 
 class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, FoldWatch,
-                Treadmills, OpenTail):
+                StallWatch, Treadmills, OpenTail):
     """Builds the apparatus into a space and keeps its bookkeeping (duck-types the
     :class:`~chainfountain.sim.feed.Feed` interface the simulation uses).
 
@@ -188,6 +189,7 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
         self._init_open_state()
         self._init_fold_state()
         self._init_watch_state()
+        self._init_stall_state()
 
     def _take_in_held_links(self) -> None:
         """Put the links laid on the plates and along the joint guides into their grooves
@@ -273,6 +275,7 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
                 self._treadmill_lower()
         if self.lower is not None:
             self._check_fold(dt)
+        self._check_stall(dt)
 
     def _check_table(self) -> None:
         """Raise :class:`TableUsedUp` once the pick-up roller is within 5 cm of the upper
