@@ -114,11 +114,21 @@ def compute_readout(sim: Simulation, recorder: Recorder, history: History) -> Re
         r.measured = True
         r.measured_vertex = (float(recorder.samples[-1].vertex_x)
                              if recorder.samples else math.nan, h)
-        try:
-            f = Fountain.from_geometry(l=lx, h=max(h, 0.0), H=H, v=v, g=g)
-        except (ValueError, ArithmeticError, RuntimeError) as exc:
-            f = None
-            r.note = f"no inverted catenary fits ({exc})"
+        f = None
+        if not v * v > g * H:
+            # no fountain can reach the floor (k*H >= 1): nothing to compare, and tensions
+            # scaled by lambda*v^2 of a chain this slow mean nothing to a reader
+            r.note = (f"no fountain: the chain moves at {v:.2f} m/s, slower than the "
+                      f"sqrt(g*H) = {math.sqrt(g * H):.2f} m/s a fountain over this drop needs")
+            r.T0_bar = r.TE_bar = math.nan
+        elif not h > 0.0:
+            r.note = "no fountain: the chain does not rise above the launch point"
+        else:
+            try:
+                f = Fountain.from_geometry(l=lx, h=h, H=H, v=v, g=g)
+            except (ValueError, ArithmeticError, RuntimeError):
+                r.note = ("no inverted catenary fits the measured ends (the chain is not "
+                          "a steady fountain)")
     else:
         f = None
         ref = sim.reference
