@@ -151,6 +151,12 @@ class FieldSpec:
                              "max_inclusive": self.hi_incl, "unit": self.schema_unit})
 
     @property
+    def shown_unit(self) -> str:
+        """The unit as text after a value, with its leading space; empty for a pure number
+        (unit ``1``), so that ``xi3 = 0.4`` does not read ``xi3 = 0.4 1``."""
+        return "" if self.unit in ("", "1") else f" {self.unit}"
+
+    @property
     def schema_unit(self) -> str:
         return "rad" if self.scale != 1.0 else self.unit
 
@@ -177,7 +183,7 @@ class FieldSpec:
                 v = float(math.floor(self.hi))
         if v != orig:
             return v, (f"{self.label}: {self.fmt(orig * self.scale)} is outside the allowed "
-                       f"range, set to {self.fmt(v * self.scale)} {self.unit} "
+                       f"range, set to {self.fmt(v * self.scale)}{self.shown_unit} "
                        f"(allowed: {self.allowed()})")
         return v, None
 

@@ -24,7 +24,7 @@ from typing import Any
 
 import numpy as np
 
-from chainfountain.app import paths
+from chainfountain.app import budget, paths
 from chainfountain.app.controls import FieldSpec, get_value, set_value, spec_for
 from chainfountain.app.readout import (
     History,
@@ -265,11 +265,23 @@ class Session:
         except LevelError as exc:
             msg = str(exc).removeprefix("setting: ")
             return Applied(path, old, False, False, self.say(f"refused: {msg}"))
+        why = budget.over_budget(cand, self._origin.sim)
+        if why is not None and path == "feed.speed" and v > old:
+            fast = budget.fastest_feed(self.level.sim, self._origin.sim, v)
+            if fast is not None and fast > old:
+                rail = (f"{spec.label}: {spec.fmt(v)}{spec.shown_unit}: {why}; set to the "
+                        f"fastest the window runs, {spec.fmt(fast)}{spec.shown_unit}")
+                clamp_msg = f"{clamp_msg}; {rail}" if clamp_msg else rail
+                v = fast
+                set_value(cand, path, v)
+                why = None
+        if why is not None:
+            return Applied(path, old, False, False, self.say(f"refused: {why}"))
         if v == old:
             return Applied(path, old, True, True, self.say(clamp_msg) if clamp_msg else "")
         self.level.sim = cand
         self.dirty = True
-        shown = f"{spec.label} = {spec.fmt(spec.to_display(v))} {spec.unit}".rstrip()
+        shown = f"{spec.label} = {spec.fmt(spec.to_display(v))}{spec.shown_unit}"
         if spec.live and self._apply_live(path, v):
             msg = f"{shown} (live)"
             live = True

@@ -80,12 +80,14 @@ def test_live_change_rebuild_and_refusal():
     r = s.set_field("chain.link_length", 0.025)
     assert r.ok and not r.live and s.sim is not sim and s.sim.time == 0
     assert "rebuilt" in r.message
-    # a schema limit: clamped, and said so
+    # a schema limit: clamped, and said so; then the window's real-time budget
     r = s.set_field("feed.speed", 99.0)
-    assert r.ok and s.value("feed.speed") == 30.0 and "outside the allowed range" in r.message
+    fastest = s.value("feed.speed")
+    assert r.ok and 4.5 < fastest < 30.0
+    assert "outside the allowed range" in r.message and "too slow for the window" in r.message
     # a cross-field limit (too slow to reach the floor): refused, old value kept
     r = s.set_field("feed.speed", 1.0)
-    assert not r.ok and s.value("feed.speed") == 30.0 and "refused" in r.message
+    assert not r.ok and s.value("feed.speed") == fastest and "refused" in r.message
 
 
 def test_pause_step_reset_slow():
@@ -278,3 +280,34 @@ def test_a_stalled_chain_pauses_with_a_sentence_and_no_nonsense_readout() -> Non
     ro = s.readout()
     assert ro.note.startswith("no fountain") and ro.curve is None
     assert math.isnan(ro.T0_bar) and math.isnan(ro.TE_theory)
+
+
+def test_window_keeps_a_fed_fountain_at_real_time():
+    """Guard-rail: 30 m/s on classroom (3,400 links in flight, about 0.16x real time) is
+    set to the fastest speed whose physics the error model's cost keeps within half of
+    real time, with a message saying why and that level files accept it; a link length
+    that would need 13,600 links is refused; a level shipped slower (paper_tall, 0.94 s
+    per simulated second) may grow to 1.5 times its own cost."""
+    from chainfountain.app import budget
+
+    root = Path(__file__).resolve().parents[2] / "levels"
+    s = Session(io.load(root / "classroom.toml"))
+    r = s.set_field("feed.speed", 30.0)
+    assert r.ok and 8.0 < r.value < 30.0
+    assert "too slow for the window" in r.message and "level files" in r.message
+    assert budget.cost(s.level.sim)[1] <= budget.WINDOW_COST
+    r = s.set_field("chain.link_length", 0.002)
+    assert not r.ok and r.message.startswith("refused:") and "links in flight" in r.message
+    p = Session(io.load(root / "paper_tall.toml"))
+    shipped = budget.cost(p.level.sim)[1]
+    assert shipped > budget.WINDOW_COST
+    assert p.set_field("feed.speed", 6.0).ok and p.value("feed.speed") == 6.0
+    r = p.set_field("feed.speed", 30.0)
+    assert r.ok and 6.0 < r.value < 30.0
+    assert budget.cost(p.level.sim)[1] <= budget.ORIGIN_FACTOR * shipped
+
+
+def test_pure_numbers_show_no_unit():
+    s = Session(io.load(Path(__file__).resolve().parents[2] / "levels" / "classroom.toml"))
+    r = s.set_field("chain.friction", 0.5)
+    assert r.ok and r.message.startswith("friction = 0.5") and " 1 " not in r.message + " "

@@ -102,14 +102,17 @@ def test_entry_clamps_and_rebuilds(app):
                                          ui_element=row.entry, text="0.025"))
     app.run_frame()
     assert app.session.sim is not sim and app.session.value("chain.link_length") == 0.025
-    # outside the schema: clamped to the limit and said so
+    # outside the schema: clamped to the limit, then to what the window runs at real time,
+    # and said so; the field shows the value set
     row = app._row("feed.speed")
     pygame.event.post(pygame.event.Event(pygame_gui.UI_TEXT_ENTRY_FINISHED,
                                          ui_element=row.entry, text="1e6"))
     app.run_frame()
-    assert app.session.value("feed.speed") == 30.0
-    assert row.entry.get_text() == "30"
-    assert any("outside the allowed range" in m for _, m in app.session.messages)
+    v = app.session.value("feed.speed")
+    assert 4.0 < v < 30.0  # above its 4 m/s, below the schema's 30
+    assert row.entry.get_text() == app.session.spec("feed.speed").fmt(v)
+    assert any("outside the allowed range" in m and "too slow for the window" in m
+               for _, m in app.session.messages)
 
 
 def test_save_and_load_through_the_dialogs(app, tmp_path):

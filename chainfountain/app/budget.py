@@ -1,0 +1,87 @@
+"""The window's guard-rail: a fed fountain the window cannot show at real time.
+
+Level files and ``chainfountain run`` accept any fountain the schema allows (a 30 m/s
+feed flies 28 m up with thousands of links); the window keeps a fed level within what
+one core simulates at real time by the error model's cost estimate
+(:mod:`chainfountain.sim.accuracy`: wall seconds per simulated second
+``n (C_LINK + C_ITER iterations) / dt``), so the scene stays interactive: a change that
+would cost more than :func:`limit` is refused, a feed speed is set to the fastest within
+it, and the message says why.
+"""
+
+from __future__ import annotations
+
+import math
+
+from chainfountain.sim import accuracy
+from chainfountain.sim.config import SimConfig
+from chainfountain.sim.reference import LaunchReference
+
+WINDOW_COST = 0.5
+"""Most wall seconds per simulated second (one core, the error model's estimate) a fed
+level's physics may cost in the window: half of real time, the other half left for
+drawing and the readout (at 1.0, classroom at 12.4 m/s ran at 0.46x real time, 29 fps,
+under Xvfb while its fountain formed)."""
+
+
+def cost(sim: SimConfig) -> tuple[int, float] | None:
+    """Links in flight and estimated wall seconds per simulated second of a motor-fed
+    level (``None`` for other levels or a feed without a fountain)."""
+    if sim.kind != "feed" or sim.feed.drive != "motor":
+        return None
+    try:
+        ref = LaunchReference.of_feed(sim.feed, sim.gravity)
+    except ValueError:
+        return None
+    s = sim.solver
+    n = max(1, round(accuracy.flight_length(ref) / sim.chain.link_length))
+    h = s.dt / s.substeps
+    return n, n * (accuracy.C_LINK + accuracy.C_ITER * s.iterations) / h
+
+
+ORIGIN_FACTOR = 1.5
+"""A level may cost this much more than as loaded (a level shipped slower, like
+``paper_tall`` at 0.94 s per simulated second or fountain D at 20, still has room)."""
+
+
+def limit(origin: SimConfig) -> float:
+    """The most wall seconds per simulated second the window allows for changes of the
+    level ``origin`` (as loaded): :data:`WINDOW_COST`, or :data:`ORIGIN_FACTOR` times the
+    level's own cost when that is more."""
+    c = cost(origin)
+    return max(WINDOW_COST, ORIGIN_FACTOR * c[1]) if c is not None else WINDOW_COST
+
+
+def over_budget(sim: SimConfig, origin: SimConfig) -> str | None:
+    """Why the window will not run ``sim``, a change of the level ``origin`` (``None`` when
+    it will): its cost exceeds :func:`limit`."""
+    c = cost(sim)
+    if c is None or c[1] <= limit(origin):
+        return None
+    n, wall = c
+    return (f"the fountain would put {n} links in flight and run at about {1.0 / wall:.2g}x "
+            "real time, too slow for the window (level files and `chainfountain run` "
+            "accept it)")
+
+
+def fastest_feed(sim: SimConfig, origin: SimConfig, v_hi: float) -> float | None:
+    """The largest feed speed between ``sim``'s and ``v_hi`` that the window runs
+    (bisection on the cost; ``None`` when not even ``sim``'s own speed is within it)."""
+    import copy
+
+    trial = copy.deepcopy(sim)
+
+    def ok(v: float) -> bool:
+        trial.feed.speed = v
+        return over_budget(trial, origin) is None
+
+    lo = sim.feed.speed
+    if not ok(lo):
+        return None
+    if ok(v_hi):
+        return v_hi
+    hi = v_hi
+    for _ in range(40):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if ok(mid) else (lo, mid)
+    return math.floor(lo * 100.0) / 100.0
