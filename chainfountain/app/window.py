@@ -469,11 +469,26 @@ class App(InputMixin, DrawMixin):
         self.saver.wait()
         s = self.session
         if s.dirty and not self.offscreen and not os.environ.get("CHAINFOUNTAIN_NO_AUTOSAVE"):
-            p = s.save("autosave")
+            p = s.save(f"autosave-{timestamp()}")
             if p is not None:
                 notes.append(f"unsaved setup kept as {p}")
+                _prune_autosaves(p.parent)
         for n in notes:
             print(f"chainfountain: {n}")
         pygame.display.quit()
         return notes
 
+
+
+AUTOSAVES_KEPT = 10
+"""Autosaves kept in the user's level folder (one per quit with unsaved changes, named
+by time; the oldest beyond this are removed)."""
+
+
+def _prune_autosaves(folder: Path) -> None:
+    """Remove all but the newest :data:`AUTOSAVES_KEPT` ``autosave-*.toml`` in ``folder``."""
+    for old in sorted(folder.glob("autosave-*.toml"))[:-AUTOSAVES_KEPT]:
+        try:
+            old.unlink()
+        except OSError:
+            pass

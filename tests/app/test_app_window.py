@@ -250,8 +250,22 @@ def test_quit_keeps_the_clip_and_the_changed_setup(tmp_path, monkeypatch):
     assert not app.running
     notes = app.finish()
     assert any(n.startswith("clip saved") for n in notes), notes
-    saved = tmp_path / "home" / "levels" / "autosave.toml"
-    assert saved.exists() and io.load(saved).sim.feed.speed == 4.3
+    saved = list((tmp_path / "home" / "levels").glob("autosave-*.toml"))
+    assert len(saved) == 1 and io.load(saved[0]).sim.feed.speed == 4.3
+
+
+def test_each_quit_keeps_its_own_autosave_up_to_ten(tmp_path):
+    """Autosaves are named by time (a quit does not overwrite the last one) and only the
+    newest ten are kept."""
+    from chainfountain.app.window import AUTOSAVES_KEPT, _prune_autosaves
+
+    for k in range(AUTOSAVES_KEPT + 3):
+        (tmp_path / f"autosave-20261124-1200{k:02d}.toml").write_text("x")
+    (tmp_path / "mine.toml").write_text("x")
+    _prune_autosaves(tmp_path)
+    left = sorted(p.name for p in tmp_path.glob("autosave-*.toml"))
+    assert len(left) == AUTOSAVES_KEPT and left[0] == "autosave-20261124-120003.toml"
+    assert (tmp_path / "mine.toml").exists()
 
 
 def test_status_keeps_a_long_stop_reason_from_its_head():
