@@ -183,7 +183,7 @@ def _converged_iterations(cfg: SimConfig) -> None:
         ref = LaunchReference.of_feed(f, cfg.gravity)
     except ValueError:
         return
-    n = round(accuracy.flight_length(ref) / cfg.chain.link_length)
+    n = accuracy.links_in_flight(ref, cfg.chain.link_length)
     h = cfg.solver.dt / cfg.solver.substeps
     cfg.solver.iterations = max(cfg.solver.iterations, accuracy.iterations_needed(n, h))
 

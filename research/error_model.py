@@ -66,24 +66,12 @@ def fountain(name: str):
 
 def config(name: str, L: float, dt: float, iterations: int):
     """The fed level for fountain ``name`` at the given settings, on its catenary."""
-    from chainfountain.sim.config import (
-        ChainConfig,
-        FeedConfig,
-        InitialConfig,
-        SimConfig,
-        SolverConfig,
-    )
+    from chainfountain.sim.accuracy import Settings, catenary_config
+    from chainfountain.sim.reference import LaunchReference
 
     f = fountain(name)
-    return SimConfig(
-        kind="feed", gravity=f.g,
-        chain=ChainConfig(link_length=L, linear_density=0.05,
-                          link_radius=min(0.002, 0.4 * L)),
-        feed=FeedConfig(speed=f.v, launch_angle=f.alpha0, drop=f.H,
-                        end_tension=max(0.0, f.TE_bar), floor_width=max(1.0, 2.5 * f.l)),
-        solver=SolverConfig(dt=dt, iterations=iterations),
-        initial=InitialConfig(mode="catenary"),
-    )
+    ref = LaunchReference.from_launch(f.v, f.alpha0, f.H, f.g, TE_bar=max(0.0, f.TE_bar))
+    return catenary_config(ref, Settings(L, dt, iterations))
 
 
 def one(job: tuple[str, float, float, int, float, float]) -> dict:

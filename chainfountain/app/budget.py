@@ -11,6 +11,7 @@ it, and the message says why.
 
 from __future__ import annotations
 
+import copy
 import math
 
 from chainfountain.sim import accuracy
@@ -34,9 +35,8 @@ def cost(sim: SimConfig) -> tuple[int, float] | None:
     except ValueError:
         return None
     s = sim.solver
-    n = max(1, round(accuracy.flight_length(ref) / sim.chain.link_length))
-    h = s.dt / s.substeps
-    return n, n * (accuracy.C_LINK + accuracy.C_ITER * s.iterations) / h
+    n = accuracy.links_in_flight(ref, sim.chain.link_length)
+    return n, accuracy.wall_cost(n, s.dt / s.substeps, s.iterations)
 
 
 ORIGIN_FACTOR = 1.5
@@ -67,8 +67,6 @@ def over_budget(sim: SimConfig, origin: SimConfig) -> str | None:
 def fastest_feed(sim: SimConfig, origin: SimConfig, v_hi: float) -> float | None:
     """The largest feed speed between ``sim``'s and ``v_hi`` that the window runs
     (bisection on the cost; ``None`` when not even ``sim``'s own speed is within it)."""
-    import copy
-
     trial = copy.deepcopy(sim)
 
     def ok(v: float) -> bool:

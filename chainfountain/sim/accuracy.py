@@ -44,6 +44,13 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from chainfountain.sim.config import (
+    ChainConfig,
+    FeedConfig,
+    InitialConfig,
+    SimConfig,
+    SolverConfig,
+)
 from chainfountain.sim.reference import LaunchReference
 
 DT0 = 2.5e-4
@@ -129,6 +136,16 @@ def step_term(ref: LaunchReference, dt: float) -> float:
     return ref.q * ref.v * dt * max(0.0, ref.TE_bar) / (ref.k / ref.q)
 
 
+def links_in_flight(ref: LaunchReference, link_length: float) -> int:
+    """Links on the catenary from the launch to the landing point (at least 1)."""
+    return max(1, round(flight_length(ref) / link_length))
+
+
+def wall_cost(links: int, dt: float, iterations: int) -> float:
+    """Estimated wall seconds per simulated second on one core (the cost model)."""
+    return links * (C_LINK + C_ITER * iterations) / dt
+
+
 def iterations_needed(links: int, dt: float) -> int:
     """Fewest iterations (at least :data:`MIN_ITERATIONS`) at which the solver converges
     on ``links`` links in flight at step ``dt`` (item 1 of the module docstring)."""
@@ -138,16 +155,15 @@ def iterations_needed(links: int, dt: float) -> int:
 
 def estimate(ref: LaunchReference, s: Settings) -> Estimate:
     """The model's errors, bounds and cost for fountain ``ref`` at settings ``s``."""
-    n = max(1, round(flight_length(ref) / s.link_length))
+    n = links_in_flight(ref, s.link_length)
     conv = s.iterations >= iterations_needed(n, s.dt)
     qL = ref.q * s.link_length
     Lh = s.link_length / ref.h
     step = step_term(ref, s.dt)
     errors = {f: A_L[f] * qL + A_H[f] * Lh for f in FIGURES}
     bounds = {f: abs(errors[f]) + MARGIN[f] + C_STEP[f] * step for f in FIGURES}
-    cost = n * (C_LINK + C_ITER * s.iterations) / s.dt
     return Estimate(settings=s, links=n, converged=conv, errors=errors, bounds=bounds,
-                    cost=cost)
+                    cost=wall_cost(n, s.dt, s.iterations))
 
 
 def candidates(ref: LaunchReference) -> list[Estimate]:
@@ -158,7 +174,7 @@ def candidates(ref: LaunchReference) -> list[Estimate]:
         L = mm / 1000.0
         if ref.q * L > MAX_QL:
             continue
-        n = max(1, round(flight_length(ref) / L))
+        n = links_in_flight(ref, L)
         for us in STEPS_US:
             dt = us * 1e-6
             it = iterations_needed(n, dt)
@@ -193,3 +209,18 @@ def choose(ref: LaunchReference, accuracy: float) -> Estimate:
         raise OutOfReach(f"no link length and step in the model's range reach {accuracy:.2%} "
                          f"(best: {reach})", best)
     return min(ok, key=lambda e: e.cost)
+
+
+def catenary_config(ref: LaunchReference, s: Settings, lam: float = 0.05) -> SimConfig:
+    """The motor-fed level of fountain ``ref`` at settings ``s``, started on its predicted
+    catenary (the runs the model is fitted and checked on)."""
+    return SimConfig(
+        kind="feed", gravity=ref.g,
+        chain=ChainConfig(link_length=s.link_length, linear_density=lam,
+                          link_radius=min(ChainConfig().link_radius, 0.4 * s.link_length)),
+        feed=FeedConfig(speed=ref.v, launch_angle=ref.alpha0, drop=ref.H,
+                        end_tension=max(0.0, ref.TE_bar),
+                        floor_width=max(1.0, 2.5 * ref.landing_x)),
+        solver=SolverConfig(dt=s.dt, iterations=s.iterations),
+        initial=InitialConfig(mode="catenary"),
+    )

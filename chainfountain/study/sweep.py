@@ -41,6 +41,7 @@ from chainfountain import atomic
 from chainfountain.errors import UserError
 from chainfountain.level import io, library
 from chainfountain.level.model import Level, LevelError
+from chainfountain.study.changes import with_changes
 
 KEYS = {"base", "duration", "seeds", "grid", "snapshots"}
 """Top-level keys of a sweep file."""
@@ -131,8 +132,6 @@ def load(path: str | Path) -> Sweep:
         if not isinstance(values, list) or not values:
             _fail(where, f"grid.{key}", f"{values!r}; allowed: a non-empty list of values")
         try:  # the field must exist and take the first value's type
-            from chainfountain.study.changes import with_changes
-
             with_changes(base, {key: values[0]}, where=f"{where}: grid")
         except LevelError as exc:
             if "unknown key" in str(exc) or "not a field path" in str(exc) \
@@ -154,7 +153,6 @@ def run_point(base: Level, point: Point, duration: float | None, out_dir: Path,
     """Run one point into ``out_dir`` (a fresh folder); its row of the results table.
     Never raises: a refused level or a failed run is the row's status and reason."""
     from chainfountain.headless import run_and_record
-    from chainfountain.study.changes import with_changes
 
     row: dict[str, Any] = {"point": point.id, **point.values, "seed": point.seed}
     t0 = time.perf_counter()

@@ -93,25 +93,6 @@ def test_level_accuracy_refusals_name_the_field(text, field, words):
     assert field in msg and words in msg and "allowed" in msg
 
 
-def _config(ref: LaunchReference, s: accuracy.Settings):
-    from chainfountain.sim.config import (
-        ChainConfig,
-        FeedConfig,
-        InitialConfig,
-        SimConfig,
-        SolverConfig,
-    )
-
-    return SimConfig(
-        kind="feed",
-        chain=ChainConfig(link_length=s.link_length, link_radius=min(0.002, 0.4 * s.link_length)),
-        feed=FeedConfig(speed=ref.v, launch_angle=ref.alpha0, drop=ref.H,
-                        end_tension=ref.TE_bar, floor_width=max(1.0, 2.5 * ref.landing_x)),
-        solver=SolverConfig(dt=s.dt, iterations=s.iterations),
-        initial=InitialConfig(mode="catenary"),
-    )
-
-
 @pytest.mark.slow
 @pytest.mark.parametrize("ref, acc", [
     (WIDE_LOW, 0.005),
@@ -120,7 +101,7 @@ def _config(ref: LaunchReference, s: accuracy.Settings):
 ], ids=["wide_low_0.5%", "floor_pull_0.5%", "classroom_0.5%"])
 def test_run_at_chosen_settings_is_within_the_bounds(ref, acc):
     est = accuracy.choose(ref, acc)
-    run = measure(_config(ref, est.settings), settle=1.5, window=3.0)
+    run = measure(accuracy.catenary_config(ref, est.settings), settle=1.5, window=3.0)
     got = {"vertex_y": run.errors["h"], "vertex_x": run.errors["vertex_x"],
            "landing_x": run.errors["l"]}
     for f in accuracy.FIGURES:
