@@ -55,6 +55,63 @@ def ideal_floor_speed(H: float, xi2: float, F_uc: float, lam: float, g: float = 
     return math.sqrt(v2) if v2 > 0.0 else math.nan
 
 
+def ideal_fold_TE_bar(v: float, xi3: float, F_lc: float, lam: float, H: float,
+                      g: float = G0, drag: float = 0.0) -> float:
+    """End tension the ideal full machine's lower half supplies at speed ``v``:
+    ``Tbar_E = 1/2 + Tbar_lc - xi3 k H`` with ``Tbar_lc = F_lc/(lambda v^2)`` (paper, section
+    "Generating Steady-State Chain Fountains"), less the folding roller's bearing drag
+    ``drag*v/2`` (scaled). Negative means the lower strand goes slack."""
+    return apparatus_TE_bar((F_lc - 0.5 * drag * v) / (lam * v * v), xi3, g / (v * v), H)
+
+
+def ideal_fold_T0_bar(v: float, xi2: float, F_uc: float, lam: float, H: float,
+                      g: float = G0, drag: float = 0.0) -> float:
+    """Start tension the ideal machine's upper half supplies at speed ``v``:
+    ``Tbar_0 = 1/2 + Tbar_uc + xi2 k H`` with ``Tbar_uc = F_uc/(lambda v^2)``, plus the
+    pick-up roller's bearing drag ``drag*v/2`` (scaled)."""
+    return apparatus_T0_bar((F_uc + 0.5 * drag * v) / (lam * v * v), xi2, g / (v * v), H)
+
+
+def balanced_cart_force(F_lc: float, xi2: float, xi3: float, lam: float, H: float,
+                        g: float = G0) -> float:
+    """Upper cart force (N) that balances the lower one: ``F_uc = F_lc + lambda g H (1 - xi2
+    - xi3)``, the steady-state condition ``Tbar_uc = Tbar_lc + k H (1 - xi2 - xi3)`` times
+    ``lambda v^2``. It holds whatever ``v``: a balanced loss-free machine keeps any speed
+    (it is neutral), an unbalanced one speeds the chain up or slows it at
+    ``imbalance/mass``."""
+    return F_lc + lam * g * H * (1.0 - xi2 - xi3)
+
+
+def ideal_fold_imbalance(F_uc: float, F_lc: float, xi2: float, xi3: float, lam: float,
+                         H: float, g: float = G0) -> float:
+    """Net force (N) the carts and gravity leave on the chain of a loss-free full machine with
+    a taut lower strand: positive speeds it up. ``F_lc + lambda g H (1 - xi2 - xi3) - F_uc``;
+    the ``lambda v^2/2`` of the pick-up and of the put-down cancel, so it does not depend
+    on ``v``."""
+    return balanced_cart_force(F_lc, xi2, xi3, lam, H, g) - F_uc
+
+
+def ideal_fold_speed(F_uc: float, F_lc: float, xi2: float, xi3: float, drag: float,
+                     lam: float, H: float, g: float = G0) -> float:
+    """Speed a full machine whose bearings drag with ``drag*v`` selects: the carts' imbalance
+    (:func:`ideal_fold_imbalance`) meets the drag, ``v = imbalance/drag``. ``nan`` for a
+    loss-free machine (``drag = 0``: neutral) or when the carts hold the chain back."""
+    if drag <= 0.0:
+        return math.nan
+    v = ideal_fold_imbalance(F_uc, F_lc, xi2, xi3, lam, H, g) / drag
+    return v if v > 0.0 else math.nan
+
+
+def ideal_fold_slack_speed(xi3: float, F_lc: float, lam: float, H: float,
+                           g: float = G0) -> float:
+    """Speed below which the loss-free machine's lower strand goes slack (``Tbar_E`` of
+    :func:`ideal_fold_TE_bar` reaches 0): ``v^2 = 2 (g xi3 H - F_lc/lambda)``; 0 if never.
+    Below it the end is free, as in the idealized beaker with a real floor, and the machine
+    pushes the chain back up to it (the paper's limit case sits exactly here)."""
+    v2 = 2.0 * (g * xi3 * H - F_lc / lam)
+    return math.sqrt(v2) if v2 > 0.0 else 0.0
+
+
 def balanced_upper_cart(T_lc: float, xi2: float, xi3: float, k: float, H: float) -> float:
     """Steady-state condition: ``Tbar_uc = Tbar_lc + k*H*(1 - xi2 - xi3)``."""
     return T_lc + k * H * (1.0 - xi2 - xi3)
