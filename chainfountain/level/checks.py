@@ -131,7 +131,8 @@ def _check_feed(level: Level, where: str) -> None:
     sim = level.sim
     feed = sim.feed
     g = sim.gravity
-    v, H, te = feed.speed, feed.drop, feed.end_tension
+    v, H = feed.speed, feed.drop
+    te = _check_drive(level, where)
     v_need = math.sqrt(g * H)
     if v <= v_need:
         with_te = (f" (with feed.end_tension = {te:g}: > sqrt(g*H/(1 - Tbar_E)) = "
@@ -173,7 +174,6 @@ def _check_feed(level: Level, where: str) -> None:
               f"fall past the solid floor's end; allowed: a width > 2*l = {2.0 * f.l:.4g} m "
               "(the floor is centred on the launch point)")
     _check_blocks_in_scene(sim, where)
-    _check_drive(level, where)
     init, default_init = sim.initial, InitialConfig()
     if init.mode == "catenary" and init.stub_length != default_init.stub_length:
         _fail(where, "initial.stub_length",
@@ -182,30 +182,44 @@ def _check_feed(level: Level, where: str) -> None:
               "initial.mode = 'stub'")
 
 
-DRIVE_FIELDS = ("xi2", "cart_force", "machine_mass")
-"""Feed fields only the ideal floor machine (``feed.drive = "ideal_floor"``) uses."""
+DRIVE_FIELDS = {"xi2": ("ideal_floor", "ideal_fold"), "cart_force": ("ideal_floor", "ideal_fold"),
+                "machine_mass": ("ideal_floor", "ideal_fold"), "xi3": ("ideal_fold",),
+                "lower_cart_force": ("ideal_fold",), "bearing_drag": ("ideal_fold",)}
+"""Feed fields only the ideal machines use, with the drives that use them."""
 
 
-def _check_drive(level: Level, where: str) -> None:
-    """The ideal floor machine's settings: used only by it, and selecting a fountain."""
+def _check_drive(level: Level, where: str) -> float:
+    """The ideal machines' settings: used only by them, and making a fountain. Returns
+    the end tension ``Tbar_E`` the level's fountain starts with."""
+    sim = level.sim
+    feed, defaults = sim.feed, FeedConfig()
+    for name, drives in DRIVE_FIELDS.items():
+        if feed.drive not in drives and getattr(feed, name) != getattr(defaults, name):
+            _fail(where, f"feed.{name}",
+                  f"{getattr(feed, name)!r} has no effect with feed.drive = {feed.drive!r}; "
+                  f"allowed: {getattr(defaults, name)!r}, or feed.drive = "
+                  + " or ".join(repr(d) for d in drives))
+    if feed.drive == "motor":
+        return feed.end_tension
+    if feed.floor != "absorbing" or feed.end_tension != 0.0:
+        field = "feed.floor" if feed.floor != "absorbing" else "feed.end_tension"
+        why = ("the paper's real floor takes the chain without pull"
+               if feed.drive == "ideal_floor" else "the machine's lower half sets the pull")
+        _fail(where, field,
+              f"{getattr(feed, field.split('.')[1])!r} with feed.drive = {feed.drive!r} ({why}); "
+              "allowed: feed.floor = 'absorbing' with feed.end_tension = 0")
+    if feed.drive == "ideal_floor":
+        _check_ideal_floor(level, where)
+        return 0.0
+    return _check_ideal_fold(level, where)
+
+
+def _check_ideal_floor(level: Level, where: str) -> None:
+    """The idealized beaker with a real floor must select a speed fast enough for a fountain."""
     from chainfountain.theory.apparatus import ideal_floor_speed
 
     sim = level.sim
-    feed, defaults = sim.feed, FeedConfig()
-    if feed.drive != "ideal_floor":
-        for name in DRIVE_FIELDS:
-            if getattr(feed, name) != getattr(defaults, name):
-                _fail(where, f"feed.{name}",
-                      f"{getattr(feed, name)!r} has no effect with feed.drive = "
-                      f"{feed.drive!r}; allowed: {getattr(defaults, name)!r}, or feed.drive = "
-                      "'ideal_floor'")
-        return
-    if feed.floor != "absorbing" or feed.end_tension != 0.0:
-        field = "feed.floor" if feed.floor != "absorbing" else "feed.end_tension"
-        _fail(where, field,
-              f"{getattr(feed, field.split('.')[1])!r} with feed.drive = 'ideal_floor' (the "
-              "paper's real floor takes the chain without pull); allowed: feed.floor = "
-              "'absorbing' with feed.end_tension = 0")
+    feed = sim.feed
     lam, g, H = sim.chain.linear_density, sim.gravity, feed.drop
     share = feed.xi2 + feed.cart_force / (lam * g * H)
     if share >= 0.5:
@@ -216,6 +230,69 @@ def _check_drive(level: Level, where: str) -> None:
               f"too slow for a fountain over feed.drop = {H:g} m (xi2 + F_uc/(lambda*g*H) = "
               f"{share:.4g}; k*H < 1 needs < 0.5); allowed: xi2 < "
               f"{max(0.0, 0.5 - feed.cart_force / (lam * g * H)):.4g} with this cart")
+
+
+BALANCE_TOLERANCE = 1e-6
+"""Largest imbalance of the ideal full machine's carts a level may have, in units of
+``lambda g H``: it speeds the chain up by about ``1e-6 lambda g H/mass``, far below the
+simulation's own drift (docs/ideal_machine.md)."""
+
+
+def _check_ideal_fold(level: Level, where: str) -> float:
+    """The ideal full machine must run steady: loss-free, its carts balanced (it is neutral
+    in the speed, so an unbalanced one never settles); with bearing drag, selecting a speed.
+    The speed it keeps (the start speed, or the selected one) must make a fountain with a
+    taut lower strand. Returns the ``Tbar_E`` the level's fountain starts with."""
+    from chainfountain.theory.apparatus import (
+        balanced_cart_force,
+        ideal_fold_speed,
+        ideal_fold_T0_bar,
+        ideal_fold_TE_bar,
+    )
+
+    sim = level.sim
+    feed = sim.feed
+    lam, g, H, c = sim.chain.linear_density, sim.gravity, feed.drop, feed.bearing_drag
+    F_bal = balanced_cart_force(feed.lower_cart_force, feed.xi2, feed.xi3, lam, H, g)
+    if c == 0.0:
+        if F_bal < 0.0:
+            _fail(where, "feed.xi3",
+                  f"{feed.xi3!r} with feed.xi2 = {feed.xi2:g} and feed.lower_cart_force = "
+                  f"{feed.lower_cart_force:g} N needs an upper cart pushing the chain out "
+                  f"({F_bal:.4g} N; carts only hold back); allowed: xi2 + xi3 <= 1 + "
+                  "F_lc/(lambda*g*H)")
+        if abs(feed.cart_force - F_bal) > BALANCE_TOLERANCE * lam * g * H:
+            _fail(where, "feed.cart_force",
+                  f"{feed.cart_force!r} N does not balance the lower half of a loss-free "
+                  "machine (the chain would speed up or slow down at a constant rate without "
+                  f"end); allowed: {F_bal:.6g} N = F_lc + lambda*g*H*(1 - xi2 - xi3), or "
+                  "feed.bearing_drag > 0")
+        v, which = feed.speed, "feed.speed"
+    else:
+        v = ideal_fold_speed(feed.cart_force, feed.lower_cart_force, feed.xi2, feed.xi3, c,
+                             lam, H, g)
+        if not math.isfinite(v):
+            _fail(where, "feed.cart_force",
+                  f"{feed.cart_force!r} N holds the chain back at least as hard as the lower "
+                  f"half and the fall pull it on ({F_bal:.4g} N), so with bearing drag the "
+                  f"machine selects no speed; allowed: feed.cart_force < {F_bal:.4g} N")
+        which = "feed.cart_force"
+    T0 = ideal_fold_T0_bar(v, feed.xi2, feed.cart_force, lam, H, g, c)
+    TE = ideal_fold_TE_bar(v, feed.xi3, feed.lower_cart_force, lam, H, g, c)
+    shown = f"{v:.4g} m/s" if c == 0.0 else f"the selected {v:.4g} m/s"
+    if T0 >= 1.0:
+        allowed = ("a lighter upper cart (a faster chain)" if c > 0.0 else
+                   "a start speed > sqrt(2*(F_uc/lambda + xi2*g*H)) = "
+                   f"{math.sqrt(2.0 * (feed.cart_force / lam + feed.xi2 * g * H)):.4g} m/s")
+        _fail(where, which,
+              f"{getattr(feed, which.split('.')[1])!r} gives no fountain: at {shown} the "
+              f"machine's Tbar_0 = 1/2 + Tbar_uc + xi2*k*H = {T0:.4g} (the paper needs < 1); "
+              f"allowed: {allowed}")
+    if c > 0.0 and TE < 0.0:
+        _fail(where, which,
+              f"{feed.cart_force!r} N selects {v:.4g} m/s, where the lower strand goes slack "
+              f"(Tbar_E = {TE:.4g}); allowed: a heavier lower cart or a lower xi3")
+    return max(0.0, TE)
 
 
 def _check_apparatus(level: Level, where: str) -> None:

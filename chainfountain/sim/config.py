@@ -114,21 +114,42 @@ class FeedConfig:
         "'ideal_floor', the paper's idealized beaker with a real floor: the chain is picked "
         "up at the loss-free rate (lambda*v^2/2), lifted feed.xi2*H and held back by a cart "
         "(feed.cart_force), so the fountain selects v^2 = 2g(H(1 - xi2) - F_uc/(lambda*g)); "
-        "feed.speed is then the start speed",
-        choices=("motor", "ideal_floor"),
+        "'ideal_fold', the paper's full machine with ideal rollers: the same pick-up, and "
+        "after landing the chain is lifted feed.xi3*H and put down at the loss-free rate "
+        "with a lower cart (feed.lower_cart_force), so the floor pulls "
+        "lambda*v^2/2 + F_lc - lambda*g*xi3*H; balanced carts keep any speed. With both "
+        "machines feed.speed is the start speed",
+        choices=("motor", "ideal_floor", "ideal_fold"),
     )
     xi2: float = param(
-        0.0, unit="1", doc="Drive 'ideal_floor': height the chain is lifted before the "
-        "start, as a fraction xi2 of H (the paper's upper table offset)", min=0.0, max=0.5,
-        min_inclusive=True, max_inclusive=False,
+        0.0, unit="1", doc="Drives 'ideal_floor' and 'ideal_fold': height the chain is lifted "
+        "before the start, as a fraction xi2 of H (the paper's lowered beaker)", min=0.0,
+        max=1.0, min_inclusive=True, max_inclusive=False, live=True,
     )
     cart_force: float = param(
-        0.0, unit="N", doc="Drive 'ideal_floor': force F_uc of the upper cart holding the "
-        "chain back", min=0.0, max=100.0,
+        0.0, unit="N", doc="Drives 'ideal_floor' and 'ideal_fold': force F_uc of the upper "
+        "cart holding the chain back", min=0.0, max=100.0, live=True,
+    )
+    xi3: float = param(
+        0.0, unit="1", doc="Drive 'ideal_fold': height the chain is lifted after landing "
+        "before it is put down, as a fraction xi3 of H (the paper's raised bottom)", min=0.0,
+        max=1.0, min_inclusive=True, max_inclusive=False, live=True,
+    )
+    lower_cart_force: float = param(
+        0.0, unit="N", doc="Drive 'ideal_fold': force F_lc of the lower cart pulling the "
+        "chain on at the put-down (the paper's Tbar_lc*lambda*v^2)", min=0.0, max=100.0,
+        live=True,
+    )
+    bearing_drag: float = param(
+        0.0, unit="N*s/m", doc="Drive 'ideal_fold': viscous drag c of the rollers' bearings, "
+        "c*v/2 at each roller. 0: the paper's loss-free machine, balanced carts keep any "
+        "speed; above 0 the machine selects v = (F_lc + lambda*g*H*(1 - xi2 - xi3) - F_uc)/c "
+        "and returns to it after a push", min=0.0, max=100.0, live=True,
     )
     machine_mass: float = param(
-        0.05, unit="kg", doc="Drive 'ideal_floor': inertia of the cart and the upstream "
-        "strand (sets how fast the speed settles, not where)", min=0.001, max=100.0,
+        0.05, unit="kg", doc="Drives 'ideal_floor' and 'ideal_fold': inertia of the carts "
+        "and the guided strands (sets how fast the speed changes, not where it goes)",
+        min=0.001, max=100.0,
     )
 
 

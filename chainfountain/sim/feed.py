@@ -24,6 +24,7 @@ exactly at the floor. Triggering on a link end instead shifts ``Tbar_0`` by
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import numpy as np
 
@@ -52,6 +53,9 @@ class Feed:
         """Unit direction of the floor's pull (the predicted landing tangent)."""
         self.end_force: tuple[float, float] | None = None
         """World force the floor applied to the end link (link 0) in the last step."""
+        self.end_pull: Callable[[float], float] | None = None
+        """The floor's pull (N) as a function of the chain's speed, when a machine sets it
+        (:class:`chainfountain.sim.put_down.PutDown`); ``None``: ``end_tension*lambda*v^2``."""
         self.launch_omega = 0.0
         """Angular velocity (rad/s) a link gets when it leaves the guide: the catenary's
         ``alpha' * v = -q v cos(alpha0)**2`` at the launch point, so the released link turns
@@ -201,11 +205,15 @@ class Feed:
         tension of the paper's string model.
         """
         self.end_force = None
-        te = self.cfg.end_tension
-        if te <= 0.0 or self.cfg.floor != "absorbing" or self.n_free < 1:
+        if self.cfg.floor != "absorbing" or self.n_free < 1:
+            return
+        if self.end_pull is not None:
+            F = self.end_pull(self.speed)
+        else:
+            F = self.cfg.end_tension * self.chain.cfg.linear_density * self.speed**2
+        if F <= 0.0:
             return
         body = self.chain.links[0].body
-        F = te * self.chain.cfg.linear_density * self.speed**2
         fx, fy = F * self.end_dir[0], F * self.end_dir[1]
         body.apply_force_at_world_point((fx, fy), body.local_to_world((0.5 * self.chain.L, 0.0)))
         self.end_force = (fx, fy)

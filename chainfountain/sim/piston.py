@@ -21,7 +21,15 @@ from typing import Any
 
 import pymunk
 
+from chainfountain.errors import RunEnded
 from chainfountain.sim.chain import Link
+
+STALL_FRACTION = 0.3
+"""The chain counts as stopping below this fraction of its start speed ..."""
+RUNAWAY_FACTOR = 2.5
+"""... and as running away above this multiple of it ..."""
+WATCH_TIME = 0.5
+"""... for this long (s) without a break."""
 
 GROOVE_REACH = 100.0
 """Half-length of the guide's groove along the launch line (m): far beyond any guide."""
@@ -38,11 +46,15 @@ class Piston:
         self.u = feed.u
         self.n_nominal = feed.n_guide
         self.grooves: dict[int, pymunk.GrooveJoint] = {}
+        self.v_start = float(feed.cfg.speed)
+        """The speed the run started at (the stall and runaway checks' scale)."""
+        self._off_t = 0.0
         n = len(chain.links)
         for i in range(n - feed.n_guide, n):
             self._hold(chain.links[i])
         for i in range(n - feed.n_guide, n - 1):
             chain.join(i)  # no spring: neither link can turn (Chain refits none)
+        self._floor_pull = feed.before_step
         feed.before_step = self.before_step
         feed.after_step = self.after_step
 
@@ -72,7 +84,8 @@ class Piston:
         """The machine's pull back on the chain at speed ``v`` (N, along the launch line)."""
         f = self.sim.config.feed
         lam = self.sim.chain.cfg.linear_density
-        return 0.5 * lam * v * v + f.cart_force + lam * self.sim.g * f.xi2 * f.drop
+        drag = 0.5 * f.bearing_drag * v  # the pick-up roller's bearing (drive 'ideal_fold')
+        return 0.5 * lam * v * v + f.cart_force + drag + lam * self.sim.g * f.xi2 * f.drop
 
     def set_speed(self, v: float) -> None:
         """Push the chain to ``v`` (m/s): every link's velocity and turning rate scale by
@@ -98,6 +111,7 @@ class Piston:
         ux, uy = self.u
         rear = guide[-1].body
         rear.apply_force_at_world_point((F * ux, F * uy), rear.position)
+        self._floor_pull()
 
     def after_step(self, dt: float) -> None:
         chain, feed = self.sim.chain, self.sim.feed
@@ -125,3 +139,23 @@ class Piston:
             feed.fed_links += 1
         if feed.cfg.floor == "absorbing":
             feed._absorb()
+        self.sim.follow_speed(v)
+        self._watch(v, dt)
+
+    def _watch(self, v: float, dt: float) -> None:
+        """End the run with one sentence when the chain stops or runs away (an unbalanced
+        full machine does either: it is neutral in the speed)."""
+        slow, fast = v < STALL_FRACTION * self.v_start, v > RUNAWAY_FACTOR * self.v_start
+        self._off_t = self._off_t + dt if slow or fast else 0.0
+        if self._off_t < WATCH_TIME:
+            return
+        f, t = self.sim.config.feed, self.sim.time
+        if slow:
+            raise RunEnded(f"t = {t:.2f} s: the chain has stopped: the upper cart "
+                           f"({f.cart_force:.3g} N) and the lift xi2*H hold it back harder "
+                           "than the falling chain pulls it on; make the upper cart lighter "
+                           "(feed.cart_force) or lower xi2")
+        raise RunEnded(f"t = {t:.2f} s: the chain runs away ({v:.3g} m/s, "
+                       f"{v / self.v_start:.2g} times its start speed): the upper cart "
+                       f"({f.cart_force:.3g} N) is too light to balance the lower half; "
+                       "change xi2, xi3 or the lower cart to let it follow, or make it heavier")

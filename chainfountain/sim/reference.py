@@ -25,7 +25,7 @@ from numpy.typing import ArrayLike, NDArray
 from chainfountain.theory.tension import tension_bar
 
 if TYPE_CHECKING:
-    from chainfountain.sim.config import FeedConfig
+    from chainfountain.sim.config import FeedConfig, SimConfig
 
 
 @dataclass(frozen=True)
@@ -59,6 +59,37 @@ class LaunchReference:
         (:meth:`from_launch`; ``ValueError`` when there is none)."""
         return cls.from_launch(feed.speed, feed.launch_angle, feed.drop, g,
                                TE_bar=feed.end_tension)
+
+    @classmethod
+    def of_level(cls, config: SimConfig, v: float | None = None) -> LaunchReference:
+        """The paper's fountain for a fed level whose chain runs at ``v`` (default: the start
+        speed ``feed.speed``). A motor feed runs at ``v`` with its floor's ``end_tension``;
+        the idealized beaker with a real floor (``feed.drive = "ideal_floor"``) at the speed
+        it selects, whatever ``v``; the ideal full machine (``"ideal_fold"``) at the speed it
+        selects when its bearings drag, and at ``v`` when it is loss-free (it keeps any
+        speed), with the end tension its lower half supplies there. ``ValueError`` when
+        there is no fountain."""
+        from chainfountain.theory.apparatus import (
+            ideal_floor_speed,
+            ideal_fold_speed,
+            ideal_fold_TE_bar,
+        )
+
+        f = config.feed
+        lam, g = config.chain.linear_density, config.gravity
+        v = f.speed if v is None else v
+        TE_bar = f.end_tension
+        if f.drive == "ideal_floor":
+            v = ideal_floor_speed(f.drop, f.xi2, f.cart_force, lam, g)
+        elif f.drive == "ideal_fold":
+            if f.bearing_drag > 0.0:
+                v = ideal_fold_speed(f.cart_force, f.lower_cart_force, f.xi2, f.xi3,
+                                     f.bearing_drag, lam, f.drop, g)
+            TE_bar = max(0.0, ideal_fold_TE_bar(v, f.xi3, f.lower_cart_force, lam, f.drop, g,
+                                                f.bearing_drag))
+        if not math.isfinite(v):
+            raise ValueError("the machine selects no speed")
+        return cls.from_launch(v, f.launch_angle, f.drop, g, TE_bar=TE_bar)
 
     @property
     def x_rise(self) -> float:

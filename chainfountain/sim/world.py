@@ -20,11 +20,18 @@ from chainfountain.sim.bodies import Cart, Floor, Roller
 from chainfountain.sim.chain import Chain
 from chainfountain.sim.config import SimConfig
 from chainfountain.sim.feed import Feed
+from chainfountain.sim.machine_rules import follow
 from chainfountain.sim.measure import ChainReader, ChainState, link_ends, polyline
 from chainfountain.sim.piston import Piston
+from chainfountain.sim.put_down import PutDown
 from chainfountain.sim.reference import LaunchReference
 from chainfountain.sim.watchdog import CHECK_INTERVAL, Limits, Watchdog, limits_for
-from chainfountain.theory.apparatus import ideal_floor_speed
+
+MACHINE_FIELDS = ("feed.xi2", "feed.cart_force", "feed.xi3", "feed.lower_cart_force",
+                  "feed.bearing_drag")
+"""The ideal machines' live fields (:meth:`Simulation.set_machine`)."""
+FOLLOW_TOLERANCE = 1e-3
+"""The ideal full machine's reference follows its speed in steps of this fraction."""
 
 
 class Observer(Protocol):
@@ -115,12 +122,14 @@ class Simulation:
         self.rollers = [Roller.add(space, r) for r in cfg.rollers]
         self.carts = [Cart.add(space, c, error_bias=cfg.solver.joint_error_bias)
                       for c in cfg.carts]
-        self.reference: LaunchReference | None = self._feed_reference(cfg.feed.speed)
+        self.reference: LaunchReference | None = self.reference_at(cfg.feed.speed)
         self.feed = Feed(self.chain, cfg.feed)
         self.feed.initialise(cfg.initial, self.reference)
         self.feed.set_reference(self.reference)
-        if cfg.feed.drive == "ideal_floor":
+        if cfg.feed.drive in ("ideal_floor", "ideal_fold"):
             self.piston = Piston(self)
+        if cfg.feed.drive == "ideal_fold":
+            PutDown(self)
         self.reader = ChainReader(space, self.chain)
         self.time = 0.0
         self.steps = 0
@@ -247,18 +256,26 @@ class Simulation:
                 body.velocity = (vx + scale * rng.standard_normal(),
                                  vy + scale * rng.standard_normal())
 
-    def _feed_reference(self, v: float) -> LaunchReference | None:
-        """The paper's fountain for this feed at speed ``v``; with the ideal floor machine
-        (``feed.drive = "ideal_floor"``) at the speed the machine selects, whatever ``v``."""
-        f = self.config.feed
-        if f.drive == "ideal_floor":
-            v = ideal_floor_speed(f.drop, f.xi2, f.cart_force,
-                                  self.config.chain.linear_density, self.config.gravity)
+    def reference_at(self, v: float) -> LaunchReference | None:
+        """The paper's fountain for this level at chain speed ``v``
+        (:meth:`LaunchReference.of_level`); ``None`` when there is none."""
         try:
-            return LaunchReference.from_launch(v, f.launch_angle, f.drop, self.config.gravity,
-                                               TE_bar=f.end_tension)
+            return LaunchReference.of_level(self.config, v)
         except ValueError:
             return None
+
+    def follow_speed(self, v: float) -> None:
+        """Keep the reference on the loss-free full machine's present speed ``v`` (it keeps
+        whatever speed it has, so the paper's fountain moves with it): recomputed when ``v``
+        has moved by :data:`FOLLOW_TOLERANCE` of the reference's speed."""
+        f = self.config.feed
+        if f.drive != "ideal_fold" or f.bearing_drag > 0.0:
+            return
+        ref = self.reference
+        if ref is not None and abs(v - ref.v) <= FOLLOW_TOLERANCE * ref.v:
+            return
+        self.reference = self.reference_at(v)
+        self.feed.set_reference(self.reference)
 
     def set_feed_speed(self, v: float) -> None:
         """Change the feed speed live (m/s); the reference is recomputed. With the ideal
@@ -268,10 +285,26 @@ class Simulation:
         else:
             self.feed.set_speed(v)
         self.watchdog.limits = self._limits()
-        self.reference = self._feed_reference(v)
+        self.reference = self.reference_at(v)
         self.feed.set_reference(self.reference)
         self.chain.wave_damping = self._wave_damping(v)
         self.chain.set_bending()  # refits every damper to the new speed
+
+    def set_machine(self, path: str, value: float) -> None:
+        """Change an ideal machine's offset or cart (``feed.xi2``, ``feed.cart_force``,
+        ``feed.xi3``, ``feed.lower_cart_force``) live: the laws read them every step, so
+        the chain feels the change at once. In the full machine (``"ideal_fold"``) a change
+        of ``xi2``, ``xi3`` or the lower cart moves the upper cart to the balance
+        (:func:`~chainfountain.theory.apparatus.balanced_cart_force`) when the machine is
+        loss-free, so it keeps its speed and the fountain takes its new shape; a change of
+        the upper cart itself leaves it unbalanced, and the chain speeds up or slows down.
+        With bearing drag nothing follows: the machine moves to the speed it now selects."""
+        f = self.config.feed
+        setattr(f, path.split(".", 1)[1], float(value))
+        follow(self.config, path)
+        v = self.piston.speed if self.piston is not None else f.speed
+        self.reference = self.reference_at(v)
+        self.feed.set_reference(self.reference)
 
     def set_bending(self, stiffness: float | None = None, damping: float | None = None) -> None:
         """Change the joint spring ``c`` (N*m/rad) and/or damper ``d`` (N*m*s/rad) live."""
@@ -301,6 +334,8 @@ class Simulation:
         elif path == "feed.end_tension":
             self.config.feed.end_tension = v
             self.set_feed_speed(self.config.feed.speed)  # recomputes the reference
+        elif path in MACHINE_FIELDS:
+            self.set_machine(path, v)
         elif path == "chain.bending_stiffness":
             self.set_bending(stiffness=v)
         elif path == "chain.bending_damping":
