@@ -26,12 +26,13 @@ under Xvfb while its fountain formed)."""
 
 
 def cost(sim: SimConfig) -> tuple[int, float] | None:
-    """Links in flight and estimated wall seconds per simulated second of a motor-fed
-    level (``None`` for other levels or a feed without a fountain)."""
-    if sim.kind != "feed" or sim.feed.drive != "motor":
+    """Links in flight and estimated wall seconds per simulated second of a fed level, at
+    its feed speed or at the speed its machine selects (``None`` for other levels or a feed
+    without a fountain)."""
+    if sim.kind != "feed":
         return None
     try:
-        ref = LaunchReference.of_feed(sim.feed, sim.gravity)
+        ref = LaunchReference.of_level(sim)
     except ValueError:
         return None
     s = sim.solver

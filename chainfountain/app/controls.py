@@ -27,6 +27,9 @@ CONTROL_PATTERNS: tuple[str, ...] = (
     r"feed\.end_tension",
     r"(.*\.)?xi2",
     r"(.*\.)?xi3",
+    r"feed\.cart_force",
+    r"feed\.lower_cart_force",
+    r"feed\.bearing_drag",
     r"apparatus\.floor_depth",
     r"apparatus\.fold_clearance",
     r"carts\[\d+\]\.mass",
@@ -45,6 +48,11 @@ LABELS: dict[str, str] = {
     "feed.launch_angle": "launch angle alpha0",
     "feed.drop": "drop H",
     "feed.end_tension": "floor pull Tbar_E",
+    "feed.xi2": "beaker below start xi2",
+    "feed.xi3": "bottom above end xi3",
+    "feed.cart_force": "upper cart F_uc",
+    "feed.lower_cart_force": "lower cart F_lc",
+    "feed.bearing_drag": "bearing drag c",
     "apparatus.speed": "start speed v0",
     "apparatus.launch_angle": "launch angle alpha0",
     "apparatus.drop": "drop H",
@@ -298,11 +306,15 @@ variant a slider would change nothing (xi3 is the lower table's height, and only
 
 def unused_fields(config: Any) -> set[str]:
     """Field paths that ``config`` has but does not use (see :data:`ONLY_FOR_VARIANT`;
-    a fed level's machine fields unless ``feed.drive = "ideal_floor"``)."""
+    a fed level's machine fields its ``feed.drive`` does not use)."""
     if getattr(config, "kind", None) == "feed":
-        if config.feed.drive == "ideal_floor":
-            return {"feed.end_tension"}  # the real floor takes the chain without pull
-        return {"feed.xi2", "feed.cart_force", "feed.machine_mass"}
+        from chainfountain.level.checks import DRIVE_FIELDS
+
+        drive = config.feed.drive
+        unused = {f"feed.{name}" for name, drives in DRIVE_FIELDS.items() if drive not in drives}
+        if drive != "motor":
+            unused.add("feed.end_tension")  # the machine (or the real floor) sets the pull
+        return unused
     if getattr(config, "kind", None) != "apparatus":
         return set()
     variant = config.apparatus.variant

@@ -160,6 +160,8 @@ class DrawMixin:
             ("steady" if ro.steady else "not steady (yet)",
              render.OK if ro.steady else render.WARN),
         ]
+        if ro.machine:
+            lines += [(part, render.TEXT) for part in textwrap.wrap(ro.machine, 56)[:2]]
         if ro.note:
             lines += [(part, render.DIM) for part in textwrap.wrap(ro.note, 56)[:2]]
         y = render.text_block(scr, (rect.x + 8, 8), lines, size=18, line_h=19)

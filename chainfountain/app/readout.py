@@ -35,6 +35,8 @@ class Readout:
     measured: bool = False
     """True once the values come from the running chain (else from the feed settings)."""
     note: str = ""
+    machine: str = ""
+    """An ideal machine's prediction by the paper's laws (speed, end tensions), or ''."""
     curve: np.ndarray | None = None
     """Theory curve, launch frame, ``(n, 2)``."""
     vertex: tuple[float, float] | None = None
@@ -168,7 +170,23 @@ def compute_readout(sim: Simulation, recorder: Recorder, history: History) -> Re
         r.note = "a link is held: tension readings paused"
         r.T0_bar = r.TE_bar = math.nan
     r.steady = is_steady(sim, hist)
+    r.machine = machine_line(sim)
     return r
+
+
+def machine_line(sim: Simulation) -> str:
+    """What an ideal machine's laws predict (the paper's section "Generating Steady-State
+    Chain Fountains"): the speed it selects, or that it keeps any, and its end tensions."""
+    cfg = sim.config
+    if cfg.kind != "feed" or cfg.feed.drive == "motor":
+        return ""
+    ref = sim.reference
+    if ref is None:
+        return "paper's laws: no fountain at these settings"
+    ends = f"Tbar_0 {ref.T0_bar:.3f}, Tbar_E {ref.TE_bar:.3f}"
+    if cfg.feed.drive == "ideal_fold" and cfg.feed.bearing_drag == 0.0:
+        return f"paper's laws keep any v: {ends}"
+    return f"paper's laws: v {ref.v:.3f} m/s, {ends}"
 
 
 def is_steady(sim: Simulation, hist: dict[str, np.ndarray]) -> bool:

@@ -35,6 +35,7 @@ from chainfountain.errors import UserError
 from chainfountain.level import io
 from chainfountain.level.io import Level, LevelError
 from chainfountain.sim.config import SimConfig
+from chainfountain.sim.machine_rules import follow
 from chainfountain.sim.recorder import Recorder
 from chainfountain.sim.world import Simulation
 
@@ -237,6 +238,11 @@ class Session:
     def spec(self, path: str) -> FieldSpec:
         return spec_for(self.level.sim, path)
 
+    @property
+    def origin(self) -> SimConfig:
+        """The level's setup as loaded (or last saved): the window's budget is set by it."""
+        return self._origin.sim
+
     def value(self, path: str) -> float:
         return float(get_value(self.level.sim, path))
 
@@ -256,6 +262,7 @@ class Session:
             v = int(v)
         cand = copy.deepcopy(self.level.sim)
         set_value(cand, path, v)
+        followed = follow(cand, path)  # a loss-free full machine's upper cart keeps the balance
         by_hand = path in HAND_SETTINGS and cand.solver.accuracy > 0.0 and v != old
         if by_hand:
             # the user takes over what solver.accuracy chose; saved, the level keeps it
@@ -295,6 +302,8 @@ class Session:
             msg = f"{clamp_msg}; {msg}"
         if by_hand:
             msg += "; solver.accuracy off (settings by hand)"
+        if followed is not None:
+            msg += f"; the upper cart follows to {followed:.4g} N to keep the machine balanced"
         return Applied(path, float(v), True, live, self.say(msg))
 
     def _apply_live(self, path: str, v: float) -> bool:

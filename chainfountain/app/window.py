@@ -29,10 +29,10 @@ from pygame_gui.elements import (
     UIWindow,
 )
 
-from chainfountain.app import paths, render
+from chainfountain.app import paths, render, spans
 from chainfountain.app.capture import BackgroundSaver, ClipRecorder, mp4_available, timestamp
 from chainfountain.app.capture import unique_path as _unique
-from chainfountain.app.controls import SLIDER_STEPS, FieldSpec, control_fields
+from chainfountain.app.controls import SLIDER_STEPS, FieldSpec, control_fields, spec_for
 from chainfountain.app.draw import DrawMixin
 from chainfountain.app.input import InputMixin
 from chainfountain.app.session import Session
@@ -163,7 +163,9 @@ class App(InputMixin, DrawMixin):
             for el in (row.label, row.slider, row.entry):
                 el.kill()
         self.rows: list[ControlRow] = []
-        specs = control_fields(self.session.level.sim)
+        level = self.session.level
+        origin = self.session.origin
+        specs = [spans.narrowed(level, s, origin) for s in control_fields(level.sim)]
         y = 4
         for spec in specs:
             tag = "live" if spec.live else "rebuild"
@@ -219,8 +221,11 @@ class App(InputMixin, DrawMixin):
     def set_field(self, path: str, value: float) -> None:
         """Set a schema field from the GUI (clamped, live or rebuilt) and refresh its row."""
         res = self.session.set_field(path, value)
-        row = self._row(path)
-        if row is not None:
+        level = self.session.level
+        for row in self.rows:  # a change can move other fields (a cart that follows the
+            if row.spec.path in spans.MACHINE_PATHS:  # balance) and the machine's spans
+                row.spec = spans.narrowed(level, spec_for(level.sim, row.spec.path),
+                                          self.session.origin)
             self._show_value(row)
         if res.ok and not res.live:
             self.fit_view_if_lost()

@@ -1,0 +1,85 @@
+"""Slider spans of an ideal machine: where its carts and offsets still run a fountain.
+
+A machine field's slider (``feed.xi2``, ``feed.cart_force``, ``feed.xi3``,
+``feed.lower_cart_force``, ``feed.bearing_drag`` of a level with ``feed.drive`` an ideal
+machine) spans only the values the level's own checks accept with every other field as it
+is: the range in which the machine selects (or keeps) a fountain the window can run (its
+budget, :mod:`chainfountain.app.budget`), found by bisection from the present value
+towards each end of the schema's range. Out there the machine would stop,
+run away or lose its fountain; a value typed beyond the span is refused with the check's
+reason. A loss-free full machine's upper cart has a single admissible value (the balance):
+its slider does not move.
+"""
+
+from __future__ import annotations
+
+import copy
+import dataclasses
+from collections.abc import Callable
+
+from chainfountain.app import budget
+from chainfountain.app.controls import FieldSpec, get_value, set_value
+from chainfountain.level import io
+from chainfountain.level.io import Level, LevelError
+from chainfountain.sim.config import SimConfig
+from chainfountain.sim.machine_rules import follow
+
+MACHINE_PATHS = ("feed.xi2", "feed.cart_force", "feed.xi3", "feed.lower_cart_force",
+                 "feed.bearing_drag")
+"""The fields whose sliders span only the admissible values."""
+BISECTIONS = 30
+"""Bisection steps towards each end (the span's ends to about 1e-9 of the schema range)."""
+
+
+def _accepts(level: Level, path: str, origin: SimConfig | None) -> Callable[[float], bool]:
+    def ok(value: float) -> bool:
+        cand: SimConfig = copy.deepcopy(level.sim)
+        set_value(cand, path, value)
+        follow(cand, path)
+        try:
+            io.check_consistency(Level(meta=level.meta, sim=cand), "span")
+        except LevelError:
+            return False
+        return origin is None or budget.over_budget(cand, origin) is None
+    return ok
+
+
+def _edge(ok: Callable[[float], bool], inside: float, outside: float) -> float:
+    """The last accepted value between ``inside`` (accepted) and ``outside``."""
+    if ok(outside):
+        return outside
+    for _ in range(BISECTIONS):
+        mid = 0.5 * (inside + outside)
+        if ok(mid):
+            inside = mid
+        else:
+            outside = mid
+    return inside
+
+
+def admissible(level: Level, spec: FieldSpec,
+               origin: SimConfig | None = None) -> tuple[float, float] | None:
+    """The span (schema units) of values around the present one that ``level``'s checks
+    accept for ``spec``'s field (and, given the level as loaded, ``origin``, that the
+    window's budget runs: :mod:`chainfountain.app.budget`), or ``None`` when the field is
+    not a machine field of an ideal machine."""
+    sim = level.sim
+    if spec.path not in MACHINE_PATHS or sim.kind != "feed" or sim.feed.drive == "motor":
+        return None
+    ok = _accepts(level, spec.path, origin)
+    now = float(get_value(sim, spec.path))
+    lo = spec.lo if spec.lo is not None else spec.slider_lo
+    hi = spec.hi if spec.hi is not None else spec.slider_hi
+    if not spec.hi_incl:
+        hi = hi - 1e-9 * (hi - lo)
+    return _edge(ok, now, lo), _edge(ok, now, hi)
+
+
+def narrowed(level: Level, spec: FieldSpec, origin: SimConfig | None = None) -> FieldSpec:
+    """``spec`` with its slider spanning :func:`admissible` (linear), when that applies."""
+    span = admissible(level, spec, origin)
+    if span is None:
+        return spec
+    lo, hi = span
+    return dataclasses.replace(spec, slider_lo=lo * spec.scale, slider_hi=hi * spec.scale,
+                               log=False, log_floor=0.0)

@@ -1,0 +1,76 @@
+"""The window's side of the ideal machines (no window): sliders that span only where the
+machine runs, a loss-free machine's upper cart that follows, and the laws' prediction in
+the readout."""
+
+from __future__ import annotations
+
+import pytest
+
+from chainfountain.app import controls, spans
+from chainfountain.app.readout import machine_line
+from chainfountain.app.session import Session
+from chainfountain.level import io, library
+from chainfountain.theory import apparatus as ap
+
+
+@pytest.fixture(autouse=True)
+def _home(tmp_path, monkeypatch):
+    monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
+
+
+def _spec(level, path):
+    return controls.spec_for(level.sim, path)
+
+
+def test_a_carts_slider_spans_where_the_machine_runs_and_no_further() -> None:
+    """``ideal_fold``'s lower cart: every value in the span loads, a little beyond either
+    end is refused by the level check or the window's budget."""
+    lvl = io.load(library.resolve("ideal_fold"))
+    origin = io.load(library.resolve("ideal_fold")).sim
+    spec = _spec(lvl, "feed.lower_cart_force")
+    lo, hi = spans.admissible(lvl, spec, origin)
+    assert 0.0 <= lo < lvl.sim.feed.lower_cart_force < hi < spec.hi
+    ok = spans._accepts(lvl, spec.path, origin)
+    for x in (lo, 0.5 * (lo + hi), hi):
+        assert ok(x)
+    width = hi - lo
+    assert not ok(hi + 0.01 * width)
+    if lo > 0.0:
+        assert not ok(lo - 0.01 * width)
+    narrowed = spans.narrowed(lvl, spec, origin)
+    assert (narrowed.slider_lo, narrowed.slider_hi, narrowed.log) == (lo, hi, False)
+
+
+def test_a_loss_free_machines_upper_cart_has_one_value() -> None:
+    lvl = io.load(library.resolve("ideal_special"))
+    from chainfountain.level.checks import BALANCE_TOLERANCE
+
+    lo, hi = spans.admissible(lvl, _spec(lvl, "feed.cart_force"))
+    tol = BALANCE_TOLERANCE * 0.05 * 9.81 * 1.0  # the check's tolerance, lambda g H units
+    assert lo <= lvl.sim.feed.cart_force <= hi and hi - lo <= 2.0 * tol * 1.0001
+
+
+def test_motor_levels_keep_their_schema_sliders() -> None:
+    lvl = io.load(library.resolve("classroom"))
+    spec = _spec(lvl, "feed.speed")
+    assert spans.narrowed(lvl, spec) is spec
+
+
+def test_the_upper_cart_follows_a_typed_offset_and_the_message_says_so() -> None:
+    s = Session(io.load(library.resolve("ideal_special")))
+    res = s.set_field("feed.xi3", 0.4)
+    assert res.ok and res.live, res.message
+    F = ap.balanced_cart_force(0.0, 0.5, 0.4, 0.05, 1.0, 9.81)
+    assert s.value("feed.cart_force") == pytest.approx(F)
+    assert s.sim.config.feed.cart_force == pytest.approx(F)
+    assert "the upper cart follows to 0.04905 N" in res.message
+    refused = s.set_field("feed.cart_force", 0.2)
+    assert not refused.ok and "does not balance" in refused.message
+
+
+def test_the_readout_gives_the_laws_prediction() -> None:
+    s = Session(io.load(library.resolve("ideal_fold")))
+    assert machine_line(s.sim) == "paper's laws: v 5.000 m/s, Tbar_0 0.736, Tbar_E 0.344"
+    s2 = Session(io.load(library.resolve("ideal_special")))
+    assert machine_line(s2.sim).startswith("paper's laws keep any v: Tbar_0 0.750")
+    assert machine_line(Session(io.load(library.resolve("classroom"))).sim) == ""
