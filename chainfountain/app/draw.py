@@ -49,6 +49,7 @@ KEYS: tuple[tuple[str, str], ...] = (
     ("Drag (on the chain)", "pull a link"),
     ("Ctrl+S", "save the setup as a level (name prompt)"),
     ("Ctrl+O  or  L", "open a level (picker)"),
+    ("M", "switch a machine preset between the contact and the ideal machine"),
     ("F12", "screenshot (PNG)"),
     ("G", "start / stop recording a clip (GIF, or MP4 with imageio-ffmpeg)"),
     ("H  or  F1", "this help"),

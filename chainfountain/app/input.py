@@ -160,6 +160,8 @@ class InputMixin:
             self.show_help = not self.show_help
         elif k == pygame.K_g:
             self.toggle_clip()
+        elif k == pygame.K_m:
+            self.open_twin()
 
     def _over_ui(self, pos: tuple[int, int]) -> bool:
         if not self.scene_rect.collidepoint(pos):

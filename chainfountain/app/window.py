@@ -36,6 +36,7 @@ from chainfountain.app.controls import SLIDER_STEPS, FieldSpec, control_fields, 
 from chainfountain.app.draw import DrawMixin
 from chainfountain.app.input import InputMixin
 from chainfountain.app.session import Session
+from chainfountain.level import library
 
 LEFT_W = 300
 RIGHT_W = 390
@@ -357,6 +358,16 @@ class App(InputMixin, DrawMixin):
             self.title.set_text(self._title_text())
             self.fit_view()
         return ok
+
+    def open_twin(self) -> bool:
+        """Open the current machine preset in the other machine (contact or ideal;
+        :func:`chainfountain.level.library.twin`), or say there is none."""
+        other = library.twin(self.session.level.meta.name)
+        if other is None:
+            self.session.say("M: this level has no twin (the machine presets apparatus_floor, "
+                             "_fold, _special and _limit each have an ideal one)")
+            return False
+        return self.load_path(library.resolve(other))
 
     def request_quit(self) -> None:
         self.running = False

@@ -64,6 +64,24 @@ def resolve(name_or_path: str | os.PathLike[str]) -> Path:
     raise io.LevelError(f"{shown}: no such level file or level name; known levels: {names}")
 
 
+TWINS: dict[str, str] = {
+    "apparatus_floor": "ideal_floor",
+    "apparatus_fold": "ideal_fold",
+    "apparatus_special": "ideal_special",
+    "apparatus_limit": "ideal_limit",
+}
+"""Each contact-machine preset and the ideal machine that shows the same arrangement by the
+paper's laws (both ways round: :func:`twin`)."""
+
+
+def twin(name: str) -> str | None:
+    """The shipped level showing ``name``'s arrangement in the other machine (contact or
+    ideal), or ``None``."""
+    if name in TWINS:
+        return TWINS[name]
+    return next((a for a, b in TWINS.items() if b == name), None)
+
+
 def default_level() -> io.Level:
     """The built-in default level (``levels/classroom.toml``; the code defaults if absent)."""
     path = shipped_dir() / f"{DEFAULT_LEVEL_NAME}.toml"

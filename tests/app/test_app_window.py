@@ -416,3 +416,29 @@ def test_view_follows_the_fountain_until_the_user_pans(app):
     assert not _scene_in_view(app)  # left where the user put it
     key(app, pygame.K_f)
     assert app.follow and _scene_in_view(app)
+
+
+def test_m_switches_a_machine_preset_to_its_twin_and_back(tmp_path, monkeypatch):
+    """M opens the ideal twin of a contact-machine preset, and M again the contact one; a
+    level without a twin says so."""
+    from chainfountain.level import library
+
+    monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
+    a = App(Session(io.load(library.resolve("ideal_special"))), size=(1280, 760),
+            offscreen=True)
+    try:
+        a.run_frame()
+        key(a, pygame.K_m)
+        assert a.session.level.meta.name == "apparatus_special"
+        assert any(r.spec.path.startswith("carts[") for r in a.rows)
+        key(a, pygame.K_m)
+        assert a.session.level.meta.name == "ideal_special"
+        assert any(r.spec.path == "feed.xi3" for r in a.rows)
+    finally:
+        a.finish()
+
+
+def test_m_on_a_level_without_twin_says_so(app):
+    key(app, pygame.K_m)
+    assert app.session.level.meta.name == "small"
+    assert "no twin" in app.session.messages[-1][1]
