@@ -6,9 +6,11 @@ Usage::
 
 The sweep varies ``feed.speed`` and ``feed.launch_angle`` of ``--level`` on an 8 x 8 grid
 (``--points`` rounds to a square), each point ``--duration`` simulated seconds from the
-level's own start. It runs once with ``--jobs 1`` and once with ``--jobs 2`` into fresh
-folders and prints the wall time of each, the speed-up, and the share of the wall time
-spent outside the points' simulations (imports, start-up, writing, the table).
+level's own start. It runs once with ``--jobs 1``, once with ``--jobs 2`` and once on a
+Dask ``LocalCluster`` of two worker processes (``--dask``; the cluster is started before
+the clock) into fresh folders and prints the wall time of each, the speed-up, and the
+share of the wall time spent outside the points' simulations (imports, start-up,
+writing, the table).
 """
 
 from __future__ import annotations
@@ -58,7 +60,27 @@ def main(argv: list[str] | None = None) -> int:
             outside = 1.0 - sim_wall / (wall * jobs)
             print(f"  --jobs {jobs}: {wall:6.1f} s wall, simulations {sim_wall:6.1f} s of "
                   f"process time; outside the simulations {outside:.0%}")
-    print(f"  speed-up 2 processes / 1: {walls[1] / walls[2]:.2f}x")
+        try:
+            from distributed import LocalCluster
+        except ImportError:
+            print("  LocalCluster: skipped (pip install 'chainfountain[cluster]')")
+        else:
+            with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                              dashboard_address=None) as cluster:
+                out = Path(tmp) / "outdask"
+                t0 = time.perf_counter()
+                r = subprocess.run([sys.executable, "-m", "chainfountain", "sweep",
+                                    str(sweep), "--dask", cluster.scheduler_address, "--out",
+                                    str(out), "--quiet"], capture_output=True, text=True)
+                wall = time.perf_counter() - t0
+            if r.returncode != 0:
+                print(r.stderr)
+                return 1
+            walls["dask"] = wall
+            print(f"  LocalCluster of 2 workers: {wall:6.1f} s wall")
+    print(f"  speed-up 2 processes / 1: {walls[1] / walls[2]:.2f}x"
+          + (f"; LocalCluster / 1: {walls[1] / walls['dask']:.2f}x" if "dask" in walls
+             else ""))
     return 0
 
 

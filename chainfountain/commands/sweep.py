@@ -36,6 +36,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--retry-failed", action="store_true",
                    help="run again the points whose run raised an error (refused levels "
                    "are not retried: they cannot exist)")
+    p.add_argument("--dask", metavar="ADDRESS", default=None,
+                   help="run the points on a Dask cluster instead: the scheduler's address, "
+                   "as 'dask scheduler' prints it (tcp://HOST:8786); each worker needs "
+                   "chainfountain installed, no shared disk (outputs come back here)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=run)
 
@@ -53,8 +57,9 @@ def run(args: argparse.Namespace) -> int:
     total = done + len(todo)
     print(f"sweep of {spec.base_name}: {total} points ({', '.join(spec.grid)}"
           + (f", seeds {spec.seeds}" if spec.seeds != [None] else "") + f"); {done} recorded "
-          f"before, {len(todo)} to run on {min(jobs, max(1, len(todo)))} processes",
-          file=sys.stderr)
+          f"before, {len(todo)} to run "
+          + (f"on the Dask cluster at {args.dask}" if args.dask else
+             f"on {min(jobs, max(1, len(todo)))} processes"), file=sys.stderr)
     bar = None
     if not args.quiet and todo:
         from tqdm import tqdm
@@ -69,7 +74,8 @@ def run(args: argparse.Namespace) -> int:
             print(f"  {k}/{n} points, about {left / 60:.1f} min left", file=sys.stderr,
                   flush=True)
 
-    rows = sw.execute(spec, out, jobs, retry_failed=args.retry_failed, progress=progress)
+    rows = sw.execute(spec, out, jobs, retry_failed=args.retry_failed, progress=progress,
+                      dask=args.dask)
     if bar is not None:
         bar.close()
     png = sw.figure(spec, rows, out / "results.png")

@@ -175,6 +175,62 @@ def run_point(base: Level, point: Point, duration: float | None, out_dir: Path,
     return row
 
 
+def run_point_shipped(level_text: str, point: Point, duration: float | None,
+                      snapshot: bool = False) -> tuple[dict, dict[str, bytes]]:
+    """Run one point on a cluster worker: the level comes as TOML text (the worker builds
+    its own space from it), the outputs are made in a temporary folder there and come back
+    with the row as ``(row, {file name: bytes})``, so the workers need no shared disk."""
+    import tempfile
+
+    base = io.loads(level_text, "<sweep base>")
+    with tempfile.TemporaryDirectory(prefix="chainfountain-point-") as tmp:
+        out_dir = Path(tmp) / "point"
+        row = run_point(base, point, duration, out_dir, snapshot)
+        files = {f.name: f.read_bytes() for f in sorted(out_dir.iterdir())
+                 if f.is_file() and f.name != "point.json"}
+    return row, files
+
+
+def _store(out_dir: Path, row: dict, files: dict[str, bytes]) -> None:
+    """Write a point that ran elsewhere: its outputs, each atomically, then its row."""
+    out_dir.mkdir(parents=True, exist_ok=True)
+    for name, data in files.items():
+        atomic.write_bytes(out_dir / name, data)
+    atomic.write_text(out_dir / "point.json", json.dumps(row, indent=1, default=str) + "\n")
+
+
+def _on_cluster(sweep: Sweep, todo: list[Point], out: Path, address: str) -> Iterator[dict]:
+    """Run ``todo`` on the Dask cluster whose scheduler is at ``address``; yield each row as
+    its point is stored. ``UserError`` when the scheduler cannot be reached."""
+    try:
+        from distributed import Client, as_completed
+    except ImportError as exc:
+        raise UserError("--dask needs the 'distributed' package: pip install "
+                        "'chainfountain[cluster]'") from exc
+    try:
+        client = Client(address, timeout="10s")
+    except (OSError, TimeoutError, ValueError) as exc:
+        raise UserError(f"--dask: cannot reach a Dask scheduler at {address!r} ({exc}); "
+                        "allowed: the address 'dask scheduler' prints, tcp://HOST:8786") \
+            from exc
+    text = io.dumps(sweep.base)
+    try:
+        futures = {client.submit(run_point_shipped, text, pt, sweep.duration, sweep.snapshots,
+                                 pure=False): pt for pt in todo}
+        for fut in as_completed(futures):
+            pt = futures[fut]
+            try:
+                row, files = fut.result()
+            except Exception as exc:  # noqa: BLE001 - a lost worker: recorded, sweep goes on
+                row = {"point": pt.id, **pt.values, "seed": pt.seed, "status": "failed",
+                       "reason": f"{type(exc).__name__}: {exc}", "wall_s": 0.0}
+                files = {}
+            _store(out / "points" / pt.id, row, files)
+            yield row
+    finally:
+        client.close()
+
+
 def _finish(out_dir: Path, row: dict, status: str, reason: str, wall: float = 0.0) -> None:
     row["status"], row["reason"] = status, reason
     row.setdefault("wall_s", wall)
@@ -216,9 +272,11 @@ def pending(sweep: Sweep, out: Path, retry_failed: bool = False) -> tuple[list[P
 
 
 def execute(sweep: Sweep, out: Path, jobs: int = 1, *, retry_failed: bool = False,
-            progress: Callable[[int, int, float], None] | None = None) -> list[dict]:
-    """Run every pending point, ``jobs`` processes at a time; then write the results
-    table. ``progress(done, total, seconds_left)`` after each point. Returns the rows."""
+            progress: Callable[[int, int, float], None] | None = None,
+            dask: str | None = None) -> list[dict]:
+    """Run every pending point, ``jobs`` processes at a time (or on the Dask cluster whose
+    scheduler is at ``dask``); then write the results table.
+    ``progress(done, total, seconds_left)`` after each point. Returns the rows."""
     from joblib import Parallel, delayed
 
     out.mkdir(parents=True, exist_ok=True)
@@ -227,8 +285,10 @@ def execute(sweep: Sweep, out: Path, jobs: int = 1, *, retry_failed: bool = Fals
     total = done + len(todo)
     t0 = time.perf_counter()
     if todo:
-        if jobs == 1:
-            results: Iterator[dict] = (run_point(sweep.base, pt, sweep.duration,
+        if dask is not None:
+            results: Iterator[dict] = _on_cluster(sweep, todo, out, dask)
+        elif jobs == 1:
+            results = (run_point(sweep.base, pt, sweep.duration,
                                                  out / "points" / pt.id, sweep.snapshots)
                                        for pt in todo)
         else:
