@@ -221,7 +221,9 @@ def describe_outputs(summary_path: Path) -> str:
         lines.append(
             f"  vertex height {s['h']:.4f} m (theory {th['h']:.4f}, {pct(err.get('h'))}), "
             f"landing {s['l']:.4f} m (theory {th['l']:.4f}, {pct(err.get('l'))}), "
-            f"speed {s['speed_mean']:.4f} m/s")
+            f"speed {s['speed_mean']:.4f} m/s"
+            + (f" (the machine's laws select {th['v']:.4f}, {pct(err.get('speed'))})"
+               if s.get("machine") == "selects" and th.get("v") else ""))
     d = (s.get("error_bars") or {}).get("error_bar")
     if d:
         def bar(x: float | None) -> str:

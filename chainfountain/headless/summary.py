@@ -91,6 +91,10 @@ def summarize(level: Level, sim: Simulation, rec: Recorder, duration: float,
         "tension_rms": _f(s.tension_rms),
     }
     out["theory"] = _theory(ref, s, TE_bar) if ref is not None else None
+    if level.sim.kind == "feed" and level.sim.feed.drive != "motor":
+        # what sets the speed: the machine's laws select it, or (loss-free) keep any
+        out["machine"] = ("keeps any speed" if level.sim.feed.drive == "ideal_fold"
+                          and level.sim.feed.bearing_drag == 0.0 else "selects")
     if app is not None:
         from chainfountain.sim.apparatus_report import report
 
