@@ -2,7 +2,7 @@
 
 Usage: ``.venv/bin/python benchmarks/bench_sim.py [--seconds 6] [level ...]``
 
-For each level (default: every ``levels/*.toml`` of kind "feed") prints: links
+For each level (default: every shipped ``levels/*.toml`` of kind "feed") prints: links
 in flight, simulated seconds, wall seconds, real-time factor (simulated / wall),
 time per physics step, and the recording overhead (``Simulation.step`` with a
 :class:`Recorder` attached against bare ``space.step`` plus feed bookkeeping).
@@ -74,12 +74,15 @@ def bench(name: str, seconds: float, chunk: float = 0.25,
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    feed = [p.stem for p in library.available() if io.load(p).sim.kind == "feed"]
-    ap.add_argument("levels", nargs="*", default=feed)
+    ap.add_argument("levels", nargs="*",
+                    help="level names (default: every shipped level of kind 'feed')")
     ap.add_argument("--seconds", type=float, default=6.0, help="simulated seconds per preset")
     ap.add_argument("--iterations", type=int, default=None,
                     help="override the solver iterations (default: the preset's)")
     args = ap.parse_args()
+    if not args.levels:
+        args.levels = [p.stem for p in sorted(library.shipped_dir().glob("*.toml"))
+                       if io.load(p).sim.kind == "feed"]
     print(f"{'level':<16} {'links':>5} {'sim s':>6} {'wall s':>7} {'RTF':>5} {'RTF bare':>8} "
           f"{'us/step':>8} {'step ovh':>8} {'rec ovh':>8}")
     for name in args.levels:
