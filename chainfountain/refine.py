@@ -166,6 +166,13 @@ def refined_config(cfg: SimConfig, factor: int, level: str = "level") -> SimConf
     out.solver.dt = cfg.solver.dt / factor
     out.solver.accuracy = 0.0
     out.initial.mode = "catenary"
+    if out.feed.drive != "motor":  # a machine: start on the fountain at the speed it selects
+        from chainfountain.sim.reference import LaunchReference
+
+        try:
+            out.feed.speed = LaunchReference.of_level(out).v
+        except ValueError:
+            pass
     _converged_iterations(out)
     return out
 
@@ -178,9 +185,8 @@ def _converged_iterations(cfg: SimConfig) -> None:
     from chainfountain.sim import accuracy
     from chainfountain.sim.reference import LaunchReference
 
-    f = cfg.feed
     try:
-        ref = LaunchReference.of_feed(f, cfg.gravity)
+        ref = LaunchReference.of_level(cfg)
     except ValueError:
         return
     n = accuracy.links_in_flight(ref, cfg.chain.link_length)
