@@ -96,3 +96,17 @@ def test_run_with_error_bars_writes_them_next_to_the_figures(tmp_path) -> None:
         assert bars["discretisation_error"][f] == pytest.approx(2 * (coarse[f] - fine[f]))
     assert [run["dt"] for run in bars["runs"]] == [1e-3, 5e-4]
     assert "discretisation error bars" in r.stdout
+
+
+def test_refinement_starts_an_ideal_machine_at_the_speed_it_selects():
+    """A machine is refined from its own fountain: ``ideal_fold`` starts at 4.7 m/s but
+    selects 5.0 m/s, and its refined runs start there."""
+    from chainfountain.level import io, library
+    from chainfountain.refine import refined_config
+
+    cfg = io.load(library.resolve("ideal_fold")).sim
+    for factor in (1, 2):
+        out = refined_config(cfg, factor, "ideal_fold")
+        assert out.feed.speed == pytest.approx(5.0)
+        assert out.initial.mode == "catenary"
+    assert cfg.feed.speed == 4.7  # the level itself is left as it is
