@@ -291,8 +291,8 @@ class Simulation:
         self.chain.set_bending()  # refits every damper to the new speed
 
     def set_machine(self, path: str, value: float) -> None:
-        """Change an ideal machine's offset or cart (``feed.xi2``, ``feed.cart_force``,
-        ``feed.xi3``, ``feed.lower_cart_force``) live: the laws read them every step, so
+        """Change an ideal machine's offset, cart or bearing drag (:data:`MACHINE_FIELDS`)
+        live: the laws read them every step, so
         the chain feels the change at once. In the full machine (``"ideal_fold"``) a change
         of ``xi2``, ``xi3`` or the lower cart moves the upper cart to the balance
         (:func:`~chainfountain.theory.apparatus.balanced_cart_force`) when the machine is
