@@ -177,6 +177,18 @@ def _dashed(surf: pygame.Surface, col, a, b, dash: float = 8.0, width: int = 1) 
                          (ax + f1 * (bx - ax), ay + f1 * (by - ay)), width)
 
 
+def _floor_label(sim: Simulation) -> str:
+    """What the absorbing floor stands for: a real floor, or an ideal machine's lower half."""
+    cfg = sim.config
+    if cfg.kind == "feed" and cfg.feed.drive == "ideal_fold":
+        return ("lower half (paper's law): lift xi3*H, put-down at rest, lower cart: pulls "
+                f"Tbar_E {sim.reference.TE_bar:.3f}" if sim.reference is not None else
+                "lower half (paper's law)")
+    if cfg.kind == "feed" and cfg.feed.drive == "ideal_floor":
+        return "real floor: takes the chain without pull (Tbar_E = 0)"
+    return "absorbing floor"
+
+
 def draw_scene(surf: pygame.Surface, cam: Camera, sim: Simulation, readout: Readout | None,
                show_theory: bool = True) -> None:
     """The apparatus, the chain, the theory curve and the scale bar, clipped to the camera rect."""
@@ -198,7 +210,7 @@ def draw_scene(surf: pygame.Surface, cam: Camera, sim: Simulation, readout: Read
         if band.top < rect.bottom:
             surf.blit(_shade(band.size, ABSORB, 60), band.topleft)
         pygame.draw.line(surf, ABSORB, (rect.x, y), (rect.right, y), 2)
-        label = font(16).render("absorbing floor", True, ABSORB)
+        label = font(16).render(_floor_label(sim), True, ABSORB)
         surf.blit(label, (rect.x + 8, y + 4))
     # cart tracks and carts
     for a, b in sim.track_geometry():
@@ -275,6 +287,8 @@ def _draw_guide(surf: pygame.Surface, cam: Camera, sim: Simulation) -> None:
     pygame.draw.rect(surf, (70, 75, 90), box, 0, 3)
     pygame.draw.rect(surf, GUIDE, box, 1, 3)
     what = "start" if getattr(sim, "apparatus", None) is not None else "feed"
+    if getattr(sim, "piston", None) is not None:  # an ideal machine's upper half
+        what = "pick-up (paper's law), lift xi2*H, upper cart:"
     lbl = font(16).render(f"{what} {sim.feed.speed:.2f} m/s", True, GUIDE)
     x = box.left - lbl.get_width() - 4
     if x < cam.rect.left + 2:  # no room on the left: put it below the motor box
