@@ -201,6 +201,11 @@ def _check_drive(level: Level, where: str) -> float:
                   + " or ".join(repr(d) for d in drives))
     if feed.drive == "motor":
         return feed.end_tension
+    if sim.initial.mode != "catenary":
+        _fail(where, "initial.mode",
+              f"{sim.initial.mode!r} with feed.drive = {feed.drive!r}: the machine is driven by "
+              "the fall of its fountain, so from a stub it stops before the chain lands; "
+              "allowed: 'catenary' (the machine starts with its fountain)")
     if feed.floor != "absorbing" or feed.end_tension != 0.0:
         field = "feed.floor" if feed.floor != "absorbing" else "feed.end_tension"
         why = ("the paper's real floor takes the chain without pull"

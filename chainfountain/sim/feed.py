@@ -32,6 +32,11 @@ from chainfountain.sim.chain import Chain
 from chainfountain.sim.config import FeedConfig, InitialConfig
 from chainfountain.sim.reference import LaunchReference
 
+PULL_REACH = 1.5
+"""The floor pulls on the chain's end only while the end link's centre is within this many
+link lengths of the floor: a landed end (its links are taken at the floor) always is, the
+end of a chain still forming from its stub is not."""
+
 
 class Feed:
     """Guide (kinematic links) at the launch point plus the absorbing floor bookkeeping."""
@@ -214,6 +219,8 @@ class Feed:
         if F <= 0.0:
             return
         body = self.chain.links[0].body
+        if body.position.y > self.floor_y + PULL_REACH * self.chain.L:
+            return  # the end has not landed yet (a chain forming from its stub)
         fx, fy = F * self.end_dir[0], F * self.end_dir[1]
         body.apply_force_at_world_point((fx, fy), body.local_to_world((0.5 * self.chain.L, 0.0)))
         self.end_force = (fx, fy)

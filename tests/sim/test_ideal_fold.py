@@ -179,3 +179,14 @@ def test_a_machine_held_back_too_hard_stops_with_one_sentence() -> None:
     msg = str(exc.value)
     assert "the chain has stopped" in msg and "make the upper cart lighter" in msg
     assert "\n" not in msg and sim.time < 4.0
+
+
+def test_a_machine_cannot_start_from_a_stub() -> None:
+    """The machine is driven by the fall of its fountain: from a stub the laws hold the chain
+    back before it lands (measured: ideal_fold stops at 1.4 s), so the level is refused."""
+    lvl = io.load(library.resolve("ideal_fold"))
+    lvl.sim.initial.mode = "stub"
+    with pytest.raises(io.LevelError) as exc:
+        io.loads(io.dumps(lvl), "bad.toml")
+    msg = str(exc.value)
+    assert msg.startswith("bad.toml: initial.mode") and "allowed: 'catenary'" in msg, msg
