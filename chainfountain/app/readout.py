@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from chainfountain.sim.machine_rules import keeps_any_speed
 from chainfountain.sim.measure import steady_time
 from chainfountain.sim.recorder import Recorder
 from chainfountain.sim.world import Simulation
@@ -184,7 +185,7 @@ def machine_line(sim: Simulation) -> str:
     if ref is None:
         return "paper's laws: no fountain at these settings"
     ends = f"Tbar_0 {ref.T0_bar:.3f}, Tbar_E {ref.TE_bar:.3f}"
-    if cfg.feed.drive == "ideal_fold" and cfg.feed.bearing_drag == 0.0:
+    if keeps_any_speed(cfg):
         return f"paper's laws keep any v: {ends}"
     return f"paper's laws: v {ref.v:.3f} m/s, {ends}"
 

@@ -22,11 +22,8 @@ from chainfountain.app.controls import FieldSpec, get_value, set_value
 from chainfountain.level import io
 from chainfountain.level.io import Level, LevelError
 from chainfountain.sim.config import SimConfig
-from chainfountain.sim.machine_rules import follow
+from chainfountain.sim.machine_rules import MACHINE_FIELDS, follow
 
-MACHINE_PATHS = ("feed.xi2", "feed.cart_force", "feed.xi3", "feed.lower_cart_force",
-                 "feed.bearing_drag")
-"""The fields whose sliders span only the admissible values."""
 BISECTIONS = 30
 """Bisection steps towards each end (the span's ends to about 1e-9 of the schema range)."""
 
@@ -64,7 +61,7 @@ def admissible(level: Level, spec: FieldSpec,
     window's budget runs: :mod:`chainfountain.app.budget`), or ``None`` when the field is
     not a machine field of an ideal machine."""
     sim = level.sim
-    if spec.path not in MACHINE_PATHS or sim.kind != "feed" or sim.feed.drive == "motor":
+    if spec.path not in MACHINE_FIELDS or sim.kind != "feed" or sim.feed.drive == "motor":
         return None
     ok = _accepts(level, spec.path, origin)
     now = float(get_value(sim, spec.path))

@@ -37,6 +37,7 @@ from chainfountain.app.draw import DrawMixin
 from chainfountain.app.input import InputMixin
 from chainfountain.app.session import Session
 from chainfountain.level import library
+from chainfountain.sim.machine_rules import MACHINE_FIELDS
 
 LEFT_W = 300
 RIGHT_W = 390
@@ -224,7 +225,7 @@ class App(InputMixin, DrawMixin):
         res = self.session.set_field(path, value)
         level = self.session.level
         for row in self.rows:  # a change can move other fields (a cart that follows the
-            if row.spec.path in spans.MACHINE_PATHS:  # balance) and the machine's spans
+            if row.spec.path in MACHINE_FIELDS:  # balance) and the machine's spans
                 row.spec = spans.narrowed(level, spec_for(level.sim, row.spec.path),
                                           self.session.origin)
             self._show_value(row)

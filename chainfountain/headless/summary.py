@@ -8,6 +8,7 @@ from collections.abc import Callable
 from typing import Any
 
 from chainfountain.level.io import Level
+from chainfountain.sim.machine_rules import keeps_any_speed
 from chainfountain.sim.measure import Summary
 from chainfountain.sim.recorder import Recorder
 from chainfountain.sim.reference import LaunchReference
@@ -50,8 +51,8 @@ def summarize(level: Level, sim: Simulation, rec: Recorder, duration: float,
                 "theory": None, "analysis_failed": failed}
     failed.update(s.failed)
     ref = sim.reference
-    if level.sim.kind == "feed" and level.sim.feed.drive == "ideal_fold" \
-            and level.sim.feed.bearing_drag == 0.0:
+    neutral = keeps_any_speed(level.sim)
+    if neutral:
         ref = sim.reference_at(s.speed_mean)  # it keeps any speed: the paper's at its own
     tb = s.extras.get("tension_bar")
     TE_bar = float(tb[-1]) if tb is not None and len(tb) else float("nan")
@@ -93,8 +94,7 @@ def summarize(level: Level, sim: Simulation, rec: Recorder, duration: float,
     out["theory"] = _theory(ref, s, TE_bar) if ref is not None else None
     if level.sim.kind == "feed" and level.sim.feed.drive != "motor":
         # what sets the speed: the machine's laws select it, or (loss-free) keep any
-        out["machine"] = ("keeps any speed" if level.sim.feed.drive == "ideal_fold"
-                          and level.sim.feed.bearing_drag == 0.0 else "selects")
+        out["machine"] = "keeps any speed" if neutral else "selects"
     if app is not None:
         from chainfountain.sim.apparatus_report import report
 

@@ -13,19 +13,30 @@ from __future__ import annotations
 from chainfountain.sim.config import SimConfig
 from chainfountain.theory.apparatus import balanced_cart_force
 
+MACHINE_FIELDS = ("feed.xi2", "feed.cart_force", "feed.xi3", "feed.lower_cart_force",
+                  "feed.bearing_drag")
+"""The ideal machines' own fields: live (:meth:`~chainfountain.sim.world.Simulation.set_machine`),
+their sliders spanning only what runs (:mod:`chainfountain.app.spans`)."""
+
 FOLLOWED = ("feed.xi2", "feed.xi3", "feed.lower_cart_force", "feed.drive",
             "feed.bearing_drag")
 """Changes after which a loss-free full machine's upper cart is moved to the balance."""
+
+
+def keeps_any_speed(config: SimConfig) -> bool:
+    """Whether ``config`` is a loss-free full machine: neutral in the speed, it keeps any
+    speed while balanced (the paper's laws select none)."""
+    f = config.feed
+    return config.kind == "feed" and f.drive == "ideal_fold" and f.bearing_drag == 0.0
 
 
 def follow(config: SimConfig, path: str) -> float | None:
     """After ``path`` changed in ``config``: move the upper cart of a loss-free full machine
     to the balance. Returns the new ``feed.cart_force`` (N), or ``None`` when nothing
     follows (another drive, a machine with bearing drag, or another field)."""
-    f = config.feed
-    if config.kind != "feed" or f.drive != "ideal_fold" or f.bearing_drag > 0.0 \
-            or path not in FOLLOWED:
+    if not keeps_any_speed(config) or path not in FOLLOWED:
         return None
+    f = config.feed
     f.cart_force = max(0.0, balanced_cart_force(f.lower_cart_force, f.xi2, f.xi3,
                                                 config.chain.linear_density, f.drop,
                                                 config.gravity))

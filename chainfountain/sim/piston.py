@@ -22,14 +22,13 @@ from typing import Any
 import pymunk
 
 from chainfountain.errors import RunEnded
+from chainfountain.sim.apparatus.stall_watch import STALL_FRACTION, STALL_TIME, ChainStalled
 from chainfountain.sim.chain import Link
 
-STALL_FRACTION = 0.3
-"""The chain counts as stopping below this fraction of its start speed ..."""
 RUNAWAY_FACTOR = 2.5
-"""... and as running away above this multiple of it ..."""
-WATCH_TIME = 0.5
-"""... for this long (s) without a break."""
+"""The chain counts as running away above this multiple of its start speed, for
+:data:`~chainfountain.sim.apparatus.stall_watch.STALL_TIME` without a break (it counts as
+stopping below ``STALL_FRACTION`` of it, as in the contact machine)."""
 
 GROOVE_REACH = 100.0
 """Half-length of the guide's groove along the launch line (m): far beyond any guide."""
@@ -147,14 +146,14 @@ class Piston:
         full machine does either: it is neutral in the speed)."""
         slow, fast = v < STALL_FRACTION * self.v_start, v > RUNAWAY_FACTOR * self.v_start
         self._off_t = self._off_t + dt if slow or fast else 0.0
-        if self._off_t < WATCH_TIME:
+        if self._off_t < STALL_TIME:
             return
         f, t = self.sim.config.feed, self.sim.time
         if slow:
-            raise RunEnded(f"t = {t:.2f} s: the chain has stopped: the upper cart "
-                           f"({f.cart_force:.3g} N) and the lift xi2*H hold it back harder "
-                           "than the falling chain pulls it on; make the upper cart lighter "
-                           "(feed.cart_force) or lower xi2")
+            raise ChainStalled(f"t = {t:.2f} s: the chain has stopped: the upper cart "
+                               f"({f.cart_force:.3g} N) and the lift xi2*H hold it back "
+                               "harder than the falling chain pulls it on; make the upper "
+                               "cart lighter (feed.cart_force) or lower xi2")
         raise RunEnded(f"t = {t:.2f} s: the chain runs away ({v:.3g} m/s, "
                        f"{v / self.v_start:.2g} times its start speed): the upper cart "
                        f"({f.cart_force:.3g} N) is too light to balance the lower half; "

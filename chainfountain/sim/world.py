@@ -20,16 +20,13 @@ from chainfountain.sim.bodies import Cart, Floor, Roller
 from chainfountain.sim.chain import Chain
 from chainfountain.sim.config import SimConfig
 from chainfountain.sim.feed import Feed
-from chainfountain.sim.machine_rules import follow
+from chainfountain.sim.machine_rules import MACHINE_FIELDS, follow, keeps_any_speed
 from chainfountain.sim.measure import ChainReader, ChainState, link_ends, polyline
 from chainfountain.sim.piston import Piston
 from chainfountain.sim.put_down import PutDown
 from chainfountain.sim.reference import LaunchReference
 from chainfountain.sim.watchdog import CHECK_INTERVAL, Limits, Watchdog, limits_for
 
-MACHINE_FIELDS = ("feed.xi2", "feed.cart_force", "feed.xi3", "feed.lower_cart_force",
-                  "feed.bearing_drag")
-"""The ideal machines' live fields (:meth:`Simulation.set_machine`)."""
 FOLLOW_TOLERANCE = 1e-3
 """The ideal full machine's reference follows its speed in steps of this fraction."""
 
@@ -268,8 +265,7 @@ class Simulation:
         """Keep the reference on the loss-free full machine's present speed ``v`` (it keeps
         whatever speed it has, so the paper's fountain moves with it): recomputed when ``v``
         has moved by :data:`FOLLOW_TOLERANCE` of the reference's speed."""
-        f = self.config.feed
-        if f.drive != "ideal_fold" or f.bearing_drag > 0.0:
+        if not keeps_any_speed(self.config):
             return
         ref = self.reference
         if ref is not None and abs(v - ref.v) <= FOLLOW_TOLERANCE * ref.v:
