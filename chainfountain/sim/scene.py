@@ -208,4 +208,5 @@ class ChainScene:
 
     def kinetic_energy(self) -> float:
         """Translational and rotational kinetic energy of the links (J)."""
-        return float(sum(lk.body.kinetic_energy for lk in self.chain.links))
+        # pymunk's Body.kinetic_energy is m*v**2 + I*w**2, twice the energy
+        return 0.5 * float(sum(lk.body.kinetic_energy for lk in self.chain.links))

@@ -169,3 +169,11 @@ def test_pin_names_the_allowed_points() -> None:
     sc = ChainScene([(0, 0), (0.01, 0), (0.02, 0)])
     with pytest.raises(ValueError, match=r"point 3: allowed: 0 \.\. 2"):
         sc.pin(3)
+
+
+def test_kinetic_energy_is_half_m_v_squared() -> None:
+    pts = np.column_stack((0.01 * np.arange(11), np.zeros(11)))
+    sc = ChainScene(pts, linear_density=LAM)
+    for lk in sc.chain.links:
+        lk.body.velocity = (2.0, 0.0)
+    assert sc.kinetic_energy() == pytest.approx(0.5 * LAM * 0.1 * 4.0, rel=1e-9)
