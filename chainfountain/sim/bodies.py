@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
 import pymunk
 
 from chainfountain.sim.config import CartConfig, RollerConfig
@@ -117,3 +118,16 @@ class Cart:
         ux, uy = math.cos(self.cfg.incline), math.sin(self.cfg.incline)
         v = self.body.velocity
         return v.x * ux + v.y * uy
+
+
+def nudge_bodies(space: pymunk.Space, seed: int | tuple[int, ...], rel: float = 1e-12) -> None:
+    """Change every dynamic body's velocity by about ``rel`` of itself (of 1 mm/s at
+    rest), seeded: far below anything physical, as another machine or library build
+    changes the last bits of a run."""
+    rng = np.random.default_rng(seed)
+    for body in space.bodies:
+        if body.body_type == pymunk.Body.DYNAMIC:
+            vx, vy = body.velocity
+            scale = rel * (abs(vx) + abs(vy) + 1e-3)
+            body.velocity = (vx + scale * rng.standard_normal(),
+                             vy + scale * rng.standard_normal())

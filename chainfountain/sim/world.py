@@ -16,7 +16,7 @@ import numpy as np
 import pymunk
 
 from chainfountain.sim.apparatus import Apparatus
-from chainfountain.sim.bodies import Cart, Floor, Roller
+from chainfountain.sim.bodies import Cart, Floor, Roller, nudge_bodies
 from chainfountain.sim.chain import Chain
 from chainfountain.sim.config import SimConfig
 from chainfountain.sim.feed import Feed
@@ -77,6 +77,10 @@ class Simulation:
     """
 
     def __init__(self, config: SimConfig) -> None:
+        if config.kind == "scene":
+            raise ValueError(f"{config.name or 'this level'} is a scene (kind 'scene'): scenes "
+                             "run headless only, with chainfountain run "
+                             f"{config.name or 'LEVEL'}")
         if config.kind not in ("feed", "apparatus"):
             raise ValueError(f"unsupported level kind {config.kind!r} "
                              "(supported: 'feed', 'apparatus')")
@@ -245,13 +249,7 @@ class Simulation:
         spread of its chaotic quantities (ensembles in the tests and studies). Call it
         right after building or resetting; the same seed gives the same run.
         """
-        rng = np.random.default_rng(seed)
-        for body in self.space.bodies:
-            if body.body_type == pymunk.Body.DYNAMIC:
-                vx, vy = body.velocity
-                scale = rel * (abs(vx) + abs(vy) + 1e-3)
-                body.velocity = (vx + scale * rng.standard_normal(),
-                                 vy + scale * rng.standard_normal())
+        nudge_bodies(self.space, seed, rel)
 
     def reference_at(self, v: float) -> LaunchReference | None:
         """The paper's fountain for this level at chain speed ``v``
