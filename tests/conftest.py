@@ -1,11 +1,11 @@
 """Suite-wide options.
 
-``--perturb N`` (N > 0) nudges every simulation right after it is built: each dynamic
-body's velocity changes by about 1e-12 of itself (seeded by ``N``), far below anything
-physical, as a different machine or library build would change the last bits of a
-trajectory. Running the suite with ``--perturb 1``, ``2``, ... and comparing the
-verdicts shows that no test depends on one trajectory of a chaotic run
-(``benchmarks/`` has no part in it; see the README, "Tests").
+``--perturb N`` (N > 0) nudges every simulation (fountain or scene level) right after it
+is built: each dynamic body's velocity changes by about 1e-12 of itself (seeded by ``N``;
+of 1 mm/s at rest), far below anything physical, as a different machine or library build
+would change the last bits of a trajectory. Running the suite with ``--perturb 1``,
+``2``, ... and comparing the verdicts shows that no test depends on one trajectory of a
+chaotic run (``benchmarks/`` has no part in it; see the README, "Tests").
 """
 
 from __future__ import annotations
@@ -35,6 +35,16 @@ def _perturb_starts(request: pytest.FixtureRequest):
         # the same configuration gets the same nudge (runs stay deterministic)
         self.nudge((seed, zlib.crc32(repr(self.config).encode())))
 
+    from chainfountain.sim.bodies import nudge_bodies
+    from chainfountain.sim.scene_sim import SceneSimulation
+
+    make_scene = SceneSimulation.__init__
+
+    def nudged_scene(self: SceneSimulation, config) -> None:
+        make_scene(self, config)
+        nudge_bodies(self.scene.space, (seed, zlib.crc32(repr(config).encode())))
+
     with pytest.MonkeyPatch.context() as mp:
         mp.setattr(Simulation, "_build", nudged)
+        mp.setattr(SceneSimulation, "__init__", nudged_scene)
         yield

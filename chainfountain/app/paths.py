@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import tomllib
 from pathlib import Path
 
 from chainfountain.level.library import home_dir as user_home
@@ -21,11 +22,22 @@ def captures_dir(create: bool = False) -> Path:
     return p
 
 
+def _is_scene(path: Path) -> bool:
+    """Whether ``path`` is a scene level (they run headless only); an unreadable file is
+    offered, so that opening it says what is wrong."""
+    try:
+        return tomllib.loads(path.read_text(encoding="utf-8")).get("kind") == "scene"
+    except (OSError, ValueError):
+        return False
+
+
 def list_levels() -> list[tuple[str, Path]]:
-    """All level files the picker offers: ``(label, path)``, shipped first, then the user's."""
+    """All level files the picker offers: ``(label, path)``, shipped first, then the user's;
+    scene levels are left out (``chainfountain run`` runs them)."""
     out: list[tuple[str, Path]] = []
     for label, folder in (("levels", builtin_levels_dir()), ("saved", user_levels_dir())):
         if folder.is_dir():
             for p in sorted(folder.glob("*.toml")):
-                out.append((f"{label}/{p.name}", p))
+                if not _is_scene(p):
+                    out.append((f"{label}/{p.name}", p))
     return out

@@ -22,7 +22,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         help="run a level headless and write summary.json, CSVs and a snapshot",
         description="Run LEVEL (a .toml path or a level name from levels/) without a window. "
         "Writes summary.json, tensions.csv, speed.csv and snapshot.png into --out (apparatus "
-        "levels also apparatus.csv; the 'open' arrangement reaction.png). " + EXIT_HELP,
+        "levels also apparatus.csv; the 'open' arrangement reaction.png; a scene level "
+        "summary.json, probe_<name>.csv per probe and scene.png). " + EXIT_HELP,
         allow_abbrev=False,
     )
     p.add_argument("level", metavar="LEVEL", help="level file or name (e.g. paper_tall)")
@@ -32,11 +33,12 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                                              max=3600),
                    default=None, help="simulated seconds (default 8; 20 for a fed level that "
                    "starts from its stub, to form and then be averaged; an apparatus level "
-                   "without a treadmill: its apparatus.duration)")
+                   "without a treadmill: its apparatus.duration; a scene: its scene.duration)")
     p.add_argument("--out", type=path_arg("an output folder"), default=None,
                    help="output folder (default runs/<level name>)")
     p.add_argument("--seed", type=integer("a seed", min=0), default=None,
-                   help="override the level's random seed (kind 'feed' levels only)")
+                   help="override the level's random seed (kind 'feed'; kind 'scene' with "
+                   "scene.jitter)")
     p.add_argument("--error-bars", action="store_true",
                    help="also estimate the discretisation error (kind 'feed': two short runs "
                    "from the catenary at the level's link length and step and at half of "
@@ -57,12 +59,17 @@ def run(args: argparse.Namespace) -> int:
     from chainfountain.level import io, library
 
     level = io.load(library.resolve(args.level))
-    if args.seed is not None and level.sim.kind != "feed":
+    if args.seed is not None and level.sim.kind == "apparatus":
         raise UserError(
             f"argument --seed: {args.seed} has no effect on {level.meta.name!r} (kind "
             f"{level.sim.kind!r}: the apparatus lays its chain along its own path; to start a "
             "perturbed run, change apparatus.speed slightly); allowed: only with kind 'feed' "
-            "levels")
+            "or 'scene' levels")
+    if args.seed is not None and level.sim.kind == "scene" and level.sim.scene.jitter == 0:
+        raise UserError(
+            f"argument --seed: {args.seed} has no effect on {level.meta.name!r} (its "
+            "scene.jitter is 0: no random angles to seed); allowed: only with a scene whose "
+            "scene.jitter is above 0")
     if args.error_bars:
         from chainfountain.refine import refined_config
 

@@ -14,6 +14,7 @@ from typing import Any
 from chainfountain import atomic
 from chainfountain.errors import OutputError, UserError
 from chainfountain.headless import files
+from chainfountain.headless.scene import SceneRun, describe_scene, run_scene
 from chainfountain.headless.stepping import Ending, _signals_deferred, simulate
 from chainfountain.headless.summary import _attempt, _f, json_safe, model_error, summarize
 from chainfountain.level.io import Level
@@ -33,8 +34,10 @@ def default_duration(level: Level) -> float:
     :data:`DEFAULT_DURATION`; :data:`FORMING_DURATION` for a fed level that starts from its
     stub, so that it forms and is then averaged; an apparatus level's own
     ``apparatus.duration`` when its upper table is sized by it (no treadmill), so the run
-    ends before the table does."""
+    ends before the table does; a scene level's ``scene.duration``."""
     sim = level.sim
+    if sim.kind == "scene":
+        return float(sim.scene.duration)
     if sim.kind == "apparatus" and sim.apparatus.plate_links == 0:
         return float(sim.apparatus.duration)
     if sim.kind == "feed" and sim.initial.mode == "stub":
@@ -101,12 +104,16 @@ def run_level(level: Level, out_dir: Path, duration: float | None = None, *,
 def run_and_record(level: Level, out_dir: Path, duration: float | None = None, *,
                    seed: int | None = None, progress: bool = True,
                    error_bars: dict | None = None,
-                   snapshot: bool = True) -> tuple[Path, Recorder]:
-    """:func:`run_level`, also returning the run's recorder (its time series in memory);
+                   snapshot: bool = True) -> tuple[Path, Recorder | SceneRun]:
+    """:func:`run_level`, also returning the run's recorder (its time series in memory;
+    a scene level's :class:`~chainfountain.headless.scene.SceneRun`);
     ``snapshot=False`` leaves out ``snapshot.png`` (drawing it is most of a short run's
-    cost: 0.3 s of 0.42 s for 0.5 s of ``wide_low``)."""
+    cost: 0.3 s of 0.42 s for 0.5 s of ``wide_low``) and a scene's ``scene.png``."""
     duration = default_duration(level) if duration is None else float(duration)
     out_dir = prepare_out_dir(out_dir)
+    if level.sim.kind == "scene":
+        return run_scene(level, out_dir, duration, seed=seed, progress=progress,
+                         snapshot=snapshot)
     sim, rec, wall, ended = simulate(level, duration, seed=seed, progress=progress)
     received: list[int] = []
     with _signals_deferred(received):
@@ -183,6 +190,8 @@ def describe_outputs(summary_path: Path) -> str:
     summary_path = Path(summary_path)
     out = summary_path.parent
     s = json.loads(summary_path.read_text())
+    if s.get("kind") == "scene":
+        return describe_scene(s, out)
     th = s.get("theory") or {}
     err = th.get("rel_error", {})
 

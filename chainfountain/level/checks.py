@@ -31,6 +31,10 @@ def check_consistency(level: Level, where: str) -> None:
         _check_apparatus(level, where)
     if sim.kind == "feed":
         _check_feed(level, where)
+    if sim.kind == "scene":
+        from chainfountain.level.scene_checks import check_scene
+
+        check_scene(level, where, MAX_LINKS)
     _check_accuracy_scope(sim, where)
 
 

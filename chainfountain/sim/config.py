@@ -11,7 +11,9 @@ below the launch point) and ``kind = "apparatus"`` (the paper's pulley
 apparatus, section "Generating Steady-State Chain Fountains": a roller unfolds
 the resting chain, a guide channel lifts it ``xi2*H`` to the fountain start, it
 flies, and either lands on a floor or is caught by an end channel and folded
-back to rest by a second roller; see :class:`ApparatusConfig`). ``rollers`` are
+back to rest by a second roller; see :class:`ApparatusConfig`). A third kind,
+``kind = "scene"``, is a free chain with pins, a floor and probes
+(:mod:`chainfountain.sim.scene_config`). ``rollers`` are
 kinematic building blocks of feed levels; ``carts`` are free carts on a feed
 level and the roller carts of an apparatus level.
 
@@ -24,8 +26,9 @@ import math
 from dataclasses import dataclass, field
 
 from chainfountain.fields import param
+from chainfountain.sim.scene_config import SceneConfig
 
-KINDS: tuple[str, ...] = ("feed", "apparatus")
+KINDS: tuple[str, ...] = ("feed", "apparatus", "scene")
 """Level kinds the simulator can build."""
 
 
@@ -439,6 +442,7 @@ class SimConfig:
     chain: ChainConfig = field(default_factory=ChainConfig)
     feed: FeedConfig = field(default_factory=FeedConfig)
     apparatus: ApparatusConfig = field(default_factory=ApparatusConfig)
+    scene: SceneConfig = field(default_factory=SceneConfig)
     solver: SolverConfig = field(default_factory=SolverConfig)
     initial: InitialConfig = field(default_factory=InitialConfig)
     recording: RecordingConfig = field(default_factory=RecordingConfig)

@@ -3,9 +3,11 @@
 :class:`ChainScene` builds the project's chain (rod links, pivot joints, see
 :mod:`chainfountain.sim.chain`) along a polyline, pins and releases its points, adds a
 floor, steps in pymunk sub-steps and reads positions, speeds, tensions, pin forces and
-the floor's force. The validation problems with closed forms use it: the folded chain
-falling with one end fixed and the chain dropped onto a scale
-(``tests/sim/test_sim_scene.py``).
+the floor's force. Scene levels (``kind = "scene"``) run on it
+(:mod:`chainfountain.sim.scene_sim`), among them the validation problems with closed
+forms: the folded chain falling with one end fixed and the chain dropped onto a scale
+(``levels/falling_chain.toml``, ``levels/chain_on_scale.toml``,
+``tests/sim/test_scene_levels.py``).
 
 Its default solver (:data:`SCENE_SOLVER`) keeps the energy of fast folds: the energy a
 fold loses is set by how far the links rounding it turn in one pymunk step,
@@ -17,6 +19,7 @@ for a fold 1.4 cm wide.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -38,6 +41,7 @@ class Pin:
 
     point: int
     joint: pymunk.PivotJoint
+    released: bool = False
 
 
 class ChainScene:
@@ -52,7 +56,8 @@ class ChainScene:
 
     def __init__(self, points, *, linear_density: float = 0.05, gravity: float = 9.81,
                  solver: SolverConfig | None = None, collide: bool = False,
-                 bending_damping: float = 0.0, friction: float = 0.6) -> None:
+                 bending_damping: float = 0.0, friction: float = 0.6,
+                 chain: ChainConfig | None = None) -> None:
         pts = np.asarray(points, dtype=float)
         if pts.ndim != 2 or pts.shape[1] != 2 or len(pts) < 3 or not np.isfinite(pts).all():
             raise ValueError("points: a finite (N + 1, 2) polyline with at least 2 links "
@@ -71,8 +76,11 @@ class ChainScene:
         self.space.gravity = (0.0, -self.g)
         self.space.iterations = self.solver.iterations
         self.space.collision_slop = self.solver.collision_slop
-        cfg = ChainConfig(link_length=L, linear_density=float(linear_density),
-                          bending_damping=float(bending_damping), friction=float(friction))
+        if chain is not None:  # a level's chain: its every setting, at the points' spacing
+            cfg = dataclasses.replace(chain, link_length=L)
+        else:
+            cfg = ChainConfig(link_length=L, linear_density=float(linear_density),
+                              bending_damping=float(bending_damping), friction=float(friction))
         self.chain = Chain(self.space, cfg, self.solver, shapes=collide)
         n = len(pts) - 1
         self.n = n
@@ -88,6 +96,10 @@ class ChainScene:
         self._reader = ChainReader(self.space, self.chain)
         self._last: tuple | None = None  # (pre, post, contacts) of the last pymunk step
         self._floor_impulse = np.zeros(2)
+        self._pins: list[Pin] = []
+        self._held = np.zeros(0)  # pin impulses summed since the last take_means()
+        self._landed = np.zeros(2)  # floor impulse summed since the last take_means()
+        self._since = 0.0
 
     # ------------------------------------------------------------------ set-up
     def _link(self, i: int):
@@ -110,12 +122,22 @@ class ChainScene:
         joint.error_bias = self.solver.joint_error_bias
         joint.collide_bodies = False
         self.space.add(joint)
-        return Pin(point=point, joint=joint)
+        pin = Pin(point=point, joint=joint)
+        self._pins.append(pin)
+        self._held = np.append(self._held, 0.0)
+        return pin
 
     def release(self, pin: Pin) -> None:
         """Let a pinned point go."""
-        if pin.joint in self.space.constraints:
+        if not pin.released:
             self.space.remove(pin.joint)
+            pin.released = True
+
+    def set_velocity(self, vx: float, vy: float) -> None:
+        """Give every link the velocity ``(vx, vy)`` (m/s), without spin."""
+        for lk in self.chain.links:
+            lk.body.velocity = (vx, vy)
+            lk.body.angular_velocity = 0.0
 
     def add_floor(self, y: float, x0: float = -10.0, x1: float = 10.0, *,
                   friction: float = 0.6) -> Floor:
@@ -138,6 +160,7 @@ class ChainScene:
         over the step (impacts are short)."""
         h = self.h
         floor_imp = np.zeros(2)
+        held = self._held
         for k in range(self.solver.substeps):
             last = k == self.solver.substeps - 1
             pre = self._reader.read() if last else None
@@ -146,8 +169,13 @@ class ChainScene:
                 self._last = (pre, self._reader.read(), self._reader.contact_impulses())
             if self.floor is not None:
                 floor_imp += self._impulse_on_floor()
+            for i, pin in enumerate(self._pins):
+                if not pin.released:
+                    held[i] += pin.joint.impulse
         self.time += self.solver.dt
         self._floor_impulse = floor_imp
+        self._landed += floor_imp
+        self._since += self.solver.dt
 
     def _impulse_on_floor(self) -> np.ndarray:
         static = self.space.static_body
@@ -200,6 +228,17 @@ class ChainScene:
         f = joint_forces(pre, post, self.chain.mass, self.h, self.g, self.n, contacts)
         t, _ = signed_tension(f, post, self.n)
         return t[: self.n - 1][::-1].copy()
+
+    def take_means(self) -> tuple[np.ndarray, np.ndarray]:
+        """Mean forces (N) since the last call (or the start): each pin's, in the order
+        pinned (0 while released), and the chain's on the floor ``(fx, fy)``; then starts
+        the next interval. Impacts and a pin's step-to-step ringing average out."""
+        span = self._since or math.inf
+        out = (self._held / span, self._landed / span)
+        self._held = np.zeros_like(self._held)
+        self._landed = np.zeros(2)
+        self._since = 0.0
+        return out
 
     def floor_force(self) -> np.ndarray:
         """Mean force (N) the chain exerts on the floor over the last step (a chain at rest

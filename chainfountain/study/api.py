@@ -17,7 +17,8 @@ from chainfountain.study.changes import with_changes
 
 SERIES = ("t", "speed_mean", "speed_min", "speed_max", "vertex_x", "vertex_y", "landing_x",
           "stretch", "n_free", "T0_bar")
-"""The time series a :class:`RunResult` carries (one value per recorded sample)."""
+"""The time series a :class:`RunResult` of a fountain carries (one value per recorded
+sample); a scene's carries ``t`` and each probe's columns as ``"<probe>.<column>"``."""
 
 
 @dataclass
@@ -70,6 +71,13 @@ def run(level: str | os.PathLike[str] | Level, duration: float | None = None, *,
     import json
 
     summary = json.loads(path.read_text())
-    series = {name: rec.series(name) for name in SERIES}
+    if lvl.sim.kind == "scene":  # each probe's columns, as "<probe>.<column>", and "t"
+        log = rec.log
+        series = {"t": log.t[: log.n].copy()}
+        for i, probe in enumerate(lvl.sim.scene.probes):
+            series.update({f"{probe.name}.{c}": v for c, v in log.columns(i).items()
+                           if c != "t"})
+    else:
+        series = {name: rec.series(name) for name in SERIES}
     paths = {name: out_dir / name for name in summary.get("outputs", [])}
     return RunResult(level=lvl, summary=summary, series=series, out_dir=out_dir, paths=paths)

@@ -121,9 +121,11 @@ def load(path: str | Path) -> Sweep:
             or not all(s is None or (isinstance(s, int) and not isinstance(s, bool) and s >= 0)
                        for s in seeds)):
         _fail(where, "seeds", f"{seeds!r}; allowed: a non-empty list of integers >= 0")
-    if base.sim.kind != "feed" and seeds != [None]:
+    seeded = base.sim.kind == "feed" or (base.sim.kind == "scene" and base.sim.scene.jitter > 0)
+    if not seeded and seeds != [None]:
         _fail(where, "seeds", f"{seeds!r} has no effect on {base.meta.name!r} (kind "
-              f"{base.sim.kind!r}); allowed: leave seeds out")
+              f"{base.sim.kind!r}" + (", scene.jitter 0" if base.sim.kind == "scene" else "")
+              + "); allowed: leave seeds out")
     grid = data.get("grid")
     if not isinstance(grid, dict) or not grid:
         _fail(where, "grid", "missing or empty; allowed: a [grid] table of field paths, each "
@@ -340,14 +342,18 @@ def _cell(x: Any) -> Any:
 
 
 def figure(sweep: Sweep, rows: list[dict], path: Path) -> Path | None:
-    """The vertex height's error against the paper over the first swept field, one line
-    per combination of the others (``None`` when no point has the figure)."""
+    """The vertex height's error against the paper (a scene: its closed form's force
+    error) over the first swept field, one line per combination of the others (``None``
+    when no point has the figure)."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    key = "theory_rel_error_h"
+    key, y_label = "theory_rel_error_h", "vertex height error against the paper (%)"
+    if sweep.base.sim.kind == "scene":
+        key = "closed_form_force_rel_error"
+        y_label = f"force error against the closed form {sweep.base.sim.scene.closed_form} (%)"
     names = list(sweep.grid)
     x_name, others = names[0], names[1:]
     groups: dict[tuple, list[tuple[float, float, bool]]] = {}
@@ -372,7 +378,7 @@ def figure(sweep: Sweep, rows: list[dict], path: Path) -> Path | None:
             unsteady |= not steady
     ax.axhline(0.0, color="0.5", lw=0.8)
     ax.set_xlabel(x_name)
-    ax.set_ylabel("vertex height error against the paper (%)")
+    ax.set_ylabel(y_label)
     run = f"{sweep.duration:g} s per point" if sweep.duration else "the level's duration"
     ax.set_title(f"sweep of {sweep.base_name} ({run}"
                  + ("; hollow: never steady" if unsteady else "") + ")", fontsize=10)

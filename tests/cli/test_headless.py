@@ -183,3 +183,28 @@ def test_a_fountain_formed_from_its_stub_is_steady_from_when_it_formed(tmp_path)
     assert s["steady"] and 2.0 < s["steady_since_s"] < 8.0, s["steady_since_s"]
     assert s["window"][0] == pytest.approx(s["steady_since_s"], abs=0.05)
     assert abs(s["theory"]["rel_error"]["h"]) < 0.01
+
+
+def test_a_scene_level_runs_and_says_how_it_compares(tmp_path):
+    r = _cli("run", "falling_chain", "--out", str(tmp_path), "--quiet", "--duration", "0.3")
+    assert r.returncode == 0, r.stderr
+    assert "folded fall at 25 % of the length: free end" in r.stdout  # 0.3 s falls 25-50 %
+    assert "Calkin-March" in r.stdout and "at 75 % of the length: not reached" in r.stdout
+    s = json.loads((tmp_path / "summary.json").read_text())
+    assert s["kind"] == "scene" and s["samples"] == 600
+    assert s["outputs"] == ["summary.json", "probe_free_end.csv", "probe_fixed_end.csv",
+                            "probe_energy.csv", "scene.png"]
+    with open(tmp_path / "probe_free_end.csv") as fh:
+        rows = list(csv.DictReader(fh))
+    assert list(rows[0]) == ["t", "x", "y", "vx", "vy"] and len(rows) == 600
+    assert s["probes"]["free_end"]["columns"]["vy"]["min"] < -3.0
+
+
+@pytest.mark.parametrize("args, words", [
+    (["run", "falling_chain", "--seed", "2"], "its scene.jitter is 0"),
+    (["play", "falling_chain", "--frames", "1"], "scenes run headless only, with "
+     "chainfountain run falling_chain"),
+])
+def test_scene_levels_refuse_what_they_cannot_do(args, words, tmp_path):
+    r = _cli(*args, cwd=tmp_path)
+    assert r.returncode == 2 and words in r.stderr and "Traceback" not in r.stderr

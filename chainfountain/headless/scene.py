@@ -1,0 +1,260 @@
+"""A headless run of a scene level (``kind = "scene"``): step it, sample its probes, write
+``probe_<name>.csv`` per probe, ``summary.json`` (each column's statistics and the closed
+form's comparison) and ``scene.png`` (the chain at a few moments and the probes against
+time)."""
+
+from __future__ import annotations
+
+import dataclasses
+import io as _io
+import json
+import signal
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from chainfountain import atomic
+from chainfountain.errors import OutputError
+from chainfountain.headless import scene_compare
+from chainfountain.headless.stepping import (
+    Ending,
+    Interrupted,
+    _progress,
+    _signals_deferred,
+    _signals_raise,
+)
+from chainfountain.headless.summary import _attempt, _f
+from chainfountain.level.model import Level
+from chainfountain.sim.probe_log import ProbeLog
+from chainfountain.sim.scene_sim import SceneSimulation
+
+MAX_SAMPLES = 100_000
+"""Samples a scene run keeps per probe: a longer run samples less often (summary.json
+gives the interval used)."""
+SHAPES = 6
+"""Chain shapes kept for the picture, evenly over the run."""
+
+
+@dataclasses.dataclass
+class SceneRun:
+    """What stepping a scene gave: the simulation, its probes' series, the chain at the
+    start and at a few moments, the wall time and why it ended early (or ``None``)."""
+
+    sim: SceneSimulation
+    log: ProbeLog
+    start: np.ndarray
+    shapes: list[tuple[float, np.ndarray]]
+    interval: float
+    wall: float
+    ended: Ending | None
+
+
+def simulate_scene(level: Level, duration: float, *, seed: int | None = None,
+                   progress: bool = True) -> SceneRun:
+    """Build the scene and step it for ``duration`` simulated seconds, sampling every
+    ``recording.sample_interval`` (or less often, to keep :data:`MAX_SAMPLES`)."""
+    cfg = level.sim
+    if seed is not None:
+        cfg = dataclasses.replace(cfg, scene=dataclasses.replace(cfg.scene, seed=int(seed)))
+    sim = SceneSimulation(cfg)
+    start = sim.scene.points()
+    n_steps = int(round(duration / sim.dt))
+    every = max(1, int(round(max(cfg.recording.sample_interval, duration / MAX_SAMPLES)
+                             / sim.dt)))
+    log = ProbeLog(cfg.scene.probes + scene_compare.probes(cfg), n_steps // every + 1)
+    shape_at = set(np.linspace(0, n_steps, SHAPES).round().astype(int).tolist())
+    shapes = [(0.0, start)]
+    ended: Ending | None = None
+    t0 = time.perf_counter()
+    with _progress(duration, progress, level.meta.name) as bar, _signals_raise():
+        try:
+            for k in range(1, n_steps + 1):
+                sim.step()
+                if k % every == 0:
+                    sim.end_sample()
+                    log.sample(sim)
+                    if not sim.finite():
+                        ended = Ending("diverged", f"the chain blew up at t = {sim.time:.3f} s "
+                                       "(a link end is not a finite number); try a smaller "
+                                       "solver.dt or more solver.substeps")
+                        break
+                if k in shape_at and k > 0:
+                    shapes.append((sim.time, sim.scene.points()))
+                if k % 200 == 0:
+                    bar.update(200 * sim.dt)
+        except (Interrupted, KeyboardInterrupt) as exc:
+            signum = exc.signum if isinstance(exc, Interrupted) else signal.SIGINT
+            ended = Ending("interrupted", f"interrupted by {signal.Signals(signum).name} at "
+                           f"t = {sim.time:.3f} s", signum)
+    return SceneRun(sim=sim, log=log, start=start, shapes=shapes,
+                    interval=every * sim.dt, wall=time.perf_counter() - t0, ended=ended)
+
+
+def run_scene(level: Level, out_dir: Path, duration: float, *, seed: int | None = None,
+              progress: bool = True, snapshot: bool = True) -> tuple[Path, SceneRun]:
+    """Run a scene level into ``out_dir`` (which exists and is writable); returns the path
+    of ``summary.json`` and the run. Probe files first, then the summary, the picture
+    last; a signal while writing is noted, not obeyed."""
+    run = simulate_scene(level, duration, seed=seed, progress=progress)
+    with _signals_deferred([]):
+        path = _write(level, out_dir, duration, run, snapshot)
+    return path, run
+
+
+def _probe_csv(path: Path, columns: dict[str, np.ndarray]) -> None:
+    buf = _io.StringIO()
+    buf.write(",".join(columns) + "\n")
+    np.savetxt(buf, np.column_stack(list(columns.values())), fmt="%.9g", delimiter=",")
+    atomic.write_text(path, buf.getvalue())
+
+
+def _stats(values: np.ndarray) -> dict[str, Any]:
+    if not len(values):
+        return {"mean": None, "min": None, "max": None, "final": None}
+    return {"mean": _f(values.mean()), "min": _f(values.min()), "max": _f(values.max()),
+            "final": _f(values[-1])}
+
+
+def _write(level: Level, out_dir: Path, duration: float, run: SceneRun,
+           snapshot: bool) -> Path:
+    cfg = level.sim
+    sim, log = run.sim, run.log
+    written: list[str] = []
+    write_failed: dict[str, str] = {}
+    failed: dict[str, str] = {}
+    probes: dict[str, Any] = {}
+    for i, probe in enumerate(cfg.scene.probes):
+        cols = log.columns(i)
+        name = f"probe_{probe.name}.csv"
+        try:
+            _probe_csv(out_dir / name, cols)
+            written.append(name)
+        except OSError as exc:
+            write_failed[name] = exc.strerror or str(exc)
+        probes[probe.name] = {"kind": probe.kind, "point": probe.point, "file": name,
+                              "columns": {c: _stats(v) for c, v in cols.items() if c != "t"}}
+    summary: dict[str, Any] = {
+        "level": level.meta.name, "kind": "scene", "duration_s": _f(sim.time),
+        "requested_duration_s": _f(duration), "steps": int(round(sim.time / sim.dt)),
+        "links": sim.n, "link_length": cfg.chain.link_length, "dt": sim.dt,
+        "pymunk_step": sim.scene.h, "wall_s": _f(run.wall),
+        "realtime_factor": _f(sim.time / run.wall) if run.wall > 0 else None,
+        "sample_interval_s": run.interval, "samples": log.n,
+        "seed": sim.config.scene.seed, "jitter": cfg.scene.jitter, "probes": probes,
+        "closed_form": _attempt(failed, "closed form", scene_compare.compare, cfg, log,
+                                run.start),
+        "ended_early": None,
+    }
+    if run.ended is not None:
+        summary["ended_early"] = {"t_s": _f(sim.time), "cause": run.ended.cause,
+                                  "reason": run.ended.reason}
+        if run.ended.signum is not None:
+            summary["ended_early"]["signal_number"] = int(run.ended.signum)
+    if snapshot:
+        try:
+            _figure(out_dir / "scene.png", level, run, summary)
+            written.append("scene.png")
+        except OSError as exc:
+            write_failed["scene.png"] = exc.strerror or str(exc)
+        except Exception as exc:  # noqa: BLE001 - a failed picture never loses the run
+            failed["scene.png"] = f"{type(exc).__name__}: {exc}"
+    summary["analysis_failed"] = failed
+    summary["outputs"] = ["summary.json", *written]
+    summary["write_failed"] = write_failed
+    path = out_dir / "summary.json"
+    try:
+        atomic.write_text(path, json.dumps(summary, indent=2) + "\n")
+    except OSError as exc:
+        raise OutputError(f"cannot write {path} ({exc.strerror or exc}); the run's other "
+                          f"outputs: {', '.join(written) or 'none'}") from None
+    return path
+
+
+def _figure(path: Path, level: Level, run: SceneRun, summary: dict[str, Any]) -> None:
+    """The chain at a few moments (left) and each probe against time (right)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    probes = level.sim.scene.probes
+    rows = max(1, len(probes))
+    fig = plt.figure(figsize=(10, max(4.0, 2.0 * rows)), dpi=100)
+    grid = fig.add_gridspec(rows, 2, width_ratios=(1, 1.4))
+    ax = fig.add_subplot(grid[:, 0])
+    colors = plt.cm.viridis(np.linspace(0, 0.9, len(run.shapes)))
+    for (t, pts), c in zip(run.shapes, colors, strict=True):
+        ax.plot(pts[:, 0], pts[:, 1], "-", color=c, lw=1.2, label=f"t = {t:.3f} s")
+    if level.sim.scene.floor == "solid":
+        ax.axhline(level.sim.scene.floor_y, color="#555555", lw=2)
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.legend(fontsize=8, loc="best")
+    ax.set_title(f"{level.meta.name}: the chain", fontsize=10)
+    for i, probe in enumerate(probes):
+        pax = fig.add_subplot(grid[i, 1])
+        cols = run.log.columns(i)
+        for c, v in cols.items():
+            if c != "t":
+                pax.plot(cols["t"], v, lw=1, label=c)
+        pax.set_ylabel(f"{probe.name}\n({probe.kind})", fontsize=9)
+        pax.legend(fontsize=7, loc="best")
+        if i == len(probes) - 1:
+            pax.set_xlabel("t (s)")
+    form = summary.get("closed_form") or {}
+    note = f"{summary['links']} links, dt {summary['dt'] * 1e6:.0f} us " \
+           f"({summary['pymunk_step'] * 1e6:.1f}-us pymunk steps)"
+    if form.get("name"):
+        errs = form.get("speed_rel_error") or [form.get("force_rel_error")]
+        shown = ", ".join("n/a" if e is None else f"{100 * e:+.1f} %" for e in errs)
+        note += f"; against {form['name']}: {shown}"
+    fig.suptitle(note, fontsize=9)
+    fig.tight_layout()
+    with atomic.atomic_path(path) as tmp:
+        fig.savefig(tmp)
+    plt.close(fig)
+
+
+def describe_scene(s: dict[str, Any], out: Path) -> str:
+    """A few lines for the terminal about a scene run's ``summary.json`` ``s``."""
+
+    def pct(x: float | None) -> str:
+        return "n/a" if x is None else f"{100 * x:+.2f} %"
+
+    lines = [f"wrote {out}/" + ", ".join(s.get("outputs") or []),
+             f"  {s['links']} links, {s['steps']} steps of {s['dt'] * 1e6:g} us "
+             f"({s['pymunk_step'] * 1e6:.3g}-us pymunk steps), {s['samples']} samples every "
+             f"{s['sample_interval_s'] * 1e3:.3g} ms, real-time factor "
+             f"{s.get('realtime_factor') or 0:.2f}"]
+    for name, why in (s.get("write_failed") or {}).items():
+        lines.append(f"  NOT WRITTEN: {name} ({why})")
+    for name, why in (s.get("analysis_failed") or {}).items():
+        lines.append(f"  analysis failed: {name} ({why})")
+    ended = s.get("ended_early")
+    if ended:
+        lines.append(f"  ENDED EARLY (of {s['requested_duration_s']:g} s asked for): "
+                     f"{ended['reason']}")
+    form = s.get("closed_form") or {}
+    if form.get("name") == "folded_fall":
+        for share, v, vt, ev, ef in zip(form["at_share"], form["speed_m_s"],
+                                        form["speed_theory_m_s"], form["speed_rel_error"],
+                                        form["force_rel_error"], strict=True):
+            if v is None:
+                lines.append(f"  folded fall at {100 * share:.0f} % of the length: not reached")
+                continue
+            lines.append(f"  folded fall at {100 * share:.0f} % of the length: free end "
+                         f"{v:.3f} m/s (Calkin-March {vt:.3f}, {pct(ev)}), fixed end's force "
+                         f"{pct(ef)}")
+    elif form.get("name") == "scale" and form.get("force_rel_error") is None:
+        lines.append(f"  scale: not compared; the run ended before "
+                     f"{100 * form['landed_share'][1]:.0f} % of the chain had landed")
+    elif form.get("name") == "scale":
+        lines.append(f"  scale while {100 * form['landed_share'][0]:.0f}-"
+                     f"{100 * form['landed_share'][1]:.0f} % of the chain has landed: reads "
+                     f"{pct(form['force_rel_error'])} against 3 lambda g y (Hamm-Geminard)"
+                     + ("; a pile of jittered links is chaotic: compare the mean over seeds "
+                        "(chainfountain sweep with seeds)" if s.get("jitter") else ""))
+    return "\n".join(lines)
