@@ -17,6 +17,8 @@ from chainfountain.sim.scene_layout import chain_points, fold_arms, link_count
 
 MAX_PROBES = 50
 """Most probes a scene may have."""
+MAX_WALLS = 100
+"""Most walls a scene may have."""
 PROBE_NAME = re.compile(r"[A-Za-z0-9_-]{1,40}")
 """A probe's name: it names a file."""
 HANGING = 0.02
@@ -52,6 +54,7 @@ def check_scene(level: Level, where: str, max_links: int) -> None:
                   f"{pts[low, 1]:.4g} m) into the floor; allowed: at most "
                   f"{pts[low, 1] - sim.chain.link_radius:.4g} m (below the chain by its "
                   "link_radius)")
+    _check_walls(sc, pts, sim.chain.link_radius, where)
     _check_pins(sc, n, where)
     _check_probes(sc, n, where)
     _check_closed_form(sc, n, where)
@@ -132,6 +135,44 @@ def _check_layout(sc: SceneConfig, L: float, where: str, max_links: int) -> None
               "0, or set scene.jitter")
 
 
+def _point_segment(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Distances of points ``p`` (k, 2) from the segments ``a``-``b`` (each (k, 2) or (2,))."""
+    d = b - a
+    dd = np.maximum(np.sum(d * d, axis=-1), 1e-300)
+    s = np.clip(np.sum((p - a) * d, axis=-1) / dd, 0.0, 1.0)
+    return np.hypot(*(a + s[..., None] * d - p).T)
+
+
+def _crosses(a: np.ndarray, b: np.ndarray, c: np.ndarray, e: np.ndarray) -> np.ndarray:
+    """Whether segments ``a``-``b`` (each row) cross the segment ``c``-``e``."""
+    def side(p, q, r):
+        return np.sign((q[..., 0] - p[..., 0]) * (r[..., 1] - p[..., 1])
+                       - (q[..., 1] - p[..., 1]) * (r[..., 0] - p[..., 0]))
+    return (side(a, b, c) * side(a, b, e) < 0) & (side(c, e, a) * side(c, e, b) < 0)
+
+
+def _check_walls(sc: SceneConfig, pts: np.ndarray, radius: float, where: str) -> None:
+    """No wall is a point, and the chain starts clear of every wall."""
+    if len(sc.walls) > MAX_WALLS:
+        _fail(where, "scene.walls", f"{len(sc.walls)} given; allowed: at most {MAX_WALLS}")
+    a, b = pts[:-1], pts[1:]
+    for i, w in enumerate(sc.walls):
+        c, e = np.array([w.x0, w.y0]), np.array([w.x1, w.y1])
+        if (w.x0, w.y0) == (w.x1, w.y1):
+            _fail(where, f"scene.walls[{i}]", f"both ends at ({w.x0:g}, {w.y0:g}); allowed: "
+                  "two different ends")
+        gap = np.minimum(_point_segment(pts, c, e),
+                         np.minimum(_point_segment(c[None], a, b), _point_segment(e[None], a, b))
+                         .min(initial=np.inf))
+        clear = radius + 0.5 * w.thickness
+        crossing = _crosses(a, b, c, e)
+        if crossing.any() or gap.min() < clear:
+            k = int(np.argmax(crossing)) if crossing.any() else int(np.argmin(gap))
+            _fail(where, f"scene.walls[{i}]", f"({w.x0:g}, {w.y0:g}) - ({w.x1:g}, {w.y1:g}) "
+                  f"runs through the chain at its start (near point {k}); allowed: a wall at "
+                  f"least {clear:g} m (link_radius + thickness/2) from the chain")
+
+
 def _point(value: int, n: int, where: str, field: str) -> int:
     if not -(n + 1) <= value <= n:
         _fail(where, field, f"{value} is not a point of this chain of {n} links; allowed: "
@@ -191,13 +232,14 @@ def _check_closed_form(sc: SceneConfig, n: int, where: str) -> None:
     if form == "folded_fall":
         pins = [(p.point + n + 1 if p.point < 0 else p.point, p.release) for p in sc.pins]
         if sc.layout != "folded" or pins != [(0, 0.0)] or sc.floor != "none" or \
-                abs(sc.angle + math.pi / 2) > HANGING:
+                sc.walls or abs(sc.angle + math.pi / 2) > HANGING:
             _fail(where, at, "'folded_fall' is a folded chain hanging from its pinned point "
                   "0, the other end let go; allowed: with layout 'folded', angle -pi/2 "
-                  f"(within {HANGING} rad), one pin at point 0 held all along, no floor")
+                  f"(within {HANGING} rad), one pin at point 0 held all along, no floor, "
+                  "no walls")
     if form == "scale":
-        if sc.layout != "straight" or sc.pins or sc.floor != "solid" or \
+        if sc.layout != "straight" or sc.pins or sc.floor != "solid" or sc.walls or \
                 abs(abs(sc.angle) - math.pi / 2) > HANGING:
             _fail(where, at, "'scale' is a straight chain hanging vertically just above a "
                   "solid floor, let go at the start; allowed: with layout 'straight', angle "
-                  f"pi/2 or -pi/2 (within {HANGING} rad), no pins, floor 'solid'")
+                  f"pi/2 or -pi/2 (within {HANGING} rad), no pins, floor 'solid', no walls")

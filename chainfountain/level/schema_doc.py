@@ -96,12 +96,13 @@ def schema_markdown() -> str:
         "at least 2 links and at most 20000, every pin and probe names a point of its chain "
         "(one pin per point; a `tension` probe an interior point, a `pin_force` probe a "
         "pinned one, a `floor_force` probe needs `scene.floor = \"solid\"`), its floor lies "
-        "below the chain, and leaves out what has no effect there: `[initial]`, "
+        "below the chain and its walls clear of it (by `link_radius` and half their "
+        "thickness), and leaves out what has no effect there: `[initial]`, "
         "`[[rollers]]`, `[[carts]]`, `solver.wave_damping`, `recording.window`, "
         "`recording.steady_tolerance`, `recording.smoothing`, the layout fields of other "
         "layouts and `scene.seed` without `scene.jitter`; `scene.closed_form` needs the scene "
         "its closed form describes (a folded chain hanging from a pinned point 0; a straight "
-        "chain hanging just above a solid floor, no pins), starting at rest;",
+        "chain hanging just above a solid floor, no pins), without walls, starting at rest;",
         "- `solver.accuracy` above 0 (motor-fed levels on an absorbing floor only) replaces "
         "`chain.link_length`, `solver.dt` and `solver.iterations` with the cheapest settings "
         "whose error-model bounds are within it (`chainfountain.sim.accuracy`, "

@@ -26,7 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 import pymunk
 
-from chainfountain.sim.bodies import Floor
+from chainfountain.sim.bodies import SCENERY_CATEGORY, Floor
 from chainfountain.sim.chain import Chain
 from chainfountain.sim.config import ChainConfig, SolverConfig
 from chainfountain.sim.measure import ChainReader, joint_forces, signed_tension
@@ -148,6 +148,19 @@ class ChainScene:
         self.floor = Floor.add(self.space, y, x0, x1, friction=friction)
         return self.floor
 
+    def add_wall(self, a: tuple[float, float], b: tuple[float, float], radius: float, *,
+                 friction: float = 0.6) -> pymunk.Segment:
+        """A static segment from ``a`` to ``b``, its surface ``radius`` from that line
+        (needs ``collide=True``). Its contacts are not part of :meth:`floor_force`."""
+        if not self.chain.shapes:
+            raise ValueError("add_wall: the chain was built with collide=False; links "
+                             "without shapes pass through walls")
+        shape = pymunk.Segment(self.space.static_body, a, b, radius)
+        shape.friction = friction
+        shape.filter = pymunk.ShapeFilter(categories=SCENERY_CATEGORY)
+        self.space.add(shape)
+        return shape
+
     # ------------------------------------------------------------------ stepping
     @property
     def h(self) -> float:
@@ -179,9 +192,13 @@ class ChainScene:
 
     def _impulse_on_floor(self) -> np.ndarray:
         static = self.space.static_body
+        floor = self.floor.shape
         imp = np.zeros(2)
 
         def add(arb: pymunk.Arbiter) -> None:
+            a, b = arb.shapes
+            if a is not floor and b is not floor:
+                return  # a wall's contact
             # the impulse on the arbiter's first body is +total_impulse
             sign = 1.0 if arb.bodies[0] is static else -1.0
             imp[:] += (sign * arb.total_impulse.x, sign * arb.total_impulse.y)

@@ -1,6 +1,7 @@
 """Configuration of a scene level (``kind = "scene"``): one free chain laid out in the
 world, pins that hold points of it and let go at set times, an optional solid floor (a
-scale: the force on it is recorded), and probes that say what to record.
+scale: the force on it is recorded), walls (tables, sides), and probes that say what to
+record.
 
 The falling-chain experiments with closed forms are scenes: the folded chain falling
 with one end fixed (Calkin and March 1989) and the chain dropped onto a scale (Hamm and
@@ -33,6 +34,19 @@ class VertexConfig:
 
     x: float = param(0.0, unit="m", doc="Corner x", min=-100.0, max=100.0)
     y: float = param(0.0, unit="m", doc="Corner y (up)", min=-100.0, max=100.0)
+
+
+@dataclass
+class WallConfig:
+    """A static segment the links land on, slide along and bounce off: a table top, a
+    wall, the side of a pot."""
+
+    x0: float = param(0.0, unit="m", doc="One end of the wall (x)", min=-100.0, max=100.0)
+    y0: float = param(0.0, unit="m", doc="One end of the wall (y)", min=-100.0, max=100.0)
+    x1: float = param(0.0, unit="m", doc="The other end (x)", min=-100.0, max=100.0)
+    y1: float = param(0.0, unit="m", doc="The other end (y)", min=-100.0, max=100.0)
+    thickness: float = param(0.01, unit="m", doc="Thickness of the wall (its surface lies "
+                             "half of it from the line x0,y0 - x1,y1)", min=1e-4, max=1.0)
 
 
 @dataclass
@@ -129,5 +143,6 @@ class SceneConfig:
         "floor's force, Hamm and Geminard); 'none'", choices=CLOSED_FORMS,
     )
     vertices: tuple[VertexConfig, ...] = ()
+    walls: tuple[WallConfig, ...] = ()
     pins: tuple[PinConfig, ...] = ()
     probes: tuple[ProbeConfig, ...] = ()

@@ -38,7 +38,7 @@ class SceneSimulation:
         sc = config.scene
         self.config = config
         pts = chain_points(sc, config.chain.link_length)
-        collide = sc.floor == "solid" or config.chain.self_collision
+        collide = sc.floor == "solid" or bool(sc.walls) or config.chain.self_collision
         self.scene = ChainScene(pts, gravity=config.gravity, solver=config.solver,
                                 collide=collide, chain=config.chain)
         self.n = self.scene.n
@@ -49,6 +49,9 @@ class SceneSimulation:
             x0 = float(pts[:, 0].mean())
             self.scene.add_floor(sc.floor_y, x0 - reach, x0 + reach,
                                  friction=config.chain.friction)
+        for w in sc.walls:
+            self.scene.add_wall((w.x0, w.y0), (w.x1, w.y1), 0.5 * w.thickness,
+                                friction=config.chain.friction)
         self.pins: list[tuple[Pin, float]] = [
             (self.scene.pin(point_number(p.point, self.n)), p.release) for p in sc.pins]
         self._pin_at = {pin.point: i for i, (pin, _) in enumerate(self.pins)}

@@ -242,13 +242,19 @@ def _finish(out_dir: Path, row: dict, status: str, reason: str, wall: float = 0.
 
 def flatten(summary: dict[str, Any]) -> dict[str, Any]:
     """The numbers of a ``summary.json`` as flat columns (``theory.rel_error.h`` becomes
-    ``theory_rel_error_h``; lists and texts other than the level's name are left out)."""
+    ``theory_rel_error_h``; a list of numbers one column per item, ``vertex_0`` and
+    ``vertex_1``; other lists and texts other than the level's name are left out)."""
     out: dict[str, Any] = {}
 
     def walk(prefix: str, obj: Any) -> None:
         if isinstance(obj, dict):
             for k, v in obj.items():
                 walk(f"{prefix}_{k}" if prefix else str(k), v)
+        elif isinstance(obj, list) and all(
+                x is None or (isinstance(x, int | float) and not isinstance(x, bool))
+                for x in obj):
+            for i, x in enumerate(obj):
+                out[f"{prefix}_{i}"] = x
         elif isinstance(obj, bool):
             out[prefix] = obj
         elif isinstance(obj, int | float) or obj is None:
@@ -342,18 +348,21 @@ def _cell(x: Any) -> Any:
 
 
 def figure(sweep: Sweep, rows: list[dict], path: Path) -> Path | None:
-    """The vertex height's error against the paper (a scene: its closed form's force
-    error) over the first swept field, one line per combination of the others (``None``
-    when no point has the figure)."""
+    """The vertex height's error against the paper (a scene: its closed form's scale
+    or free-end speed error) over the first swept field, one line per combination of the
+    others (``None`` when no point has the figure)."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     key, y_label = "theory_rel_error_h", "vertex height error against the paper (%)"
-    if sweep.base.sim.kind == "scene":
-        key = "closed_form_force_rel_error"
-        y_label = f"force error against the closed form {sweep.base.sim.scene.closed_form} (%)"
+    form = sweep.base.sim.scene.closed_form if sweep.base.sim.kind == "scene" else "none"
+    if form == "scale":
+        key, y_label = "closed_form_force_rel_error", "scale's error against 3 lambda g y (%)"
+    elif form == "folded_fall":
+        key = "closed_form_speed_rel_error_2"
+        y_label = "free end's speed error at 3/4 of the fall (%)"
     names = list(sweep.grid)
     x_name, others = names[0], names[1:]
     groups: dict[tuple, list[tuple[float, float, bool]]] = {}
@@ -362,7 +371,7 @@ def figure(sweep: Sweep, rows: list[dict], path: Path) -> Path | None:
         if r.get("status") != "done" or y is None or not isinstance(x, int | float):
             continue
         groups.setdefault(tuple(r.get(o) for o in others) + (r.get("seed"),), []).append(
-            (float(x), 100.0 * float(y), bool(r.get("steady"))))
+            (float(x), 100.0 * float(y), r.get("steady") is not False))
     if not groups:
         return None
     fig, ax = plt.subplots(figsize=(6.4, 4.0), dpi=110)

@@ -156,7 +156,39 @@ def test_layouts_lay_whole_links_where_they_say() -> None:
     assert np.all(np.isclose(pts[~on_first, 0], 0.3))
 
 
+def test_a_table_holds_the_chain_and_the_floor_reads_only_its_own_contacts(tmp_path) -> None:
+    """A chain lying on a table (a wall) above a solid floor: the table carries it, the
+    floor's probe reads nothing; the part hanging over the edge pulls it off once it
+    outweighs the friction on the rest."""
+    level = _scene(layout="polyline", length=1.0, pins=[], duration=0.4, floor="solid",
+                   floor_y=-1.0,
+                   vertices=[{"x": 0.0, "y": 0.008}, {"x": 0.4, "y": 0.008}],
+                   walls=[{"x0": -0.1, "y0": 0.0, "x1": 0.5, "y1": 0.0}],
+                   probes=[{"name": "floor", "kind": "floor_force"},
+                           {"name": "end", "kind": "point", "point": -1}])
+    _, run = run_and_record(level, tmp_path, None, progress=False, snapshot=False)
+    floor, end = run.log.by_name("floor"), run.log.by_name("end")
+    assert np.all(floor["fx"] == 0.0) and np.all(floor["fy"] == 0.0)
+    assert np.all(end["y"] > 0.005 - 1e-4)  # on the table top (thickness 1 cm, r 2 mm)
+    # friction 0.6 holds the chain while less than 0.6/1.6 of it hangs over the edge
+    moved = []
+    for drop in (0.1, 0.3):
+        hang = _scene(layout="polyline", length=1.0, pins=[], duration=0.4, vertices=[
+            {"x": 0.0, "y": 0.008}, {"x": 0.38, "y": 0.008}, {"x": 0.38, "y": -drop}],
+            walls=[{"x0": -0.1, "y0": 0.0, "x1": 0.37, "y1": 0.0}],
+            probes=[{"name": "start", "kind": "point", "point": 0}])
+        _, run = run_and_record(hang, tmp_path / str(drop), None, progress=False,
+                                snapshot=False)
+        moved.append(run.log.by_name("start")["x"][-1])
+    assert moved[0] < 0.01 and moved[1] > 0.05
+
+
 @pytest.mark.parametrize("change, words", [
+    ({"walls": [{"x0": -1, "y0": -0.2, "x1": 1, "y1": -0.2}]},
+     "scene.walls[0]: (-1, -0.2) - (1, -0.2) runs through the chain at its start"),
+    ({"walls": [{"x0": 0.007, "y0": 0, "x1": 0.007, "y1": -1}]},
+     "scene.walls[0]: (0.007, 0) - (0.007, -1) runs through the chain"),
+    ({"walls": [{"x0": 1, "y0": 1, "x1": 1, "y1": 1}]}, "scene.walls[0]: both ends at (1, 1)"),
     ({"probes": [{"name": "e", "kind": "point", "point": 41}]},
      "scene.probes[0].point: 41 is not a point of this chain of 40 links; allowed: 0 .. 40"),
     ({"probes": [{"name": "e", "kind": "tension", "point": -1}]},
