@@ -10,7 +10,9 @@ level's own start. It runs once with ``--jobs 1``, once with ``--jobs 2`` and on
 Dask ``LocalCluster`` of two worker processes (``--dask``; the cluster is started before
 the clock) into fresh folders and prints the wall time of each, the speed-up, and the
 share of the wall time spent outside the points' simulations (imports, start-up,
-writing, the table).
+writing, the table). First it times the machine's own ceiling: the same busy loop in one
+process and in two at once (a shared or throttled host gives two processes less than
+2x, and no sweep can do better than that).
 """
 
 from __future__ import annotations
@@ -24,6 +26,21 @@ import time
 from pathlib import Path
 
 import numpy as np
+
+_BUSY = "s = 0\nfor i in range(20_000_000):\n    s += i * i\n"
+
+
+def ceiling(processes: int = 2) -> float:
+    """Speed-up of ``processes`` copies of a pure-Python busy loop run at once against one
+    run alone (the wall times of one, and of all together)."""
+    def wall(n: int) -> float:
+        t0 = time.perf_counter()
+        procs = [subprocess.Popen([sys.executable, "-c", _BUSY]) for _ in range(n)]
+        for p in procs:
+            p.wait()
+        return time.perf_counter() - t0
+
+    return processes * wall(1) / wall(processes)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -39,6 +56,7 @@ def main(argv: list[str] | None = None) -> int:
             f'"feed.speed" = [{speeds}]\n"feed.launch_angle" = [{angles}]\n')
     import pyarrow.parquet as pq
 
+    print(f"this machine: 2 busy loops at once run {ceiling():.2f}x one alone")
     print(f"{side * side}-point sweep of {a.level}, {a.duration:g} s per point")
     walls = {}
     with tempfile.TemporaryDirectory() as tmp:

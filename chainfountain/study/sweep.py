@@ -296,11 +296,13 @@ def execute(sweep: Sweep, out: Path, jobs: int = 1, *, retry_failed: bool = Fals
         if dask is not None:
             results: Iterator[dict] = _on_cluster(sweep, todo, out, dask)
         elif jobs == 1:
-            results = (run_point(sweep.base, pt, sweep.duration,
-                                                 out / "points" / pt.id, sweep.snapshots)
-                                       for pt in todo)
+            results = (run_point(sweep.base, pt, sweep.duration, out / "points" / pt.id,
+                                 sweep.snapshots) for pt in todo)
         else:
-            results = Parallel(n_jobs=jobs, backend="loky", return_as="generator_unordered")(
+            # one point per dispatch: a point runs for seconds, so batching saves nothing
+            # and leaves a worker idle at the end while another runs its batch
+            results = Parallel(n_jobs=jobs, backend="loky", return_as="generator_unordered",
+                               batch_size=1)(
                 delayed(run_point)(sweep.base, pt, sweep.duration, out / "points" / pt.id,
                                    sweep.snapshots)
                 for pt in todo)
