@@ -19,6 +19,8 @@ from chainfountain.theory.tension import tension_bar
 
 PLOT_EVERY = 4
 """Redraw the live plots every this many frames (15 Hz at 60 frames/s)."""
+ABOUT_ROWS = 10
+"""Rows of a level's description shown on the view (:meth:`DrawMixin._draw_about`)."""
 STOP_ROWS = 12
 """Rows of the view kept for why a run stopped (the status text over the chain)."""
 
@@ -52,6 +54,7 @@ KEYS: tuple[tuple[str, str], ...] = (
     ("M", "switch a machine preset between the contact and the ideal machine"),
     ("F12", "screenshot (PNG)"),
     ("G", "start / stop recording a clip (GIF, or MP4 with imageio-ffmpeg)"),
+    ("I", "what this level shows and what to watch (on / off)"),
     ("H  or  F1", "this help"),
     ("Enter (in a field)", "apply the typed value (clamped to the level schema)"),
     ("Esc", "close a dialog; else quit (clips and changes are kept)"),
@@ -86,11 +89,35 @@ class DrawMixin:
         ro = self._ro
         render.draw_scene(scr, self.camera, s.sim, ro, self.show_theory)
         self._draw_overlay(ro)
+        if self.show_about:
+            self._draw_about()
         self._draw_right(ro)
         self.ui.draw_ui(scr)
         if self.show_help:
             self._draw_help()
         self.draw_time += 0.1 * ((time.perf_counter() - t0) - self.draw_time)
+
+    def _draw_about(self) -> None:
+        """The level's description (what it shows and what to watch) on a card at the top
+        of the view, under the time line; I hides it."""
+        text = self.session.level.meta.description.strip()
+        if not text:
+            return
+        rect = self.scene_rect
+        width = min(rect.w - 20, 640)
+        head, body = render.font(19), render.font(18)
+        rows = render.wrap(body, text, width - 20)[:ABOUT_ROWS]
+        box = pygame.Rect(rect.x + 10, 72, width, 34 + 19 * len(rows))
+        shade = pygame.Surface(box.size, pygame.SRCALPHA)
+        shade.fill((10, 12, 18, 215))
+        self.screen.blit(shade, box.topleft)
+        pygame.draw.rect(self.screen, render.DIM, box, 1, 6)
+        self.screen.blit(head.render(f"{self.session.name}: what to watch   (I hides this)",
+                                     True, render.SPEED_COL), (box.x + 10, box.y + 8))
+        y = box.y + 30
+        for row in rows:
+            self.screen.blit(body.render(row, True, render.TEXT), (box.x + 10, y))
+            y += 19
 
     def _draw_overlay(self, ro) -> None:
         s = self.session

@@ -44,11 +44,14 @@ class InputMixin:
         elif t == pygame_gui.UI_SELECTION_LIST_DOUBLE_CLICKED_SELECTION:
             if ev.ui_element is self.load_list:
                 self.do_load(ev.text)
+        elif t == pygame_gui.UI_SELECTION_LIST_NEW_SELECTION:
+            if ev.ui_element is self.load_list:
+                self.describe_choice(ev.text)
         elif t == pygame_gui.UI_WINDOW_CLOSE:
             if ev.ui_element is self.save_window:
                 self.save_window = self.save_entry = None
             elif ev.ui_element is self.load_window:
-                self.load_window = self.load_list = None
+                self.load_window = self.load_list = self.load_about = None
         elif t == pygame.KEYDOWN:
             self._on_key(ev)
         elif t in (pygame.MOUSEBUTTONDOWN, pygame.MOUSEBUTTONUP, pygame.MOUSEMOTION,
@@ -158,6 +161,8 @@ class InputMixin:
             self.show_theory = not self.show_theory
         elif k == pygame.K_h:
             self.show_help = not self.show_help
+        elif k == pygame.K_i:
+            self.show_about = not self.show_about
         elif k == pygame.K_g:
             self.toggle_clip()
         elif k == pygame.K_m:

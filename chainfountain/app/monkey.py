@@ -19,7 +19,7 @@ from dataclasses import dataclass
 import pygame
 
 KEYS = (pygame.K_SPACE, pygame.K_RIGHT, pygame.K_PERIOD, pygame.K_s, pygame.K_r, pygame.K_f,
-        pygame.K_t, pygame.K_h, pygame.K_F1, pygame.K_l, pygame.K_g, pygame.K_F12,
+        pygame.K_t, pygame.K_h, pygame.K_i, pygame.K_F1, pygame.K_l, pygame.K_g, pygame.K_F12,
         pygame.K_RETURN, pygame.K_BACKSPACE, pygame.K_TAB, pygame.K_a, pygame.K_0,
         pygame.K_MINUS, pygame.K_ESCAPE, pygame.K_LEFT, pygame.K_DELETE)
 """Keys pressed at random (with Shift or Ctrl now and then)."""

@@ -10,8 +10,8 @@ from chainfountain.level.library import safe_name
 from chainfountain.level.library import shipped_dir as builtin_levels_dir
 from chainfountain.level.library import user_dir as user_levels_dir
 
-__all__ = ["builtin_levels_dir", "captures_dir", "list_levels", "safe_name", "user_home",
-           "user_levels_dir"]
+__all__ = ["builtin_levels_dir", "captures_dir", "level_description", "list_levels",
+           "safe_name", "user_home", "user_levels_dir"]
 
 
 def captures_dir(create: bool = False) -> Path:
@@ -29,6 +29,17 @@ def _is_scene(path: Path) -> bool:
         return tomllib.loads(path.read_text(encoding="utf-8")).get("kind") == "scene"
     except (OSError, ValueError):
         return False
+
+
+def level_description(path: Path) -> str:
+    """A level file's ``meta.description`` as written (not validated: the picker shows it
+    before the level is opened), or a line saying why it cannot be read."""
+    try:
+        meta = tomllib.loads(path.read_text(encoding="utf-8")).get("meta") or {}
+    except (OSError, ValueError) as exc:
+        return f"cannot read this file ({exc})"
+    text = meta.get("description") if isinstance(meta, dict) else None
+    return text.strip() if isinstance(text, str) and text.strip() else "(no description)"
 
 
 def list_levels() -> list[tuple[str, Path]]:

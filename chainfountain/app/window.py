@@ -25,6 +25,7 @@ from pygame_gui.elements import (
     UILabel,
     UIScrollingContainer,
     UISelectionList,
+    UITextBox,
     UITextEntryLine,
     UIWindow,
 )
@@ -96,6 +97,8 @@ class App(InputMixin, DrawMixin):
         self.fps = fps
         self.running = True
         self.show_help = False
+        self.show_about = True
+        """The level's description on the view (I); shown again whenever a level opens."""
         self.show_theory = True
         self.frame = 0
         self.draw_time = 0.004
@@ -120,6 +123,7 @@ class App(InputMixin, DrawMixin):
         self.save_entry: UITextEntryLine | None = None
         self.load_window: UIWindow | None = None
         self.load_list: UISelectionList | None = None
+        self.load_about: UITextBox | None = None
         self._load_items: dict[str, Path] = {}
         self.follow = True
         """The view follows the fountain until the user pans or zooms (F follows again)."""
@@ -312,17 +316,31 @@ class App(InputMixin, DrawMixin):
         self.close_dialogs()
         items = paths.list_levels()
         self._load_items = {label: p for label, p in items}
-        r = pygame.Rect(0, 0, 440, 380)
-        r.center = self.scene_rect.center
+        w = min(780, self.size[0] - 20)
+        r = pygame.Rect(0, 0, w, 400)
+        r.center = (self.size[0] // 2, self.size[1] // 2)
         win = UIWindow(r, self.ui, window_display_title="Open a level", always_on_top=True)
         labels = list(self._load_items) or ["(no level files found)"]
-        self.load_list = UISelectionList(pygame.Rect(8, 6, 410, 270), labels, self.ui,
+        list_w = 300
+        self.load_list = UISelectionList(pygame.Rect(8, 6, list_w, 300), labels, self.ui,
                                          container=win)
-        UIButton(pygame.Rect(236, 284, 90, 28), "Open", self.ui, container=win,
+        self.load_about = UITextBox("Click a level to read what it shows and what to watch; "
+                                    "double-click or Open to open it.",
+                                    pygame.Rect(list_w + 16, 6, w - list_w - 56, 300),
+                                    self.ui, container=win)
+        UIButton(pygame.Rect(w - 232, 314, 90, 28), "Open", self.ui, container=win,
                  object_id="#load_ok")
-        UIButton(pygame.Rect(328, 284, 90, 28), "Cancel", self.ui, container=win,
+        UIButton(pygame.Rect(w - 140, 314, 90, 28), "Cancel", self.ui, container=win,
                  object_id="#dialog_cancel")
         self.load_window = win
+
+    def describe_choice(self, label: str | None) -> None:
+        """Show the picked level's description beside the picker's list."""
+        path = self._load_items.get(label or "")
+        if path is None or self.load_about is None:
+            return
+        name = html.escape(path.stem)
+        self.load_about.set_text(f"{name}:<br>" + html.escape(paths.level_description(path)))
 
     def close_dialogs(self) -> bool:
         closed = False
@@ -334,6 +352,7 @@ class App(InputMixin, DrawMixin):
                 closed = True
         self.save_entry = None
         self.load_list = None
+        self.load_about = None
         return closed
 
     def do_save(self, name: str) -> Path | None:
@@ -358,6 +377,7 @@ class App(InputMixin, DrawMixin):
             self._build_controls()
             self.title.set_text(self._title_text())
             self.fit_view()
+            self.show_about = True
         return ok
 
     def open_twin(self) -> bool:

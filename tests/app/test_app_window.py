@@ -442,3 +442,31 @@ def test_m_on_a_level_without_twin_says_so(app):
     key(app, pygame.K_m)
     assert app.session.level.meta.name == "small"
     assert "no twin" in app.session.messages[-1][1]
+
+
+def test_the_level_says_what_to_watch_until_i_hides_it(app, tmp_path):
+    """The description of the level is on the view when it opens; I hides and shows it;
+    opening another level shows that one's."""
+    assert app.show_about
+    app.run_frame()
+    key(app, pygame.K_i)
+    assert not app.show_about
+    key(app, pygame.K_i)
+    assert app.show_about
+    key(app, pygame.K_i)
+    path = tmp_path / "other.toml"
+    io.save(io.make_level("other", "Watch the chain climb.", small_level().sim), path)
+    assert app.load_path(path) and app.show_about
+    app.run_frame()  # draws the card (a description of any length fits: ABOUT_ROWS)
+
+
+def test_the_picker_shows_what_each_level_shows(app):
+    key(app, pygame.K_l)
+    assert app.load_window is not None and app.load_about is not None
+    label = next(lb for lb in app._load_items if lb.endswith("/classroom.toml"))
+    app.describe_choice(label)
+    app.run_frame()
+    assert "default classroom level" in app.load_about.html_text
+    assert "falling_chain" not in " ".join(app._load_items)  # scenes run headless only
+    key(app, pygame.K_ESCAPE)
+    assert app.load_window is None and app.load_about is None
