@@ -5,18 +5,32 @@ from __future__ import annotations
 import csv
 import dataclasses
 import io as _io
+import json
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from chainfountain import atomic
+from chainfountain.errors import OutputError
 from chainfountain.sim.recorder import Recorder
 from chainfountain.sim.world import Simulation
 from chainfountain.theory.apparatus import plate_reaction
 
 MAX_TENSION_SAMPLES = 200
 """Time samples of ``tensions.csv`` (evenly chosen among the recorded profiles)."""
+
+
+def write_summary(out_dir: Path, summary: dict[str, Any], written: list[str]) -> Path:
+    """Write ``summary.json`` last, atomically; :class:`OutputError` names the outputs
+    that were written when it cannot be."""
+    path = out_dir / "summary.json"
+    try:
+        atomic.write_text(path, json.dumps(summary, indent=2) + "\n")
+    except OSError as exc:
+        raise OutputError(f"cannot write {path} ({exc.strerror or exc}); the run's other "
+                          f"outputs: {', '.join(written) or 'none'}") from None
+    return path
 
 
 def write_tensions(path: Path, rec: Recorder, lam: float) -> None:

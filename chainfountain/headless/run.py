@@ -12,7 +12,7 @@ from pathlib import Path
 from typing import Any
 
 from chainfountain import atomic
-from chainfountain.errors import OutputError, UserError
+from chainfountain.errors import UserError
 from chainfountain.headless import files
 from chainfountain.headless.scene import SceneRun, describe_scene, run_scene
 from chainfountain.headless.stepping import Ending, _signals_deferred, simulate
@@ -176,13 +176,7 @@ def _write_outputs(level: Level, out_dir: Path, duration: float, sim: Simulation
     order = ["summary.json", *DEFAULT_OUTPUTS[1:], "apparatus.csv", "reaction.png"]
     summary["outputs"] = sorted(["summary.json", *written], key=order.index)
     summary["write_failed"] = write_failed
-    path = out_dir / "summary.json"
-    try:
-        atomic.write_text(path, json.dumps(summary, indent=2) + "\n")
-    except OSError as exc:
-        raise OutputError(f"cannot write {path} ({exc.strerror or exc}); the run's other "
-                          f"outputs: {', '.join(written) or 'none'}") from None
-    return path
+    return files.write_summary(out_dir, summary, written)
 
 
 def describe_outputs(summary_path: Path) -> str:

@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import dataclasses
 import io as _io
-import json
 import signal
 import time
 from pathlib import Path
@@ -16,9 +15,9 @@ from typing import Any
 import numpy as np
 
 from chainfountain import atomic
-from chainfountain.errors import OutputError
-from chainfountain.headless import scene_compare
+from chainfountain.headless import files, scene_compare
 from chainfountain.headless.stepping import (
+    MAX_SAMPLES,
     Ending,
     Interrupted,
     _progress,
@@ -30,9 +29,6 @@ from chainfountain.level.model import Level
 from chainfountain.sim.probe_log import ProbeLog
 from chainfountain.sim.scene_sim import SceneSimulation
 
-MAX_SAMPLES = 100_000
-"""Samples a scene run keeps per probe: a longer run samples less often (summary.json
-gives the interval used)."""
 SHAPES = 6
 """Chain shapes kept for the picture, evenly over the run."""
 
@@ -54,7 +50,9 @@ class SceneRun:
 def simulate_scene(level: Level, duration: float, *, seed: int | None = None,
                    progress: bool = True) -> SceneRun:
     """Build the scene and step it for ``duration`` simulated seconds, sampling every
-    ``recording.sample_interval`` (or less often, to keep :data:`MAX_SAMPLES`)."""
+    ``recording.sample_interval``, or less often to keep at most
+    :data:`~chainfountain.headless.stepping.MAX_SAMPLES` per probe (``summary.json``
+    gives the interval used)."""
     cfg = level.sim
     if seed is not None:
         cfg = dataclasses.replace(cfg, scene=dataclasses.replace(cfg.scene, seed=int(seed)))
@@ -163,13 +161,7 @@ def _write(level: Level, out_dir: Path, duration: float, run: SceneRun,
     summary["analysis_failed"] = failed
     summary["outputs"] = ["summary.json", *written]
     summary["write_failed"] = write_failed
-    path = out_dir / "summary.json"
-    try:
-        atomic.write_text(path, json.dumps(summary, indent=2) + "\n")
-    except OSError as exc:
-        raise OutputError(f"cannot write {path} ({exc.strerror or exc}); the run's other "
-                          f"outputs: {', '.join(written) or 'none'}") from None
-    return path
+    return files.write_summary(out_dir, summary, written)
 
 
 def _figure(path: Path, level: Level, run: SceneRun, summary: dict[str, Any]) -> None:

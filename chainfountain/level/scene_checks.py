@@ -41,12 +41,9 @@ def check_scene(level: Level, where: str, max_links: int) -> None:
     _check_layout(sc, L, where, max_links)
     pts = chain_points(sc, L)
     n = len(pts) - 1
-    if n < 2:
+    if n < 2:  # a polyline too short (the other layouts' lengths are checked above)
         _fail(where, "scene.vertices", f"the polyline is {_length(sc):.4g} m long, room for "
               f"{n} link(s) of {L:g} m; allowed: room for at least 2 links")
-    if n > max_links:
-        _fail(where, "scene.vertices", f"the polyline holds {n} links; allowed: at most "
-              f"{max_links}")
     if sc.floor == "solid":
         low = int(np.argmin(pts[:, 1]))
         if pts[low, 1] - sim.chain.link_radius < sc.floor_y:
@@ -98,7 +95,7 @@ def _check_layout(sc: SceneConfig, L: float, where: str, max_links: int) -> None
         if len(sc.vertices) < 2:
             _fail(where, "scene.vertices", f"{len(sc.vertices)} given; allowed: at least 2 "
                   "corners with layout 'polyline' ([[scene.vertices]] x, y)")
-        if _length(sc) > (max_links + 1) * L:
+        if _length(sc) > max_links * L:
             _fail(where, "scene.vertices", f"the polyline is {_length(sc):.4g} m long, more "
                   f"than {max_links} links of {L:g} m; allowed: at most "
                   f"{max_links * L:g} m")
