@@ -213,6 +213,12 @@ def _check_probes(sc: SceneConfig, n: int, where: str) -> None:
         if probe.kind == "tension" and not 0 < p < n:
             _fail(where, f"{at}.point", f"{probe.point} is an end of the chain (tension 0); "
                   f"allowed: an interior point, 1 .. {n - 1}")
+        if probe.kind == "tension" and any(q > p for q in pinned):
+            # the tension is the momentum balance of the links from the last point to p:
+            # a pin among them would add a force it does not see
+            _fail(where, f"{at}.point", f"{probe.point} has a pinned point beyond it (toward "
+                  f"point {n}), which the tension's momentum balance cannot see; allowed: a "
+                  f"point beyond the last pin, {max(pinned) + 1} .. {n - 1}")
         if probe.kind == "pin_force" and p not in pinned:
             _fail(where, f"{at}.point", f"{probe.point} is not pinned; allowed: a point of "
                   "scene.pins (" + (", ".join(str(x) for x in sorted(pinned)) or "none") + ")")

@@ -72,7 +72,8 @@ class ProbeConfig:
                       "'-'; names its file probe_<name>.csv)")
     kind: str = param(
         REQUIRED, unit="", doc="'point': position and velocity of a point (x, y, vx, vy); "
-        "'tension': tension at an interior point (N, + = pull); 'pin_force': force of the pin "
+        "'tension': tension at an interior point (N, + = pull; from the momentum balance of "
+        "the links beyond it, so no pin may lie beyond it); 'pin_force': force of the pin "
         "at a point, mean over the sample interval (N); 'floor_force': force of the chain on "
         "the floor, mean over the sample interval (fx, fy; a chain at rest on it: fy = -its "
         "weight); 'energy': kinetic, potential (g*y above y = 0) and total energy (J)",
