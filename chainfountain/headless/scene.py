@@ -78,7 +78,7 @@ def simulate_scene(level: Level, duration: float, *, seed: int | None = None,
                                        "(a link end is not a finite number); try a smaller "
                                        "solver.dt or more solver.substeps")
                         break
-                if k in shape_at and k > 0:
+                if k in shape_at:
                     shapes.append((sim.time, sim.scene.points()))
                 if k % 200 == 0:
                     bar.update(200 * sim.dt)

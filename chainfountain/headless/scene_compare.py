@@ -50,19 +50,19 @@ def folded_fall(config: SimConfig, log: ProbeLog, start: np.ndarray) -> dict[str
     beyond = np.flatnonzero(x > 0.8 * length)
     keep = slice(0, beyond[0] if len(beyond) else len(x))
     x, v, F = x[keep], -end["vy"][keep], pin["F"][keep]
-    speed, speed_th, speed_err, force_err = [], [], [], []
-    for share in SHARES:
-        mark = share * length
+
+    def at(mark: float) -> tuple[float | None, ...]:
+        """Speed, the closed form's speed, and the speed's and force's errors at ``mark``."""
         if len(x) < 2 or x.max() < mark:
-            speed.append(None), speed_th.append(None)
-            speed_err.append(None), force_err.append(None)
-            continue
+            return None, None, None, None
         vs = float(np.interp(mark, x, v))
         vt = float(falling.folded_fall_speed(mark, length, g))
         band = np.abs(x - mark) <= FORCE_BAND * length
         Ft = falling.folded_fall_pin_force(x[band], length, lam, g)
-        speed.append(vs), speed_th.append(vt), speed_err.append(_ratio(vs, vt))
-        force_err.append(_ratio(float(F[band].mean()), float(Ft.mean())))
+        return vs, vt, _ratio(vs, vt), _ratio(float(F[band].mean()), float(Ft.mean()))
+
+    speed, speed_th, speed_err, force_err = (list(c) for c in
+                                             zip(*(at(s * length) for s in SHARES), strict=True))
     return {"name": "folded_fall", "reference": "Calkin and March, Am. J. Phys. 57, 154 "
             "(1989): v^2 = g x (2 Lc - x)/(Lc - x), F = lambda (g (Lc + x)/2 + v^2/4)",
             "length_m": length, "at_share": list(SHARES), "speed_m_s": speed,

@@ -12,7 +12,7 @@ import numpy as np
 
 from chainfountain.level.model import Level, _fail
 from chainfountain.sim.config import InitialConfig, RecordingConfig, SimConfig, SolverConfig
-from chainfountain.sim.scene_config import SceneConfig
+from chainfountain.sim.scene_config import SceneConfig, point_number
 from chainfountain.sim.scene_layout import chain_points, fold_arms, link_count
 
 MAX_PROBES = 50
@@ -174,7 +174,7 @@ def _point(value: int, n: int, where: str, field: str) -> int:
     if not -(n + 1) <= value <= n:
         _fail(where, field, f"{value} is not a point of this chain of {n} links; allowed: "
               f"0 .. {n}, or -{n + 1} .. -1 counted from the end")
-    return value + n + 1 if value < 0 else value
+    return point_number(value, n)
 
 
 def _check_pins(sc: SceneConfig, n: int, where: str) -> None:
@@ -190,7 +190,7 @@ def _check_pins(sc: SceneConfig, n: int, where: str) -> None:
 def _check_probes(sc: SceneConfig, n: int, where: str) -> None:
     if len(sc.probes) > MAX_PROBES:
         _fail(where, "scene.probes", f"{len(sc.probes)} given; allowed: at most {MAX_PROBES}")
-    pinned = {p.point + n + 1 if p.point < 0 else p.point for p in sc.pins}
+    pinned = {point_number(p.point, n) for p in sc.pins}
     names: set[str] = set()
     for i, probe in enumerate(sc.probes):
         at = f"scene.probes[{i}]"
@@ -233,7 +233,7 @@ def _check_closed_form(sc: SceneConfig, n: int, where: str) -> None:
         _fail(where, at, f"{form!r} starts from rest; allowed: scene.velocity_x = "
               "scene.velocity_y = 0, or closed_form = 'none'")
     if form == "folded_fall":
-        pins = [(p.point + n + 1 if p.point < 0 else p.point, p.release) for p in sc.pins]
+        pins = [(point_number(p.point, n), p.release) for p in sc.pins]
         if sc.layout != "folded" or pins != [(0, 0.0)] or sc.floor != "none" or \
                 sc.walls or abs(sc.angle + math.pi / 2) > HANGING:
             _fail(where, at, "'folded_fall' is a folded chain hanging from its pinned point "

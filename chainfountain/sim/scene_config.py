@@ -28,6 +28,11 @@ MAX_POINT = 20_000
 """Largest point number a pin or probe may name (the chain's link limit)."""
 
 
+def point_number(point: int, n: int) -> int:
+    """``point`` of a chain of ``n`` links as a number in ``0 .. n`` (negative: from the end)."""
+    return point + n + 1 if point < 0 else point
+
+
 @dataclass
 class VertexConfig:
     """A corner of the polyline the chain is laid along (layout 'polyline')."""

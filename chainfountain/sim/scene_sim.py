@@ -11,7 +11,7 @@ import numpy as np
 
 from chainfountain.sim.config import SimConfig
 from chainfountain.sim.scene import ChainScene, Pin
-from chainfountain.sim.scene_config import ProbeConfig
+from chainfountain.sim.scene_config import ProbeConfig, point_number
 from chainfountain.sim.scene_layout import chain_points
 
 COLUMNS: dict[str, tuple[str, ...]] = {
@@ -24,11 +24,6 @@ COLUMNS: dict[str, tuple[str, ...]] = {
 """The columns each probe kind records (after the time ``t``), in SI units."""
 FLOOR_MARGIN = 1.0
 """The floor reaches this far (m) beyond the chain's length on each side of its start."""
-
-
-def point_number(point: int, n: int) -> int:
-    """``point`` of a chain of ``n`` links as a number in ``0 .. n`` (negative: from the end)."""
-    return point + n + 1 if point < 0 else point
 
 
 class SceneSimulation:
