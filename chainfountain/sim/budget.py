@@ -289,7 +289,7 @@ def rig_law_speed(cfg: SimConfig, loss: float = 0.0) -> float:
     a, cart = cfg.apparatus, cfg.carts[0]
     F_uc = cart.mass * cfg.gravity * math.sin(cart.incline)
     return selected_speed(cfg.gravity, a.drop, a.xi2, F_uc, cfg.chain.linear_density,
-                          gain=CART_GAIN_2CM, dp=loss)
+                          gain=CART_GAIN_2CM, dp=loss, drag=a.bearing_drag)
 
 
 @dataclass(frozen=True)
@@ -344,7 +344,8 @@ def open_windows(sim: Simulation, start: float, end: float, width: float,
         r = eb.result()
         a = np.array(rows)
         v, M = float(a[:, 1].mean()), float(a[:, 2].mean())
-        base = app.open_drive - rig_exit_tension(v, lam, app.upper.force)
+        base = app.open_drive - rig_exit_tension(
+            v, lam, app.upper.force + 0.5 * app.cfg.bearing_drag * v)
         loss = r.total * lam * r.v ** 3 / v
         out.append(OpenWindow(t, t1, v, M, r, float(np.polyfit(a[:, 0], a[:, 1], 1)[0]),
                               base / M, (base - loss) / M))

@@ -420,6 +420,11 @@ class ApparatusConfig:
         "3-4 s at 0.1 ms (docs/apparatus.md)",
         min=0.0, max=0.005,
     )
+    bearing_drag: float = param(
+        0.0, unit="N*s/m", doc="Declared loss of a real apparatus: viscous drag c of each "
+        "roller unit (bearings and cart rolling resistance), a force -c*u on its carriage "
+        "moving at u (about v/2). 0: loss-free bearings", min=0.0, max=10.0, live=True,
+    )
     upper_guide: str = param(
         "walls", unit="", doc="Upper guide channel (plate end to fountain start): 'walls' is "
         "a frictionless two-sided channel of static segments (one contact per link; the "

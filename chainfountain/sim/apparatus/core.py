@@ -239,11 +239,15 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
     def before_step(self) -> None:
         """Apply the cart forces (constant, along the track, on the carriage) and the
         end pull ('open')."""
+        c = self.cfg.bearing_drag
         for unit in (self.upper, self.lower):
-            if unit is not None and unit.force:
-                fastbody.apply_force_at_local_point(fastbody.handle(unit.carriage),
-                                                    (unit.direction * unit.force, 0.0),
-                                                    (0.0, 0.0))
+            if unit is None or not (unit.force or c):
+                continue
+            h = fastbody.handle(unit.carriage)
+            f = unit.direction * unit.force
+            if c:
+                f -= c * fastbody.get_velocity(h).x
+            fastbody.apply_force_at_local_point(h, (f, 0.0), (0.0, 0.0))
         if self.end_pull:
             self.chain.links[0].body.apply_force_at_world_point(
                 (self.end_pull, 0.0), self.chain.links[0].body.position)
@@ -364,7 +368,10 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
 
     # ------------------------------------------------------------------ theory
     def cart_bars(self, v: float, lam: float) -> tuple[float, float]:
-        """Scaled cart forces ``(Tbar_uc, Tbar_lc)`` at chain speed ``v``."""
+        """Scaled cart forces ``(Tbar_uc, Tbar_lc)`` at chain speed ``v``, the bearing drag
+        counted in (it acts on the carriages like the carts: ``c*v/2`` more holding the
+        pick-up back, ``c*v/2`` less pushing the fold on)."""
         s = lam * v * v
-        lo = self.lower.force if self.lower is not None else 0.0
-        return self.upper.force / s, lo / s
+        d = 0.5 * self.cfg.bearing_drag * v
+        lo = self.lower.force - d if self.lower is not None else 0.0
+        return (self.upper.force + d) / s, lo / s

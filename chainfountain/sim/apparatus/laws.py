@@ -73,7 +73,8 @@ def rig_exit_tension(v: float, lam: float, F_uc: float) -> float:
 
 
 def selected_speed(g: float, H: float, xi2: float, F_uc: float, lam: float,
-                   p: float | None = None, gain: float = 1.0, dp: float = 0.0) -> float:
+                   p: float | None = None, gain: float = 1.0, dp: float = 0.0,
+                   drag: float = 0.0) -> float:
     """Speed a free-ended ('floor', Tbar_E = 0) apparatus selects.
 
     Steady state needs the fountain's ``Tbar_0 = Tbar_E + k*H = k*H`` (paper: along
@@ -84,6 +85,10 @@ def selected_speed(g: float, H: float, xi2: float, F_uc: float, lam: float,
     :func:`pickup_rig_2cm` ``+ dp`` is used, ``p_inf + dp + R/(lambda_rig v**2)``:
     ``v**2 = (g*H*(1 - xi2) - G*F_uc/lambda - R/lambda_rig)/(p_inf + dp)``. nan if
     there is no positive root.
+
+    ``drag`` (``apparatus.bearing_drag`` c, N s/m) acts on the pick-up's carriage like
+    more cart: ``F_uc + c*v/2`` at the roller's speed ``v/2``, so ``v`` is the positive
+    root of ``p*v**2 + G*c/(2*lambda)*v - num = 0``.
     """
     num = g * H * (1.0 - xi2) - gain * F_uc / lam
     if p is None:
@@ -92,4 +97,5 @@ def selected_speed(g: float, H: float, xi2: float, F_uc: float, lam: float,
         p = p_inf + dp
     if num <= 0 or p <= 0:
         return math.nan
-    return math.sqrt(num / p)
+    b = gain * drag / (2.0 * lam)
+    return (math.sqrt(b * b + 4.0 * p * num) - b) / (2.0 * p)

@@ -237,11 +237,11 @@ def _predictions(app: Apparatus, w: _Window) -> tuple[dict, dict]:
     # a floor d below the fountain end: the hanging strand's weight, Tbar_E = k*d
     d_fl = app.floor_depth
     paper["TE_bar"] = law["TE_bar"] = w.k * d_fl if app.variant == "floor" else None
-    F_uc = app.upper.force
+    F_uc, c = app.upper.force, app.cfg.bearing_drag
     H_d, xi_d = _driving_drop(app, w)
     g, lam = w.g, w.lam
     for dct, pp, gg in ((paper, 0.5, 1.0), (law, PICKUP_BAR, G10)):
-        vs = selected_speed(g, H_d, xi_d, F_uc, lam, pp, gain=gg)
+        vs = selected_speed(g, H_d, xi_d, F_uc, lam, pp, gain=gg, drag=c)
         dct["v_steady"] = vs
         dct["k_steady"] = g / vs**2 if vs == vs else math.nan
     return paper, law
@@ -251,13 +251,13 @@ def _speed_selection(app: Apparatus, w: _Window, paper: dict, law: dict) -> dict
     """'floor': the measured speed against the speed the paper, the 10-mm rig's law and
     the 2 cm rig law select (with the rig law's standard uncertainty)."""
     g, lam, v, d_fl = w.g, w.lam, w.v, app.floor_depth
-    F_uc = app.upper.force
+    F_uc, c = app.upper.force, app.cfg.bearing_drag
     H_d, xi_d = _driving_drop(app, w)
     G, dG, dp = CART_GAIN_2CM, CART_GAIN_2CM_ERR, PICKUP_RIG_2CM_ERR
-    v_rig = selected_speed(g, H_d, xi_d, F_uc, lam, gain=G)
+    v_rig = selected_speed(g, H_d, xi_d, F_uc, lam, gain=G, drag=c)
     # standard uncertainty of v_rig from those of p and G (added in quadrature)
-    sv_p = abs(selected_speed(g, H_d, xi_d, F_uc, lam, gain=G, dp=dp) - v_rig)
-    sv_g = abs(selected_speed(g, H_d, xi_d, F_uc, lam, gain=G + dG) - v_rig)
+    sv_p = abs(selected_speed(g, H_d, xi_d, F_uc, lam, gain=G, dp=dp, drag=c) - v_rig)
+    sv_g = abs(selected_speed(g, H_d, xi_d, F_uc, lam, gain=G + dG, drag=c) - v_rig)
     sigma = math.hypot(sv_p, sv_g)
     return {
         "end": app.end_mode, "floor_depth_m": d_fl,
@@ -285,7 +285,8 @@ def _open_run(app: Apparatus, w: _Window) -> dict:
     drive = app.open_drive
     T_ex = w.T_up * lam * v * v
     G = CART_GAIN_2CM
-    T_rig = rig_exit_tension(v, lam, app.upper.force)
+    c = app.cfg.bearing_drag  # acts on the pick-up's carriage like more cart, c*v/2
+    T_rig = rig_exit_tension(v, lam, app.upper.force + 0.5 * c * v)
     R = np.array([s.tail_reaction for s in w.S], dtype=float)
     ok = np.isfinite(R)
     return {
@@ -304,7 +305,7 @@ def _open_run(app: Apparatus, w: _Window) -> dict:
         "acceleration_predicted_measured_exit": (drive - T_ex) / M,
         "acceleration_predicted_rig": (drive - T_rig) / M,
         "v_selected_rig": selected_speed(g, app.y_up - app.y_lo + app.end_pull / (lam * g),
-                                         0.0, app.upper.force, lam, gain=G),
+                                         0.0, app.upper.force, lam, gain=G, drag=c),
         "formula": "M(t) dv/dt = lambda g (y_up - y_lo) + F_pull - T_exit(v), "
                    "dM/dt = lambda v/2; tail reaction d/dt = lambda g v "
                    "(rate: Theil-Sen slope)",
