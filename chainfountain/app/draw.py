@@ -13,14 +13,20 @@ import numpy as np
 import pygame
 
 from chainfountain.app import render
+from chainfountain.app.readout_text import Row, readout_rows
 from chainfountain.app.session import paused_message
 from chainfountain.theory.apparatus import plate_reaction
 from chainfountain.theory.tension import tension_bar
 
+ROW_COLOURS = {"text": render.TEXT, "dim": render.DIM, "t0": render.T0_COL,
+               "te": render.TE_COL, "ok": render.OK, "warn": render.WARN}
+"""Colours of the readout rows' colour names (:class:`~chainfountain.app.readout_text.Row`)."""
 PLOT_EVERY = 4
 """Redraw the live plots every this many frames (15 Hz at 60 frames/s)."""
 ABOUT_ROWS = 10
 """Rows of a level's description shown on the view (:meth:`DrawMixin._draw_about`)."""
+ABOUT_SECONDS = 6.0
+"""Simulated seconds the level's description stays on the view unless I pins it."""
 STOP_ROWS = 12
 """Rows of the view kept for why a run stopped (the status text over the chain)."""
 
@@ -54,7 +60,8 @@ KEYS: tuple[tuple[str, str], ...] = (
     ("M", "switch a machine preset between the contact and the ideal machine"),
     ("F12", "screenshot (PNG)"),
     ("G", "start / stop recording a clip (GIF, or MP4 with imageio-ffmpeg)"),
-    ("I", "what this level shows and what to watch (on / off)"),
+    ("I", "what this level shows and what to watch (on / off; shown as a level opens)"),
+    ("E", "readout in plain words / in the paper's symbols"),
     ("H  or  F1", "this help"),
     ("Enter (in a field)", "apply the typed value (clamped to the level schema)"),
     ("Esc", "close a dialog; else quit (clips and changes are kept)"),
@@ -89,13 +96,21 @@ class DrawMixin:
         ro = self._ro
         render.draw_scene(scr, self.camera, s.sim, ro, self.show_theory)
         self._draw_overlay(ro)
-        if self.show_about:
+        if self.about_visible:
             self._draw_about()
         self._draw_right(ro)
         self.ui.draw_ui(scr)
         if self.show_help:
             self._draw_help()
         self.draw_time += 0.1 * ((time.perf_counter() - t0) - self.draw_time)
+
+    @property
+    def about_visible(self) -> bool:
+        """The level's description is on the view: from the level's start for
+        :data:`ABOUT_SECONDS` of simulated time (so it does not hide the fountain as it
+        forms), or while I keeps it."""
+        return self.show_about and (self.about_pinned
+                                    or self.session.sim.time < ABOUT_SECONDS)
 
     def _draw_about(self) -> None:
         """The level's description (what it shows and what to watch) on a card at the top
@@ -171,28 +186,12 @@ class DrawMixin:
         pygame.draw.rect(scr, render.BG, rect)
         s = self.session
 
-        def num(v: float, fmt: str = ".4g") -> str:
-            return "--" if v is None or not math.isfinite(v) else format(v, fmt)
-
-        src = "measured" if ro.measured else "predicted"
-        f3 = ".3f"
-        lines = [
-            (f"Readout ({src}); theory: catenary through the ends", render.DIM),
-            (f"v  {num(ro.v, '.3f')} m/s     k = g/v^2  {num(ro.k)} 1/m", render.TEXT),
-            (f"q  {num(ro.q)} 1/m     h  {num(ro.h, '.3f')} m", render.TEXT),
-            (f"l  {num(ro.l, '.3f')} m     H  {num(ro.H, '.3f')} m", render.TEXT),
-            (f"Tbar_0  {num(ro.T0_bar, f3)}  (theory {num(ro.T0_theory, f3)})", render.T0_COL),
-            (f"Tbar_E  {num(ro.TE_bar, f3)}  (theory {num(ro.TE_theory, f3)})", render.TE_COL),
-            (("off-screen render" if self.offscreen else f"real-time factor {s.rtf:.2f}")
-             + f"    t = {s.sim.time:.2f} s", render.TEXT),
-            ("steady" if ro.steady else "not steady (yet)",
-             render.OK if ro.steady else render.WARN),
-        ]
+        rows = readout_rows(ro, s.sim.config.chain.linear_density, self.expert)
         if ro.machine:
-            lines += [(part, render.TEXT) for part in textwrap.wrap(ro.machine, 56)[:2]]
+            rows += [Row(part) for part in textwrap.wrap(ro.machine, 56)[:2]]
         if ro.note:
-            lines += [(part, render.DIM) for part in textwrap.wrap(ro.note, 56)[:2]]
-        y = render.text_block(scr, (rect.x + 8, 8), lines, size=18, line_h=19)
+            rows += [Row(part, "dim") for part in textwrap.wrap(ro.note, 56)[:2]]
+        y = self._draw_rows(rows, rect)
         top = y + 6
         key = (top, rect.size, id(s.sim))
         if (self._plot_cache is None or key != self._plot_key
@@ -201,6 +200,20 @@ class DrawMixin:
             self._plot_key = key
             self._plot_frame = self.frame
         scr.blit(self._plot_cache, (rect.x, top))
+
+    def _draw_rows(self, rows: list[Row], rect: pygame.Rect) -> int:
+        """The readout's rows at the top of ``rect``, each symbol right-aligned in dim;
+        returns the y below them."""
+        f, sym_f = render.font(19), render.font(17)
+        y = 8
+        for row in rows:
+            self.screen.blit(f.render(row.text, True, ROW_COLOURS[row.colour]),
+                             (rect.x + 8, y))
+            if row.symbol:
+                img = sym_f.render(row.symbol, True, render.DIM)
+                self.screen.blit(img, (rect.right - img.get_width() - 10, y + 1))
+            y += 20
+        return y
 
     def _render_plots(self, ro, area: pygame.Rect) -> pygame.Surface:
         surf = pygame.Surface(area.size)

@@ -162,7 +162,11 @@ class InputMixin:
         elif k == pygame.K_h:
             self.show_help = not self.show_help
         elif k == pygame.K_i:
-            self.show_about = not self.show_about
+            self.show_about = self.about_pinned = not self.about_visible
+        elif k == pygame.K_e:
+            self.expert = not self.expert
+            self.session.say("readout: the paper's symbols" if self.expert else
+                             "readout: plain words (the paper's symbols at the right)")
         elif k == pygame.K_g:
             self.toggle_clip()
         elif k == pygame.K_m:

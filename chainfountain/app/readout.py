@@ -43,6 +43,9 @@ class Readout:
     vertex: tuple[float, float] | None = None
     """Theory vertex, launch frame."""
     measured_vertex: tuple[float, float] | None = None
+    paper_h: float = math.nan
+    """The paper's vertex height for the level's settings (a fed fountain's launch speed
+    and angle, or the speed an ideal machine's laws select); nan where they fix none."""
     tension_y: np.ndarray = field(default_factory=lambda: np.zeros(0))
     tension_bar: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
@@ -172,6 +175,8 @@ def compute_readout(sim: Simulation, recorder: Recorder, history: History) -> Re
         r.T0_bar = r.TE_bar = math.nan
     r.steady = is_steady(sim, hist)
     r.machine = machine_line(sim)
+    if cfg.kind == "feed" and sim.reference is not None:
+        r.paper_h = float(sim.reference.h)
     return r
 
 

@@ -25,6 +25,8 @@ TEXT = (220, 226, 235)
 DIM = (140, 150, 165)
 CHAIN = (255, 170, 60)
 THEORY = (90, 210, 255)
+THEORY_BAND = (38, 92, 118)
+"""The paper's curve, drawn as a band under the chain (THEORY darkened on SCENE_BG)."""
 VERTEX = (255, 90, 200)
 FLOOR = (150, 160, 175)
 ABSORB = (70, 130, 90)
@@ -229,25 +231,46 @@ def draw_scene(surf: pygame.Surface, cam: Camera, sim: Simulation, readout: Read
             pygame.draw.line(surf, ROLLER, c, cam.point(x + r * math.cos(a), y + r * math.sin(a)),
                              1)
     _draw_guide(surf, cam, sim)
+    width = max(3, min(8, int(round(2 * sim.config.chain.link_radius * cam.scale))))
+    theory = show_theory and readout is not None and readout.curve is not None
+    if theory:
+        # the paper's curve as a wide band under the chain: where the chain lies on it,
+        # the band shows on both sides of it; where it does not, the band shows apart
+        pts = cam.to_screen(readout.curve)
+        if len(pts) >= 2:
+            pygame.draw.lines(surf, THEORY_BAND, False, pts.tolist(), width + 10)
     # the chain: one polyline
     poly = sim.chain_polyline()
     if len(poly) >= 2:
-        pts = cam.to_screen(poly)
-        width = max(3, min(8, int(round(2 * sim.config.chain.link_radius * cam.scale))))
-        pygame.draw.lines(surf, CHAIN, False, pts.tolist(), width)
-    # theory curve and vertex
-    if show_theory and readout is not None and readout.curve is not None:
-        pts = cam.to_screen(readout.curve)
-        if len(pts) >= 2:
-            pygame.draw.lines(surf, THEORY, False, pts.tolist(), 1)
-        if readout.vertex is not None:
-            vx, vy = cam.point(*readout.vertex)
-            pygame.draw.circle(surf, VERTEX, (vx, vy), 5, 1)
-            pygame.draw.line(surf, VERTEX, (vx - 9, vy), (vx + 9, vy), 1)
-            pygame.draw.line(surf, VERTEX, (vx, vy - 9), (vx, vy + 9), 1)
-            surf.blit(font(16).render("vertex (theory)", True, VERTEX), (vx + 10, vy - 18))
+        pygame.draw.lines(surf, CHAIN, False, cam.to_screen(poly).tolist(), width)
+    if theory:
+        _height_marker(surf, cam, readout)
     _scale_bar(surf, cam)
     surf.set_clip(old_clip)
+
+
+def _height_marker(surf: pygame.Surface, cam: Camera, ro: Readout) -> None:
+    """A height marker at the fountain's top: a dashed level line with how high the top
+    is above the launch, an arrow up from the launch height, and (a fed fountain) a tick
+    at the height the paper predicts from the settings."""
+    if ro.vertex is None or not math.isfinite(ro.h):
+        return
+    vx, vy = cam.point(*ro.vertex)
+    x0, y0 = cam.point(ro.vertex[0], 0.0)
+    half = max(40, int(0.25 * abs(cam.point(ro.l, 0.0)[0] - cam.point(0.0, 0.0)[0])))
+    _dashed(surf, VERTEX, (vx - half, vy), (vx + half, vy), 6.0, 1)
+    if y0 - vy > 24:
+        _dashed(surf, VERTEX, (x0, y0), (vx, vy + 2), 4.0, 1)
+        pygame.draw.polygon(surf, VERTEX, [(vx, vy + 1), (vx - 4, vy + 9), (vx + 4, vy + 9)])
+    f = font(18)
+    label = f.render(f"top: {ro.h:.2f} m above the launch", True, VERTEX)
+    surf.blit(label, (vx + half + 6, vy - label.get_height() // 2))
+    if math.isfinite(ro.paper_h):
+        py = cam.point(0.0, ro.paper_h)[1]
+        pygame.draw.line(surf, THEORY, (vx + half - 16, py), (vx + half, py), 2)
+        txt = f.render(f"paper: {ro.paper_h:.2f} m", True, THEORY)
+        dy = 16 if abs(py - vy) < 16 else 0
+        surf.blit(txt, (vx + half + 6, py - txt.get_height() // 2 + (dy if py >= vy else -dy)))
 
 
 def _grid(surf: pygame.Surface, cam: Camera) -> None:

@@ -98,8 +98,14 @@ class App(InputMixin, DrawMixin):
         self.running = True
         self.show_help = False
         self.show_about = True
-        """The level's description on the view (I); shown again whenever a level opens."""
+        """The level's description on the view (I); shown again whenever a level opens,
+        for its first :data:`~chainfountain.app.draw.ABOUT_SECONDS` of simulated time
+        unless I pinned it."""
+        self.about_pinned = False
+        """I showed the description: it stays until I hides it."""
         self.show_theory = True
+        self.expert = False
+        """The readout in the paper's symbols (E) instead of plain words."""
         self.frame = 0
         self.draw_time = 0.004
         self.overhead = 0.006
@@ -377,7 +383,7 @@ class App(InputMixin, DrawMixin):
             self._build_controls()
             self.title.set_text(self._title_text())
             self.fit_view()
-            self.show_about = True
+            self.show_about, self.about_pinned = True, False
         return ok
 
     def open_twin(self) -> bool:

@@ -13,7 +13,7 @@ import pygame_gui  # noqa: E402
 import pytest  # noqa: E402
 
 from chainfountain.app import render  # noqa: E402
-from chainfountain.app.draw import STOP_ROWS, status_rows  # noqa: E402
+from chainfountain.app.draw import ABOUT_SECONDS, STOP_ROWS, status_rows  # noqa: E402
 from chainfountain.app.session import Session, paused_message  # noqa: E402
 from chainfountain.app.window import App  # noqa: E402
 from chainfountain.level import io  # noqa: E402
@@ -445,19 +445,25 @@ def test_m_on_a_level_without_twin_says_so(app):
 
 
 def test_the_level_says_what_to_watch_until_i_hides_it(app, tmp_path):
-    """The description of the level is on the view when it opens; I hides and shows it;
-    opening another level shows that one's."""
-    assert app.show_about
+    """The description of the level is on the view when it opens and for its first
+    ABOUT_SECONDS (then it makes room for the fountain); I hides it and shows it, and shown
+    by I it stays; opening another level shows that one's."""
+    assert app.about_visible
     app.run_frame()
     key(app, pygame.K_i)
-    assert not app.show_about
+    assert not app.about_visible
     key(app, pygame.K_i)
-    assert app.show_about
+    assert app.about_visible
+    app.session.sim.advance(ABOUT_SECONDS)
+    assert app.about_visible  # pinned by I
     key(app, pygame.K_i)
+    assert not app.about_visible
     path = tmp_path / "other.toml"
     io.save(io.make_level("other", "Watch the chain climb.", small_level().sim), path)
-    assert app.load_path(path) and app.show_about
+    assert app.load_path(path) and app.about_visible
     app.run_frame()  # draws the card (a description of any length fits: ABOUT_ROWS)
+    app.session.sim.advance(ABOUT_SECONDS)
+    assert not app.about_visible  # it made room for the fountain
 
 
 def test_the_picker_shows_what_each_level_shows(app):
@@ -470,3 +476,12 @@ def test_the_picker_shows_what_each_level_shows(app):
     assert "falling_chain" not in " ".join(app._load_items)  # scenes run headless only
     key(app, pygame.K_ESCAPE)
     assert app.load_window is None and app.load_about is None
+
+
+def test_e_switches_the_readout_between_plain_words_and_symbols(app):
+    assert not app.expert  # a class first: plain words
+    key(app, pygame.K_e)
+    assert app.expert and "paper's symbols" in app.session.messages[-1][1]
+    app.run_frame()
+    key(app, pygame.K_e)
+    assert not app.expert
