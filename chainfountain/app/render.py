@@ -25,6 +25,9 @@ TEXT = (220, 226, 235)
 DIM = (140, 150, 165)
 CHAIN = (255, 170, 60)
 THEORY = (90, 210, 255)
+ROPE = (170, 150, 120)
+LABEL = (205, 212, 225)
+"""Names of the machine's parts."""
 THEORY_BAND = (38, 92, 118)
 """The paper's curve, drawn as a band under the chain (THEORY darkened on SCENE_BG)."""
 VERTEX = (255, 90, 200)
@@ -217,6 +220,9 @@ def draw_scene(surf: pygame.Surface, cam: Camera, sim: Simulation, readout: Read
     # cart tracks and carts
     for a, b in sim.track_geometry():
         pygame.draw.line(surf, TRACK, cam.point(*a), cam.point(*b), 2)
+    for rope in getattr(sim, "rope_geometry", list)():
+        pygame.draw.lines(surf, ROPE, False, cam.to_screen(rope).tolist(), 1)
+        pygame.draw.circle(surf, TRACK, cam.point(*rope[1]), 4, 1)
     for verts in sim.cart_geometry():
         pts = cam.to_screen(verts)
         pygame.draw.polygon(surf, CART, pts.tolist(), 0)
@@ -231,6 +237,7 @@ def draw_scene(surf: pygame.Surface, cam: Camera, sim: Simulation, readout: Read
             pygame.draw.line(surf, ROLLER, c, cam.point(x + r * math.cos(a), y + r * math.sin(a)),
                              1)
     _draw_guide(surf, cam, sim)
+    _part_labels(surf, cam, sim)
     width = max(3, min(8, int(round(2 * sim.config.chain.link_radius * cam.scale))))
     theory = show_theory and readout is not None and readout.curve is not None
     if theory:
@@ -247,6 +254,31 @@ def draw_scene(surf: pygame.Surface, cam: Camera, sim: Simulation, readout: Read
         _height_marker(surf, cam, readout)
     _scale_bar(surf, cam)
     surf.set_clip(old_clip)
+
+
+def _part_labels(surf: pygame.Surface, cam: Camera, sim: Simulation) -> None:
+    """The machine's parts named beside them (:meth:`Simulation.part_labels`), each with a
+    short leader line to the part."""
+    f = font(16)
+    for lb in sim.part_labels():
+        px, py = cam.point(lb.x, lb.y)
+        img = f.render(lb.text, True, LABEL)
+        w, h = img.get_size()
+        out = 20 * lb.tier
+        if lb.side == "above":
+            tx, ty, lx, ly = px - w // 2, py - 26 - h - out, px, py - 24 - out
+        elif lb.side == "below":
+            tx, ty, lx, ly = px - w // 2, py + 22 + out, px, py + 20 + out
+        elif lb.side == "left":
+            tx, ty, lx, ly = px - 30 - w, py - h // 2, px - 26, py
+        else:
+            tx, ty, lx, ly = px + 30, py - h // 2, px + 26, py
+        tx = max(cam.rect.left + 4, min(tx, cam.rect.right - w - 4))
+        pygame.draw.line(surf, LABEL, (px, py), (lx, ly), 1)
+        bg = pygame.Surface((w + 6, h + 2), pygame.SRCALPHA)
+        bg.fill((0, 0, 0, 140))
+        surf.blit(bg, (tx - 3, ty - 1))
+        surf.blit(img, (tx, ty))
 
 
 def _height_marker(surf: pygame.Surface, cam: Camera, ro: Readout) -> None:

@@ -22,6 +22,7 @@ from chainfountain.sim.config import SimConfig
 from chainfountain.sim.feed import Feed
 from chainfountain.sim.machine_rules import MACHINE_FIELDS, follow, keeps_any_speed
 from chainfountain.sim.measure import ChainReader, ChainState, link_ends, polyline
+from chainfountain.sim.part_labels import PartLabel, part_labels
 from chainfountain.sim.piston import Piston
 from chainfountain.sim.put_down import PutDown
 from chainfountain.sim.reference import LaunchReference
@@ -29,6 +30,10 @@ from chainfountain.sim.watchdog import CHECK_INTERVAL, Limits, Watchdog, limits_
 
 FOLLOW_TOLERANCE = 1e-3
 """The ideal full machine's reference follows its speed in steps of this fraction."""
+CART_PULLEY = 0.12
+"""Drawing: distance (m) from a roller to the pulley at the top of its cart's ramp."""
+CART_RAMP = 0.3
+"""Drawing: length (m) of a cart's ramp."""
 
 
 class Observer(Protocol):
@@ -490,27 +495,39 @@ class Simulation:
 
     def _apparatus_carts(self) -> list[tuple[tuple[float, float], tuple[float, float],
                                                float, float]]:
-        """Drawing of apparatus carts: (track start, track end, position along, incline).
-
-        The cart is a rope-tied weight on an inclined track behind its roller: it
-        moves down its track by the distance its roller travels."""
+        """Drawing of apparatus carts, a schematic beside each roller like the paper's
+        figure: (ramp top, ramp foot, cart's distance from the top, incline). The ramp
+        starts at a pulley :data:`CART_PULLEY` behind the roller (ahead of the folding
+        roller) at its carriage's height and falls at the cart's incline over
+        :data:`CART_RAMP`; the cart sits on it, roped over the pulley to the carriage
+        (:meth:`rope_geometry`). The picture moves with its roller (it stands for the
+        force ``m g sin(beta)``, not for the cart's travel)."""
         app = self.apparatus
         out = []
         if app is None:
             return out
-        for i, u in enumerate((app.upper, app.lower)):
+        for u in (app.upper, app.lower):
             if u is None or u.cart is None:
                 continue
-            c = u.cart
-            beta = c.incline
-            x0 = u.x - u.direction * 0.3  # track top near the roller's start
-            top = (x0, u.yc + 0.3)
-            d = (-u.direction * math.cos(beta), -math.sin(beta))
-            end = (top[0] + d[0] * c.track_length, top[1] + d[1] * c.track_length)
-            s = app.travel(i)
-            if app.treadmill and i == 0:  # endless run: the cart starts its track again
-                s = math.fmod(s, c.track_length)
-            out.append((top, end, s, beta))
+            beta = u.cart.incline
+            top = (u.x + u.direction * CART_PULLEY, u.yc)
+            end = (top[0] + u.direction * CART_RAMP * math.cos(beta),
+                   top[1] - CART_RAMP * math.sin(beta))
+            out.append((top, end, 0.55 * CART_RAMP, beta))
+        return out
+
+    def rope_geometry(self) -> list[np.ndarray]:
+        """Apparatus: each cart's rope, carriage -> pulley -> cart, as a polyline
+        ``(3, 2)`` (m)."""
+        app = self.apparatus
+        if app is None:
+            return []
+        units = [u for u in (app.upper, app.lower) if u is not None and u.cart is not None]
+        out = []
+        for u, verts in zip(units, self.cart_geometry(), strict=True):
+            top = self._apparatus_carts()[len(out)][0]
+            cx, cy = np.asarray(verts).mean(axis=0)
+            out.append(np.array([(u.x, u.yc), top, (cx, cy)]))
         return out
 
     def cart_geometry(self) -> list[np.ndarray]:
@@ -525,6 +542,9 @@ class Simulation:
                 cx, cy = top[0] + ux * s, top[1] + uy * s
                 w, h = 0.05, 0.02
                 px, py = -uy, ux
+                if py < 0:  # the normal that points up, off the ramp
+                    px, py = -px, -py
+                cx, cy = cx + px * h / 2, cy + py * h / 2  # the cart rests on the ramp
                 out.append(np.array([(cx + a * ux * w / 2 + b * px * h / 2,
                                       cy + a * uy * w / 2 + b * py * h / 2)
                                      for a, b in ((-1, -1), (1, -1), (1, 1), (-1, 1))]))
@@ -532,6 +552,11 @@ class Simulation:
         for c in self.carts:
             out.append(np.array([tuple(c.body.local_to_world(v)) for v in c.shape.get_vertices()]))
         return out
+
+    def part_labels(self) -> list[PartLabel]:
+        """The apparatus's parts named in the paper's words, where they are
+        (:func:`~chainfountain.sim.part_labels.part_labels`; empty for other kinds)."""
+        return part_labels(self)
 
     def track_geometry(self) -> list[tuple[tuple[float, float], tuple[float, float]]]:
         """End points of every cart track."""

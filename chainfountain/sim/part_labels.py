@@ -1,0 +1,72 @@
+"""Names of the machine's parts in the paper's words, and where they are: what the window
+writes beside the pulley apparatus (``kind = "apparatus"``) so that a class can follow
+the paper's figure ("pulley_experiment"). World coordinates (m); no pixels here."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from chainfountain.sim.world import Simulation
+
+SIDES = ("above", "below", "left", "right")
+
+
+@dataclass(frozen=True)
+class PartLabel:
+    """A part's name at a point of it (m); ``side``: where the text goes, one of
+    :data:`SIDES`; ``tier``: how many rows further out."""
+
+    text: str
+    x: float
+    y: float
+    side: str = "above"
+    tier: int = 0
+    """Rows of text further out on ``side`` (two labels that would overlap)."""
+
+
+def _grams(kg: float) -> str:
+    return f"{kg * 1e3:.3g} g"
+
+
+def part_labels(sim: Simulation) -> list[PartLabel]:
+    """The apparatus's parts, named as the paper names them (empty for other kinds):
+    the rollers, the carts with their masses, the tables, the guides and the end."""
+    app = sim.apparatus
+    if app is None:
+        return []
+    cfg = sim.config
+    a = cfg.apparatus
+    out: list[PartLabel] = []
+    rollers = sim.roller_geometry()
+    x, y, r, _ = rollers[0]
+    out.append(PartLabel("pick-up roller", x, y + r, "above"))
+    tab = app.table_up
+    out.append(PartLabel("upper table (beaker)",
+                         max(float(tab.a.x), x - 0.3), float(tab.a.y), "below"))
+    out.append(PartLabel(f"guide up xi2*H = {a.xi2 * app.H:.2f} m",
+                         app.x_plate_up_end, app.y_up, "below"))
+    units = [u for u in (app.upper, app.lower) if u is not None]
+    names = ("upper cart", "lower cart")
+    carts = sim.cart_geometry()
+    with_cart = [i for i, u in enumerate(units) if u.cart is not None]
+    for i, verts in zip(with_cart, carts, strict=False):
+        cx, cy = np.asarray(verts).mean(axis=0)
+        out.append(PartLabel(f"{names[i]} {_grams(units[i].cart.mass)}",
+                             float(cx), float(cy), "below", tier=1))
+    ex, ey = app.end
+    if a.variant == "fold":
+        out.append(PartLabel(f"end guide up xi3*H = {a.xi3 * app.H:.2f} m",
+                             ex, ey, "below"))
+        if len(rollers) > 1:
+            x, y, r, _ = rollers[1]
+            out.append(PartLabel("folding roller", x, y + r, "above"))
+            tab = app.table_lo
+            out.append(PartLabel("lower table (bottom)",
+                                 min(float(tab.b.x), x + 0.3), float(tab.a.y), "below"))
+    elif a.variant == "open":
+        out.append(PartLabel("lower plate: the chain slides away", ex, ey, "below"))
+    return out
