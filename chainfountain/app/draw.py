@@ -62,6 +62,7 @@ KEYS: tuple[tuple[str, str], ...] = (
     ("G", "start / stop recording a clip (GIF, or MP4 with imageio-ffmpeg)"),
     ("I", "what this level shows and what to watch (on / off; shown as a level opens)"),
     ("E", "readout in plain words / in the paper's symbols"),
+    ("P", "projector mode: larger text (it also grows with the window)"),
     ("H  or  F1", "this help"),
     ("Enter (in a field)", "apply the typed value (clamped to the level schema)"),
     ("Esc", "close a dialog; else quit (clips and changes are kept)"),
@@ -119,20 +120,21 @@ class DrawMixin:
         if not text:
             return
         rect = self.scene_rect
-        width = min(rect.w - 20, 640)
+        width = min(rect.w - 20, render.px(640))
         head, body = render.font(19), render.font(18)
+        lh = body.get_linesize()
         rows = render.wrap(body, text, width - 20)[:ABOUT_ROWS]
-        box = pygame.Rect(rect.x + 10, 72, width, 34 + 19 * len(rows))
+        box = pygame.Rect(rect.x + 10, render.px(72), width, render.px(34) + lh * len(rows))
         shade = pygame.Surface(box.size, pygame.SRCALPHA)
         shade.fill((10, 12, 18, 215))
         self.screen.blit(shade, box.topleft)
         pygame.draw.rect(self.screen, render.DIM, box, 1, 6)
         self.screen.blit(head.render(f"{self.session.name}: what to watch   (I hides this)",
-                                     True, render.SPEED_COL), (box.x + 10, box.y + 8))
-        y = box.y + 30
+                                     True, render.SPEED_COL), (box.x + 10, box.y + render.px(8)))
+        y = box.y + render.px(30)
         for row in rows:
             self.screen.blit(body.render(row, True, render.TEXT), (box.x + 10, y))
-            y += 19
+            y += lh
 
     def _draw_overlay(self, ro) -> None:
         s = self.session
@@ -150,16 +152,16 @@ class DrawMixin:
         x = rect.x + 10
         head = f"t = {s.sim.time:7.2f} s   links {s.sim.n_free} free"
         scr = self.screen
-        scr.blit(f.render(head, True, render.TEXT), (x, 8))
+        scr.blit(f.render(head, True, render.TEXT), (x, render.px(8)))
         rtf_col = render.WARN if s.behind else render.DIM
         speed = (f"off-screen: {s.speed_factor / self.fps * 1e3:.1f} ms simulated per frame"
                  if self.offscreen else
                  f"real-time factor {s.rtf:4.2f}  ({self.fps_measured:4.1f} fps)")
-        scr.blit(render.font(18).render(speed, True, rtf_col), (x, 28))
+        scr.blit(render.font(18).render(speed, True, rtf_col), (x, render.px(28)))
         xx = x
         for txt, col in state:
             surf = f.render(txt, True, col)
-            scr.blit(surf, (xx, 48))
+            scr.blit(surf, (xx, render.px(48)))
             xx += surf.get_width() + 14
         # status messages (newest last), shown for 6 s, wrapped to the view's width; why
         # the run stopped stays whole while paused (its head says what failed: a fold's
@@ -169,16 +171,17 @@ class DrawMixin:
         msgs = [m for t, m in s.messages if now - t < 6.0][-3:]
         rows = status_rows(msgs, s.stopped if s.paused else None,
                            lambda m: render.wrap(small, m, rect.w - 20))
-        y = rect.bottom - 44 - 18 * len(rows)
+        lh = small.get_linesize()
+        y = rect.bottom - render.px(44) - lh * len(rows)
         for m in rows:
             img = small.render(m, True, render.TEXT)
             bg = pygame.Surface((img.get_width() + 8, img.get_height() + 2), pygame.SRCALPHA)
             bg.fill((0, 0, 0, 150))
             scr.blit(bg, (rect.x + 6, y - 1))
             scr.blit(img, (rect.x + 10, y))
-            y += 18
+            y += lh
         hint = render.font(16).render("H: help", True, render.DIM)
-        scr.blit(hint, (rect.right - hint.get_width() - 8, 8))
+        scr.blit(hint, (rect.right - hint.get_width() - 8, render.px(8)))
 
     def _draw_right(self, ro) -> None:
         rect = self.right_rect
@@ -205,14 +208,14 @@ class DrawMixin:
         """The readout's rows at the top of ``rect``, each symbol right-aligned in dim;
         returns the y below them."""
         f, sym_f = render.font(19), render.font(17)
-        y = 8
+        y = render.px(8)
         for row in rows:
             self.screen.blit(f.render(row.text, True, ROW_COLOURS[row.colour]),
                              (rect.x + 8, y))
             if row.symbol:
                 img = sym_f.render(row.symbol, True, render.DIM)
                 self.screen.blit(img, (rect.right - img.get_width() - 10, y + 1))
-            y += 20
+            y += f.get_linesize() + 1
         return y
 
     def _render_plots(self, ro, area: pygame.Rect) -> pygame.Surface:
@@ -303,8 +306,14 @@ class DrawMixin:
 
     def _draw_help(self) -> None:
         scr = self.screen
-        w = 700
-        h = 60 + 22 * len(KEYS)
+        size = 19  # as large as fits the window's height
+        while size > 11 and (render.px(60) + (render.font(size).get_linesize() + 2) * len(KEYS)
+                             > self.size[1] - 20):
+            size -= 1
+        small = render.font(size)
+        lh = small.get_linesize() + 2
+        w = min(self.size[0] - 20, render.px(700))
+        h = render.px(60) + lh * len(KEYS)
         box = pygame.Rect(0, 0, w, h)
         box.center = (self.size[0] // 2, self.size[1] // 2)
         shade = pygame.Surface(box.size, pygame.SRCALPHA)
@@ -313,12 +322,11 @@ class DrawMixin:
         pygame.draw.rect(scr, render.DIM, box, 1, 6)
         f = render.font(22)
         scr.blit(f.render("Keys and mouse  (H, F1 or Esc closes)", True, render.TEXT),
-                 (box.x + 16, box.y + 14))
-        small = render.font(19)
-        y = box.y + 46
+                 (box.x + 16, box.y + render.px(14)))
+        y = box.y + render.px(46)
         for key, what in KEYS:
             scr.blit(small.render(key, True, render.SPEED_COL), (box.x + 20, y))
-            scr.blit(small.render(what, True, render.TEXT), (box.x + 210, y))
-            y += 22
+            scr.blit(small.render(what, True, render.TEXT), (box.x + render.px(210), y))
+            y += lh
 
     # ------------------------------------------------------------------ main loop

@@ -163,6 +163,8 @@ class InputMixin:
             self.show_help = not self.show_help
         elif k == pygame.K_i:
             self.show_about = self.about_pinned = not self.about_visible
+        elif k == pygame.K_p:
+            self.toggle_projector()
         elif k == pygame.K_e:
             self.expert = not self.expert
             self.session.say("readout: the paper's symbols" if self.expert else

@@ -50,7 +50,7 @@ def _load_or_default(level: Level | None) -> Level:
 def open_app(level: Level | None = None, source: Path | None = None, *,
              frames: int | None = None, screenshot: Path | None = None,
              size: tuple[int, int] | None = None, offscreen: bool = False,
-             paused: bool = False) -> int:
+             paused: bool = False, projector: bool = False) -> int:
     """Open the window on ``level`` (default level when ``None``).
 
     With ``offscreen`` the SDL dummy driver is used and every frame advances
@@ -70,7 +70,7 @@ def open_app(level: Level | None = None, source: Path | None = None, *,
         raise UserError(f"cannot open level {lvl.meta.name!r}: {exc}") from None
     if paused:
         session.paused = True
-    app = App(session, size=size or DEFAULT_SIZE, offscreen=offscreen)
+    app = App(session, size=size or DEFAULT_SIZE, offscreen=offscreen, projector=projector)
     return app.run(frames=frames, screenshot=screenshot)
 
 

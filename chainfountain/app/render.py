@@ -44,9 +44,30 @@ WARN = (255, 110, 90)
 OK = (120, 220, 140)
 
 
+_SCALE = [1.0]
+"""The text scale (:func:`set_text_scale`): 1 at the default window size."""
+
+
+def set_text_scale(scale: float) -> None:
+    """Scale all text and the layout measures around it (:func:`px`) by ``scale``: the
+    window grows its text with its size, and more in projector mode."""
+    _SCALE[0] = float(scale)
+
+
+def text_scale() -> float:
+    """The current text scale (1 at the default window size)."""
+    return _SCALE[0]
+
+
+def px(n: float) -> int:
+    """``n`` pixels of the default layout at the current text scale."""
+    return int(round(n * _SCALE[0]))
+
+
 def font(size: int) -> pygame.font.Font:
-    """pygame's bundled font at ``size`` px (cached)."""
-    key = int(size)
+    """pygame's bundled font at ``size`` px of the default layout, scaled by the text scale
+    (cached)."""
+    key = px(size)
     f = _FONTS.get(key)
     if f is None:
         f = pygame.font.Font(None, key)
@@ -261,20 +282,20 @@ def _part_labels(surf: pygame.Surface, cam: Camera, sim: Simulation) -> None:
     short leader line to the part."""
     f = font(16)
     for lb in sim.part_labels():
-        px, py = cam.point(lb.x, lb.y)
+        ax, ay = cam.point(lb.x, lb.y)
         img = f.render(lb.text, True, LABEL)
         w, h = img.get_size()
-        out = 20 * lb.tier
+        out = (h + 4) * lb.tier
         if lb.side == "above":
-            tx, ty, lx, ly = px - w // 2, py - 26 - h - out, px, py - 24 - out
+            tx, ty, lx, ly = ax - w // 2, ay - 26 - h - out, ax, ay - 24 - out
         elif lb.side == "below":
-            tx, ty, lx, ly = px - w // 2, py + 22 + out, px, py + 20 + out
+            tx, ty, lx, ly = ax - w // 2, ay + 22 + out, ax, ay + 20 + out
         elif lb.side == "left":
-            tx, ty, lx, ly = px - 30 - w, py - h // 2, px - 26, py
+            tx, ty, lx, ly = ax - 30 - w, ay - h // 2, ax - 26, ay
         else:
-            tx, ty, lx, ly = px + 30, py - h // 2, px + 26, py
+            tx, ty, lx, ly = ax + 30, ay - h // 2, ax + 26, ay
         tx = max(cam.rect.left + 4, min(tx, cam.rect.right - w - 4))
-        pygame.draw.line(surf, LABEL, (px, py), (lx, ly), 1)
+        pygame.draw.line(surf, LABEL, (ax, ay), (lx, ly), 1)
         bg = pygame.Surface((w + 6, h + 2), pygame.SRCALPHA)
         bg.fill((0, 0, 0, 140))
         surf.blit(bg, (tx - 3, ty - 1))
@@ -301,7 +322,7 @@ def _height_marker(surf: pygame.Surface, cam: Camera, ro: Readout) -> None:
         py = cam.point(0.0, ro.paper_h)[1]
         pygame.draw.line(surf, THEORY, (vx + half - 16, py), (vx + half, py), 2)
         txt = f.render(f"paper: {ro.paper_h:.2f} m", True, THEORY)
-        dy = 16 if abs(py - vy) < 16 else 0
+        dy = txt.get_height() if abs(py - vy) < txt.get_height() else 0
         surf.blit(txt, (vx + half + 6, py - txt.get_height() // 2 + (dy if py >= vy else -dy)))
 
 
@@ -358,14 +379,14 @@ def _scale_bar(surf: pygame.Surface, cam: Camera) -> None:
     length = nice_step(target * 2, 2)
     while length * cam.scale > rect.w * 0.3:
         length /= 2
-    px = int(length * cam.scale)
-    x0, y0 = rect.left + 16, rect.bottom - 18
-    pygame.draw.line(surf, TEXT, (x0, y0), (x0 + px, y0), 2)
-    for x in (x0, x0 + px):
+    bar = int(length * cam.scale)
+    x0, y0 = rect.left + 16, rect.bottom - px(18)
+    pygame.draw.line(surf, TEXT, (x0, y0), (x0 + bar, y0), 2)
+    for x in (x0, x0 + bar):
         pygame.draw.line(surf, TEXT, (x, y0 - 5), (x, y0 + 5), 2)
     txt = f"{length:g} m" if length >= 0.01 else f"{length * 1000:g} mm"
     lbl = font(18).render(txt, True, TEXT)
-    surf.blit(lbl, (x0 + px // 2 - lbl.get_width() // 2, y0 - 20))
+    surf.blit(lbl, (x0 + bar // 2 - lbl.get_width() // 2, y0 - 6 - lbl.get_height()))
 
 
 # ----------------------------------------------------------------------------- plots
@@ -399,8 +420,8 @@ def draw_plot(surf: pygame.Surface, rect: pygame.Rect, title: str, xlabel: str,
     """
     pygame.draw.rect(surf, (28, 34, 45), rect, 0, 4)
     f = font(16)
-    surf.blit(f.render(title, True, TEXT), (rect.x + 6, rect.y + 4))
-    inner = pygame.Rect(rect.x + 40, rect.y + 22, rect.w - 50, rect.h - 44)
+    surf.blit(f.render(title, True, TEXT), (rect.x + 6, rect.y + px(4)))
+    inner = pygame.Rect(rect.x + px(40), rect.y + px(22), rect.w - px(50), rect.h - px(44))
     if inner.w < 20 or inner.h < 20:
         return
     xs = [s.x[np.isfinite(s.x) & np.isfinite(s.y)] for s in series]
@@ -439,7 +460,7 @@ def draw_plot(surf: pygame.Surface, rect: pygame.Rect, title: str, xlabel: str,
         yy = int(sy(val))
         pygame.draw.line(surf, GRID, (inner.x, yy), (inner.right, yy), 1)
         lbl = small.render(f"{val:g}", True, DIM)
-        surf.blit(lbl, (inner.x - lbl.get_width() - 4, yy - 6))
+        surf.blit(lbl, (inner.x - lbl.get_width() - 4, yy - lbl.get_height() // 2))
     for val in _ticks(x0, x1, 5):
         xx = int(sx(val))
         pygame.draw.line(surf, GRID, (xx, inner.y), (xx, inner.bottom), 1)
@@ -447,7 +468,7 @@ def draw_plot(surf: pygame.Surface, rect: pygame.Rect, title: str, xlabel: str,
         surf.blit(lbl, (xx - lbl.get_width() // 2, inner.bottom + 3))
     pygame.draw.rect(surf, DIM, inner, 1)
     xl = small.render(xlabel, True, DIM)
-    surf.blit(xl, (inner.right - xl.get_width(), inner.bottom + 13))
+    surf.blit(xl, (inner.right - xl.get_width(), inner.bottom + 3 + small.get_height()))
     surf.set_clip(inner)
     for s in series:
         ok = np.isfinite(s.x) & np.isfinite(s.y)
@@ -456,8 +477,8 @@ def draw_plot(surf: pygame.Surface, rect: pygame.Rect, title: str, xlabel: str,
             continue
         pts = np.column_stack((sx(x), sy(y)))
         if s.points:
-            for px, py in pts[:: max(1, len(pts) // 120)]:
-                surf.fill(s.colour, (int(px) - 1, int(py) - 1, 3, 3))
+            for qx, qy in pts[:: max(1, len(pts) // 120)]:
+                surf.fill(s.colour, (int(qx) - 1, int(qy) - 1, 3, 3))
         elif len(pts) >= 2:
             if s.dashed:
                 for a, b in zip(pts[:-1:2], pts[1::2], strict=False):

@@ -42,7 +42,15 @@ from chainfountain.sim.machine_rules import MACHINE_FIELDS
 
 LEFT_W = 300
 RIGHT_W = 390
+"""Widths of the control panel and of the readout (pixels at text scale 1)."""
 DEFAULT_SIZE = (1280, 760)
+PROJECTOR = 1.4
+"""Projector mode (P, ``play --projector``) makes the text this much larger."""
+PANEL_SHARE = 0.55
+"""The control panel and the readout take at most this share of the window's width (the
+text scale is capped for it)."""
+GUI_FONT = 14
+"""pygame_gui's text size (pixels at text scale 1)."""
 MIN_FPS = 30
 """The frame rate may drop to this before the simulation runs slower than requested."""
 FOLLOW_EVERY = 30
@@ -59,6 +67,26 @@ class ControlRow:
     label: UILabel
     slider: UIHorizontalSlider
     entry: UITextEntryLine
+
+
+def text_scale(size: tuple[int, int], projector: bool) -> float:
+    """The window's text scale: 1 at :data:`DEFAULT_SIZE`, growing with the window, times
+    :data:`PROJECTOR` in projector mode; capped so that the control panel and the readout
+    leave the scene :data:`PANEL_SHARE` of the width."""
+    w, h = size
+    s = max(1.0, min(w / DEFAULT_SIZE[0], h / DEFAULT_SIZE[1]))
+    if projector:
+        s *= PROJECTOR
+    return max(1.0, min(s, PANEL_SHARE * w / (LEFT_W + RIGHT_W)))
+
+
+def gui_theme(scale: float) -> dict:
+    """pygame_gui's theme at text scale ``scale``: its font for every element the window
+    uses."""
+    size = str(round(GUI_FONT * scale))
+    font = {"font": {"name": "noto_sans", "size": size}}
+    return {t: font for t in ("label", "button", "text_entry_line", "text_box",
+                              "selection_list", "tool_tip", "window", "horizontal_slider")}
 
 
 def _tooltip(spec: FieldSpec) -> str:
@@ -84,7 +112,7 @@ class App(InputMixin, DrawMixin):
     """
 
     def __init__(self, session: Session, size: tuple[int, int] = DEFAULT_SIZE,
-                 offscreen: bool = False, fps: int = 60) -> None:
+                 offscreen: bool = False, fps: int = 60, projector: bool = False) -> None:
         pygame.display.init()
         pygame.font.init()
         flags = 0 if offscreen else pygame.RESIZABLE
@@ -133,36 +161,42 @@ class App(InputMixin, DrawMixin):
         self._load_items: dict[str, Path] = {}
         self.follow = True
         """The view follows the fountain until the user pans or zooms (F follows again)."""
+        self.projector = projector
+        """Projector mode (P): larger text everywhere (:func:`text_scale`)."""
         self._layout()
         self.fit_view()
 
     # ------------------------------------------------------------------ layout
     def _layout(self) -> None:
         w, h = self.size
-        self.scene_rect = pygame.Rect(LEFT_W, 0, max(100, w - LEFT_W - RIGHT_W), h)
-        self.right_rect = pygame.Rect(w - RIGHT_W, 0, RIGHT_W, h)
-        self.ui = pygame_gui.UIManager((w, h))
+        render.set_text_scale(text_scale(self.size, self.projector))
+        px = render.px
+        self.left_w, right_w = px(LEFT_W), px(RIGHT_W)
+        self.scene_rect = pygame.Rect(self.left_w, 0, max(100, w - self.left_w - right_w), h)
+        self.right_rect = pygame.Rect(w - right_w, 0, right_w, h)
+        self.ui = pygame_gui.UIManager((w, h), gui_theme(render.text_scale()))
         self.camera = getattr(self, "camera", None) or render.Camera(self.scene_rect)
         self.camera.rect = self.scene_rect
         self._build_panel()
 
     def _build_panel(self) -> None:
         ui = self.ui
+        px, lw = render.px, self.left_w
         self.buttons: dict[str, UIButton] = {}
-        self.title = UILabel(pygame.Rect(8, 4, LEFT_W - 16, 24), self._title_text(), ui)
+        self.title = UILabel(pygame.Rect(8, px(4), lw - 16, px(24)), self._title_text(), ui)
         row1 = (("play", "Pause", "Play / pause (Space)"), ("step", "Step", "Single step (Right)"),
                 ("slow", "Slow", "Slow motion 1/2, 1/4 (S)"), ("reset", "Reset", "Reset (R)"))
         row2 = (("save", "Save", "Save the setup as a level (Ctrl+S)"),
                 ("load", "Load", "Open a level (Ctrl+O)"), ("shot", "Shot", "Screenshot (F12)"),
                 ("rec", "Rec", "Record a clip (G)"), ("help", "?", "Keys (H, F1)"))
-        for y, row in ((32, row1), (64, row2)):
-            bw = (LEFT_W - 16) // len(row)
+        for y, row in ((px(32), row1), (px(64), row2)):
+            bw = (lw - 16) // len(row)
             for i, (key, text, tip) in enumerate(row):
-                self.buttons[key] = UIButton(pygame.Rect(8 + i * bw, y, bw - 4, 28), text, ui,
-                                             tool_tip_text=tip)
-        top = 100
+                self.buttons[key] = UIButton(pygame.Rect(8 + i * bw, y, bw - 4, px(28)), text,
+                                             ui, tool_tip_text=tip)
+        top = px(100)
         self.controls_box = UIScrollingContainer(
-            pygame.Rect(0, top, LEFT_W, self.size[1] - top), ui, allow_scroll_x=False)
+            pygame.Rect(0, top, lw, self.size[1] - top), ui, allow_scroll_x=False)
         self._build_controls()
 
     def _title_text(self) -> str:
@@ -178,24 +212,27 @@ class App(InputMixin, DrawMixin):
         level = self.session.level
         origin = self.session.origin
         specs = [spans.narrowed(level, s, origin) for s in control_fields(level.sim)]
-        y = 4
+        px, lw = render.px, self.left_w
+        y = px(4)
         for spec in specs:
             tag = "live" if spec.live else "rebuild"
             unit = f" ({spec.unit})" if spec.unit and spec.unit != "1" else ""
-            label = UILabel(pygame.Rect(8, y, LEFT_W - 30, 20), f"{spec.label}{unit}  [{tag}]",
+            label = UILabel(pygame.Rect(8, y, lw - 30, px(20)), f"{spec.label}{unit}  [{tag}]",
                             self.ui, container=box, object_id="#field_label")
             label.set_tooltip(_tooltip(spec))
-            slider = UIHorizontalSlider(pygame.Rect(8, y + 21, 180, 24), 0, (0, SLIDER_STEPS),
+            slider = UIHorizontalSlider(pygame.Rect(8, y + px(21), px(180), px(24)), 0,
+                                        (0, SLIDER_STEPS),
                                         self.ui, container=box, click_increment=1)
-            entry = UITextEntryLine(pygame.Rect(192, y + 20, LEFT_W - 222, 26), self.ui,
+            entry = UITextEntryLine(pygame.Rect(px(192), y + px(20), lw - px(222), px(26)),
+                                    self.ui,
                                     container=box)
             entry.set_allowed_characters(list("0123456789.-+eE"))
             entry.set_tooltip(_tooltip(spec))
             row = ControlRow(spec, label, slider, entry)
             self.rows.append(row)
             self._show_value(row)
-            y += 52
-        box.set_scrollable_area_dimensions((LEFT_W - 20, y + 8))
+            y += px(52)
+        box.set_scrollable_area_dimensions((lw - 20, y + 8))
 
     def _row(self, path: str) -> ControlRow | None:
         for r in self.rows:
@@ -302,19 +339,21 @@ class App(InputMixin, DrawMixin):
 
     def open_save_dialog(self) -> None:
         self.close_dialogs()
-        r = pygame.Rect(0, 0, 420, 150)
+        px = render.px
+        r = pygame.Rect(0, 0, px(420), px(150))
         r.center = self.scene_rect.center
         win = UIWindow(r, self.ui, window_display_title="Save level as", always_on_top=True)
         folder = str(paths.user_levels_dir())
         if len(folder) > 40:
             folder = "..." + folder[-37:]
-        UILabel(pygame.Rect(8, 6, 390, 22), f"Name (into {folder})", self.ui, container=win)
-        entry = UITextEntryLine(pygame.Rect(8, 32, 390, 30), self.ui, container=win)
+        UILabel(pygame.Rect(8, px(6), px(390), px(22)), f"Name (into {folder})", self.ui,
+                container=win)
+        entry = UITextEntryLine(pygame.Rect(8, px(32), px(390), px(30)), self.ui, container=win)
         entry.set_text(self.session.name)
         entry.focus()
-        UIButton(pygame.Rect(218, 68, 90, 28), "Save", self.ui, container=win,
+        UIButton(pygame.Rect(px(218), px(68), px(90), px(28)), "Save", self.ui, container=win,
                  object_id="#save_ok")
-        UIButton(pygame.Rect(310, 68, 90, 28), "Cancel", self.ui, container=win,
+        UIButton(pygame.Rect(px(310), px(68), px(90), px(28)), "Cancel", self.ui, container=win,
                  object_id="#dialog_cancel")
         self.save_window, self.save_entry = win, entry
 
@@ -322,21 +361,23 @@ class App(InputMixin, DrawMixin):
         self.close_dialogs()
         items = paths.list_levels()
         self._load_items = {label: p for label, p in items}
-        w = min(780, self.size[0] - 20)
-        r = pygame.Rect(0, 0, w, 400)
+        px = render.px
+        w = min(px(780), self.size[0] - 20)
+        r = pygame.Rect(0, 0, w, min(px(400), self.size[1] - 20))
         r.center = (self.size[0] // 2, self.size[1] // 2)
         win = UIWindow(r, self.ui, window_display_title="Open a level", always_on_top=True)
         labels = list(self._load_items) or ["(no level files found)"]
-        list_w = 300
-        self.load_list = UISelectionList(pygame.Rect(8, 6, list_w, 300), labels, self.ui,
+        list_w, list_h = px(300), r.h - px(100)
+        self.load_list = UISelectionList(pygame.Rect(8, 6, list_w, list_h), labels, self.ui,
                                          container=win)
         self.load_about = UITextBox("Click a level to read what it shows and what to watch; "
                                     "double-click or Open to open it.",
-                                    pygame.Rect(list_w + 16, 6, w - list_w - 56, 300),
+                                    pygame.Rect(list_w + 16, 6, w - list_w - 56, list_h),
                                     self.ui, container=win)
-        UIButton(pygame.Rect(w - 232, 314, 90, 28), "Open", self.ui, container=win,
-                 object_id="#load_ok")
-        UIButton(pygame.Rect(w - 140, 314, 90, 28), "Cancel", self.ui, container=win,
+        UIButton(pygame.Rect(w - px(232), list_h + 14, px(90), px(28)), "Open", self.ui,
+                 container=win, object_id="#load_ok")
+        UIButton(pygame.Rect(w - px(140), list_h + 14, px(90), px(28)), "Cancel", self.ui,
+                 container=win,
                  object_id="#dialog_cancel")
         self.load_window = win
 
@@ -395,6 +436,18 @@ class App(InputMixin, DrawMixin):
                              "_fold, _special and _limit each have an ideal one)")
             return False
         return self.load_path(library.resolve(other))
+
+    def toggle_projector(self) -> None:
+        """Projector mode on or off: the text, panels and controls grow (or shrink back),
+        the view is fitted again."""
+        self.projector = not self.projector
+        self.close_dialogs()
+        self._layout()
+        self.fit_view()
+        self._plot_cache = None
+        scale = render.text_scale()
+        self.session.say(f"projector mode: text x{scale:.2f} (P: back)" if self.projector
+                         else f"projector mode off: text x{scale:.2f}")
 
     def request_quit(self) -> None:
         self.running = False

@@ -45,6 +45,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="with --frames: save the last frame as PNG (default 120 frames)")
     p.add_argument("--size", type=_size, metavar="WxH", help="window size (default 1280x760)")
     p.add_argument("--paused", action="store_true", help="start paused")
+    p.add_argument("--projector", action="store_true",
+                   help="projector mode: larger text (P switches it in the window)")
     p.add_argument("--out", type=path_arg("an output folder"), metavar="DIR",
                    help="output folder of a headless run (no display); "
                    "default runs/<level name>")
@@ -80,10 +82,12 @@ def run(args: argparse.Namespace) -> int:
     if offscreen:
         frames = args.frames if args.frames is not None else 120
         return launch.open_app(level, source, frames=frames, screenshot=args.screenshot,
-                               size=args.size, offscreen=True, paused=args.paused)
+                               size=args.size, offscreen=True, paused=args.paused,
+                               projector=args.projector)
     ok, why = launch.display_available()
     if not ok:
         from chainfountain.app.session import default_level
 
         return launch.run_headless(level or default_level(), why, out_dir=args.out)
-    return launch.open_app(level, source, size=args.size, paused=args.paused)
+    return launch.open_app(level, source, size=args.size, paused=args.paused,
+                           projector=args.projector)

@@ -485,3 +485,33 @@ def test_e_switches_the_readout_between_plain_words_and_symbols(app):
     app.run_frame()
     key(app, pygame.K_e)
     assert not app.expert
+
+
+def test_text_grows_with_the_window_and_more_in_projector_mode() -> None:
+    from chainfountain.app.window import DEFAULT_SIZE, PANEL_SHARE, PROJECTOR, text_scale
+
+    assert text_scale(DEFAULT_SIZE, False) == 1.0
+    assert text_scale((900, 560), False) == 1.0  # never smaller than the default
+    assert text_scale((1920, 1080), False) == pytest.approx(1080 / 760)
+    big = text_scale((2560, 1440), True)
+    assert big == pytest.approx(min(1440 / 760 * PROJECTOR, PANEL_SHARE * 2560 / 690))
+    for size in ((1280, 760), (1920, 1080), (3840, 2160)):  # the scene keeps its share
+        assert text_scale(size, True) * 690 <= PANEL_SHARE * size[0] + 1e-9
+
+
+def test_p_switches_projector_mode_and_everything_grows_with_it(app):
+    small = render.font(19).get_linesize()
+    key(app, pygame.K_p)
+    assert app.projector and "projector mode" in app.session.messages[-1][1]
+    app.resize((1920, 1080))
+    scale = render.text_scale()
+    assert scale > 1.4
+    assert render.font(19).get_linesize() > 1.3 * small
+    assert app.left_w == render.px(300) and app.scene_rect.w >= 0.45 * 1920
+    for row in app.rows:  # every control stays inside the panel
+        assert row.entry.get_relative_rect().right <= app.left_w
+    key(app, pygame.K_h)  # the help draws at this size
+    app.run_frame()
+    key(app, pygame.K_h)
+    key(app, pygame.K_p)
+    assert not app.projector and render.text_scale() == pytest.approx(1080 / 760)
