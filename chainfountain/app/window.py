@@ -80,6 +80,14 @@ def text_scale(size: tuple[int, int], projector: bool) -> float:
     return max(1.0, min(s, PANEL_SHARE * w / (LEFT_W + RIGHT_W)))
 
 
+def _move_window_to_origin() -> None:
+    """Put the window at the screen's top left corner (projector mode fills the screen)."""
+    try:
+        pygame.Window.from_display_module().position = (0, 0)
+    except (AttributeError, pygame.error):  # an SDL without windows to move: leave it
+        pass
+
+
 def gui_theme(scale: float) -> dict:
     """pygame_gui's theme at text scale ``scale``: its font for every element the window
     uses."""
@@ -162,7 +170,10 @@ class App(InputMixin, DrawMixin):
         self.follow = True
         """The view follows the fountain until the user pans or zooms (F follows again)."""
         self.projector = projector
-        """Projector mode (P): larger text everywhere (:func:`text_scale`)."""
+        """Projector mode (P): larger text everywhere (:func:`text_scale`); a window
+        smaller than the screen grows to it."""
+        self._size_before: tuple[int, int] | None = None
+        """The window's size before projector mode grew it (restored when it ends)."""
         self._layout()
         self.fit_view()
 
@@ -438,12 +449,27 @@ class App(InputMixin, DrawMixin):
         return self.load_path(library.resolve(other))
 
     def toggle_projector(self) -> None:
-        """Projector mode on or off: the text, panels and controls grow (or shrink back),
+        """Projector mode on or off: the text, panels and controls grow (or shrink back), a
+        window smaller than the screen grows to fill it (and returns to its size after),
         the view is fitted again."""
         self.projector = not self.projector
-        self.close_dialogs()
-        self._layout()
-        self.fit_view()
+        size = self.size
+        if not self.offscreen:  # a projector shows the whole screen: grow to it, and back
+            if self.projector:
+                self._size_before = self.size
+                desk = pygame.display.get_desktop_sizes()
+                if desk and desk[0][0] > size[0] and desk[0][1] > size[1]:
+                    size = desk[0]
+            elif self._size_before is not None:
+                size, self._size_before = self._size_before, None
+        if size != self.size:
+            self.resize(size)
+            if self.projector:
+                _move_window_to_origin()
+        else:
+            self.close_dialogs()
+            self._layout()
+            self.fit_view()
         self._plot_cache = None
         scale = render.text_scale()
         self.session.say(f"projector mode: text x{scale:.2f} (P: back)" if self.projector
