@@ -472,7 +472,7 @@ def test_the_picker_shows_what_each_level_shows(app):
     label = next(lb for lb in app._load_items if lb.endswith("/classroom.toml"))
     app.describe_choice(label)
     app.run_frame()
-    assert "default classroom level" in app.load_about.html_text
+    assert "A big chain fountain" in app.load_about.html_text
     assert "falling_chain" not in " ".join(app._load_items)  # scenes run headless only
     key(app, pygame.K_ESCAPE)
     assert app.load_window is None and app.load_about is None
