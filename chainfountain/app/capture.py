@@ -2,12 +2,13 @@
 
 Clips are MP4 when ``imageio`` with its ffmpeg plugin is installed and an
 animated GIF otherwise (GIF frames are encoded with Pillow, which comes with
-matplotlib). Frames are handed over as raw RGB bytes through a queue; the
-writer thread converts, quantises and writes them.
+matplotlib); they are taken in simulated time. Frames are handed over as raw RGB bytes
+through a bounded queue; the writer thread converts, quantises and writes them.
 """
 
 from __future__ import annotations
 
+import math
 import queue
 import threading
 import time
@@ -77,44 +78,67 @@ def mp4_available() -> bool:
     return True
 
 
-class ClipRecorder:
-    """Collects frames and writes an animated GIF (or MP4) in a worker thread.
+GIF_FRAME_BUDGET = 160e6
+"""Bytes a GIF clip's frames may hold in memory (one byte per pixel once quantised): a
+full-resolution scene of 590 x 760 pixels keeps up to 356 frames, 17.8 s at 20 frames/s
+(a GIF's frame times are whole hundredths of a second, so 20 or 10 frames/s play at the
+true speed; 15 would play 10 % fast); an MP4 streams to disk and stops at
+``max_seconds``."""
 
-    Call :meth:`offer` every drawn frame; it keeps one frame per ``1/fps`` s of
-    wall time (or every call when ``every_call``), scales it by ``scale`` and
-    queues it. :meth:`stop` finishes the file in the background;
-    :meth:`wait` blocks until it is written.
+
+class ClipRecorder:
+    """Collects frames in simulated time and writes an animated GIF (or MP4) in a worker
+    thread.
+
+    Call :meth:`offer` every drawn frame with the simulation's time: the clip keeps one
+    frame per ``1/fps`` s of *simulated* time, so it plays at the true speed whatever the
+    machine managed (a frame drawn after a longer step is repeated, a paused or
+    slow-motion stretch adds frames only as simulated time passes). ``crop`` (a rect of
+    the surface) is what is recorded, at ``scale`` (1: full resolution). :meth:`stop`
+    finishes the file in the background; :meth:`wait` blocks until it is written.
     """
 
-    def __init__(self, path: Path, fps: float = 15.0, scale: float = 0.5,
-                 max_seconds: float = 40.0, crop: pygame.Rect | None = None,
-                 every_call: bool = False) -> None:
+    def __init__(self, path: Path, fps: float = 15.0, scale: float = 1.0,
+                 max_seconds: float = 120.0, crop: pygame.Rect | None = None) -> None:
         self.path = path
         self.fps = fps
         self.scale = scale
         self.crop = crop
-        self.every_call = every_call
         self.max_frames = int(max_seconds * fps)
         self.frames = 0
         self.error: str | None = None
         self.finished = False
-        self._last = -1e9
+        self._t0: float | None = None
         self._q: queue.Queue = queue.Queue(maxsize=64)
         self._mp4 = path.suffix.lower() == ".mp4"
+        if not self._mp4 and crop is not None:
+            w, h = crop.size
+            self.max_frames = min(self.max_frames,
+                                  int(GIF_FRAME_BUDGET / max(1.0, w * h * scale * scale)))
         path.parent.mkdir(parents=True, exist_ok=True)
         self._thread = threading.Thread(target=self._work, name="chainfountain-clip",
                                         daemon=False)
         self._thread.start()
         self.recording = True
 
-    def offer(self, surface: pygame.Surface, now: float | None = None) -> bool:
-        """Maybe take this frame; returns False once the clip is full (then it stops itself)."""
+    @property
+    def seconds(self) -> float:
+        """Simulated seconds recorded so far."""
+        return self.frames / self.fps
+
+    def offer(self, surface: pygame.Surface, sim_time: float) -> bool:
+        """Take this frame as often as simulated time asks (``sim_time``, s); returns False
+        once the clip is full (then it stops itself)."""
         if not self.recording:
             return False
-        now = time.perf_counter() if now is None else now
-        if not self.every_call and now - self._last < 1.0 / self.fps - 1e-4:
+        if self._t0 is None or sim_time < self._t0 + (self.frames - 1) / self.fps - 1e-9:
+            self._t0 = sim_time - self.frames / self.fps  # the start, or a reset (R)
+        due = int(math.floor((sim_time - self._t0) * self.fps + 1e-6)) + 1
+        n = min(due - self.frames, 4)  # more than 4 at once: a jump, not a slow machine
+        if n <= 0:
             return True
-        self._last = now
+        if due - self.frames > n:
+            self._t0 = sim_time - (self.frames + n - 1) / self.fps
         src = surface.subsurface(self.crop) if self.crop is not None else surface
         block = 16 if self._mp4 else 2  # H.264 wants sizes divisible by 16
         w = max(block, int(src.get_width() * self.scale) // block * block)
@@ -122,14 +146,15 @@ class ClipRecorder:
         if (w, h) != src.get_size():
             src = pygame.transform.smoothscale(src, (w, h))
         data = pygame.image.tobytes(src, "RGB")
-        try:
-            self._q.put_nowait((src.get_size(), data))
-        except queue.Full:
-            return True  # the writer is behind: drop this frame rather than stall
-        self.frames += 1
-        if self.frames >= self.max_frames:
-            self.stop()
-            return False
+        for _ in range(n):
+            try:
+                self._q.put((src.get_size(), data), timeout=1.0)
+            except queue.Full:  # the writer is stuck: count the frame, keep the time
+                pass
+            self.frames += 1
+            if self.frames >= self.max_frames:
+                self.stop()
+                return False
         return True
 
     def stop(self) -> None:

@@ -58,8 +58,8 @@ KEYS: tuple[tuple[str, str], ...] = (
     ("Ctrl+S", "save the setup as a level (name prompt)"),
     ("Ctrl+O  or  L", "open a level (picker)"),
     ("M", "switch a machine preset between the contact and the ideal machine"),
-    ("F12", "screenshot (PNG)"),
-    ("G", "start / stop recording a clip (GIF, or MP4 with imageio-ffmpeg)"),
+    ("F12  (Shift: with the plots)", "picture of the scene (PNG, full resolution)"),
+    ("G  (Shift: with the plots)", "start / stop a clip of the scene, in simulated time"),
     ("I", "what this level shows and what to watch (on / off; shown as a level opens)"),
     ("E", "readout in plain words / in the paper's symbols"),
     ("P", "projector mode: larger text (it also grows with the window)"),
@@ -96,10 +96,16 @@ class DrawMixin:
             self._ro, self._ro_frame, self._ro_sim = s.readout(), self.frame, s.sim
         ro = self._ro
         render.draw_scene(scr, self.camera, s.sim, ro, self.show_theory)
+        self._draw_right(ro)
+        # the scene and the plots are drawn, nothing over them yet: what clips and stills
+        # take (no time line, messages, card, REC counter or controls)
+        if self.clip is not None and self.clip.recording:
+            self.clip.offer(scr, s.sim.time)
+        if self._still_rect is not None:
+            self._still = scr.subsurface(self._still_rect).copy()
         self._draw_overlay(ro)
         if self.about_visible:
             self._draw_about()
-        self._draw_right(ro)
         self.ui.draw_ui(scr)
         if self.show_help:
             self._draw_help()
@@ -145,7 +151,7 @@ class DrawMixin:
         if s.speed_factor != 1:
             state.append((f"slow motion 1/{round(1 / s.speed_factor)}", render.SPEED_COL))
         if self.clip is not None and self.clip.recording:
-            state.append((f"REC {self.clip.frames / self.clip.fps:4.1f} s", render.WARN))
+            state.append((f"REC {self.clip.seconds:4.1f} s of simulated time", render.WARN))
         if s.dragging:
             state.append(("holding a link", render.VERTEX))
         f = render.font(20)

@@ -137,7 +137,7 @@ class InputMixin:
             self.show_help = not self.show_help
             return
         if k == pygame.K_F12:
-            self.screenshot()
+            self.screenshot(with_plots=bool(mods & pygame.KMOD_SHIFT))
             return
         if self._text_focused() or self.save_window is not None:
             return
@@ -170,7 +170,7 @@ class InputMixin:
             self.session.say("readout: the paper's symbols" if self.expert else
                              "readout: plain words (the paper's symbols at the right)")
         elif k == pygame.K_g:
-            self.toggle_clip()
+            self.toggle_clip(with_plots=bool(mods & pygame.KMOD_SHIFT))
         elif k == pygame.K_m:
             self.open_twin()
 

@@ -149,6 +149,9 @@ class App(InputMixin, DrawMixin):
         self.physics_time = 0.0
         self.fps_measured = float(fps)
         self.clip: ClipRecorder | None = None
+        self._still_rect: pygame.Rect | None = None
+        """While a picture is taken: the part of the window it takes."""
+        self._still: pygame.Surface | None = None
         self.finishing_clips: list[ClipRecorder] = []
         self.saver = BackgroundSaver()
         self.last_capture: Path | None = None
@@ -179,6 +182,9 @@ class App(InputMixin, DrawMixin):
 
     # ------------------------------------------------------------------ layout
     def _layout(self) -> None:
+        if getattr(self, "clip", None) is not None:  # a clip's frames keep one size
+            self.toggle_clip()
+            self.session.say("the window changed size: the clip is finished (G starts another)")
         w, h = self.size
         render.set_text_scale(text_scale(self.size, self.projector))
         px = render.px
@@ -316,36 +322,51 @@ class App(InputMixin, DrawMixin):
         else:
             s.step_frame(1.0 / 60.0)
 
-    def screenshot(self, path: Path | None = None, background: bool = True) -> Path:
-        """Save the current window as PNG (default: the user's captures folder)."""
+    def capture_rect(self, with_plots: bool = False) -> pygame.Rect:
+        """What pictures and clips take: the scene, or the scene and the plots beside it."""
+        return self.scene_rect.union(self.right_rect) if with_plots else self.scene_rect.copy()
+
+    def screenshot(self, path: Path | None = None, background: bool = True,
+                   with_plots: bool = False) -> Path:
+        """Save a picture of the scene (with the plots: ``with_plots``) as PNG, at full
+        resolution and without the window's overlays (default: the captures folder)."""
         if path is None:
             path = _unique(paths.captures_dir(create=True), f"chainfountain-{timestamp()}",
                            ".png")
-        self.draw()
+        self._still_rect = self.capture_rect(with_plots)
+        try:
+            self.draw()
+        finally:
+            self._still_rect = None
+        still, self._still = self._still, None
         if background:
-            self.saver.save(self.screen, path)
+            self.saver.save(still, path)
         else:
             from chainfountain.app.capture import save_png
 
-            save_png(self.screen, path)
+            save_png(still, path)
         self.last_capture = path
-        self.session.say(f"screenshot: {path}")
+        self.session.say(f"picture: {path}")
         return path
 
-    def toggle_clip(self, path: Path | None = None, every_frame: bool = False) -> Path | None:
-        """Start or stop recording a clip; returns the clip path when starting."""
+    def toggle_clip(self, path: Path | None = None, with_plots: bool = False) -> Path | None:
+        """Start or stop recording a clip of the scene (with the plots: ``with_plots``) in
+        simulated time; returns the clip path when starting."""
         if self.clip is not None and self.clip.recording:
             self.clip.stop()
             self.finishing_clips.append(self.clip)
-            self.session.say(f"writing clip ({self.clip.frames} frames) to {self.clip.path} ...")
+            self.session.say(f"writing clip ({self.clip.seconds:.1f} s of simulated time) "
+                             f"to {self.clip.path} ...")
             self.clip = None
             return None
         if path is None:
             ext = ".mp4" if mp4_available() else ".gif"
             path = _unique(paths.captures_dir(create=True), f"chainfountain-{timestamp()}", ext)
-        self.clip = ClipRecorder(path, fps=15.0, scale=0.5, every_call=every_frame or
-                                 self.offscreen)
-        self.session.say(f"recording clip to {path} (G stops)")
+        fps = 30.0 if path.suffix.lower() == ".mp4" else 20.0  # a GIF counts in 10 ms
+        self.clip = ClipRecorder(path, fps=fps, crop=self.capture_rect(with_plots))
+        self.session.say(f"recording {'the scene and plots' if with_plots else 'the scene'} "
+                         f"in simulated time to {path} (G stops; up to "
+                         f"{self.clip.max_frames / fps:.0f} s)")
         return path
 
     def open_save_dialog(self) -> None:
@@ -545,9 +566,7 @@ class App(InputMixin, DrawMixin):
         for ev in pygame.event.get():
             self.handle(ev)
         self.update(wall_dt)
-        self.draw()
-        if self.clip is not None:
-            self.clip.offer(self.screen)
+        self.draw()  # the clip takes its frame while drawing
         if not self.offscreen:
             pygame.display.flip()
         self.frame += 1

@@ -140,14 +140,21 @@ def test_save_and_load_through_the_dialogs(app, tmp_path):
 def test_screenshot_clip_zoom_pan_drag(app, tmp_path):
     for _ in range(10):
         app.run_frame()
-    key(app, pygame.K_F12)
+    key(app, pygame.K_F12)  # the scene alone, full resolution
+    key(app, pygame.K_F12, mod=pygame.KMOD_SHIFT)  # the scene and the plots
     app.saver.wait()
-    shots = list((tmp_path / "home" / "captures").glob("*.png"))
-    assert len(shots) == 1 and shots[0].stat().st_size > 10_000
+    shots = sorted((tmp_path / "home" / "captures").glob("*.png"), key=lambda p: p.name)
+    assert len(shots) == 2 and all(p.stat().st_size > 10_000 for p in shots)
+    sizes = sorted(pygame.image.load(str(p)).get_size() for p in shots)
+    assert sizes == sorted([app.scene_rect.size, app.scene_rect.union(app.right_rect).size])
     key(app, pygame.K_g)
-    assert app.clip is not None
-    for _ in range(5):
+    assert app.clip is not None and app.clip.crop == app.scene_rect
+    t0 = app.session.sim.time
+    for _ in range(30):
         app.run_frame()
+    clip = app.clip
+    # one frame per 1/fps of simulated time (offscreen: 1/60 s of it per window frame)
+    assert clip.frames == int((app.session.sim.time - t0) * clip.fps + 1e-6) + 1
     key(app, pygame.K_g)
     assert app.clip is None and app.finishing_clips
     app.finishing_clips[0].wait()
