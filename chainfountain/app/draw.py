@@ -282,10 +282,15 @@ class DrawMixin:
             return surf
         ts = [render.Series(t[sel], _smooth(hist["T0"][sel], n), render.T0_COL, "Tbar_0"),
               render.Series(t[sel], _smooth(hist["TE"][sel], n), render.TE_COL, "Tbar_E")]
-        render.draw_plot(surf, r3, "end tensions (0.1 s mean)", "time (s)", ts,
+        # the paper's ranges are what its pulley machine delivers; a motor's guide is not
+        # that machine, so a fed fountain may sit outside them
+        motor = s.sim.config.kind == "feed" and s.sim.config.feed.drive == "motor"
+        title = ("end tensions (a motor feeds this chain)" if motor else
+                 "end tensions (0.1 s mean)")
+        render.draw_plot(surf, r3, title, "time (s)", ts,
                          xlim=(t0, max(t1, t0 + 1)), ylim=(-0.1, 1.05),
-                         bands=((0.5, 1.0, render.T0_COL, "paper: Tbar_0 in (1/2, 1)"),
-                                (0.0, 0.5, render.TE_COL, "paper: Tbar_E in [0, 1/2)")))
+                         bands=((0.5, 1.0, render.T0_COL, "paper's machine: Tbar_0 in (1/2, 1)"),
+                                (0.0, 0.5, render.TE_COL, "paper's machine: Tbar_E in [0, 1/2)")))
         return surf
 
     def _reaction_plot(self, surf: pygame.Surface, rect: pygame.Rect, t: np.ndarray,
