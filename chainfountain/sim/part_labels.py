@@ -5,12 +5,21 @@ the paper's figure ("pulley_experiment"). World coordinates (m); no pixels here.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import Any, Protocol
 
 import numpy as np
 
-if TYPE_CHECKING:
-    from chainfountain.sim.world import Simulation
+
+class Simulation(Protocol):
+    """What the labels read of a :class:`~chainfountain.sim.world.Simulation` (which calls
+    :func:`part_labels`; a protocol, so that this module does not import it)."""
+
+    apparatus: Any
+    config: Any
+
+    def roller_geometry(self) -> list[tuple[float, float, float, float]]: ...
+
+    def cart_geometry(self) -> list[np.ndarray]: ...
 
 SIDES = ("above", "below", "left", "right")
 
