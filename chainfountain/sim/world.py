@@ -357,8 +357,8 @@ class Simulation:
             if unit is None or unit.cart is None:
                 raise KeyError(f"{path}: no such cart in this apparatus")
             unit.set_cart_mass(v, self.config.apparatus.carriage_mass)
-        elif path == "apparatus.bearing_drag" and self.apparatus is not None:
-            self.config.apparatus.bearing_drag = v  # read by the apparatus every step
+        elif path == "apparatus.bearing_drag":
+            self.config.apparatus.bearing_drag = v  # read by an apparatus every step
         elif path.startswith("rollers[") and path.endswith("].angular_speed"):
             i = int(path[len("rollers["):path.index("]")])
             self.set_roller_speed(i, v)
