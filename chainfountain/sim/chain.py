@@ -31,6 +31,11 @@ LINK_GROUP = 1
 
 CHAIN_CATEGORY = 0b10
 """Collision category bit of chain links."""
+BEND_CATCH = 0.9
+"""A joint gets its bend limit once it is bent less than this share of it
+(:meth:`Chain.tighten_bends`): a limit given to a joint bent beyond it would snap it
+straight."""
+
 
 
 @dataclass(eq=False)
@@ -43,6 +48,8 @@ class Link:
     """``body.id`` cached (reading it from pymunk is slow)."""
     up_joint: pymunk.PivotJoint | None = None
     up_spring: pymunk.DampedRotarySpring | None = None
+    up_limit: pymunk.RotaryLimitJoint | None = None
+    """The bend limit to the upstream neighbour (``chain.bend_limit``), once it holds."""
 
 
 class Chain:
@@ -81,6 +88,9 @@ class Chain:
         """Body ids in chain order (kept in step with ``links`` for fast batch lookup)."""
         self.version = 0
         """Incremented whenever links are added, removed or change type (cache key)."""
+        self.bend_pending: list[Link] = []
+        """Links whose joint to the upstream neighbour waits for its bend limit (bent
+        beyond 90 % of it when joined); :meth:`tighten_bends` gives it when it can."""
         if chain.self_collision:
             self._filter = pymunk.ShapeFilter(categories=CHAIN_CATEGORY)
         else:
@@ -123,6 +133,40 @@ class Chain:
         down.up_joint = joint
         self.space.add(joint)
         self._fit_spring(down, up)
+        if self.cfg.bend_limit > 0.0:
+            self._limit_bend(down, up)
+
+    def _limit_bend(self, down: Link, up: Link) -> bool:
+        """Give the joint from ``down`` to ``up`` its bend limit ``+-chain.bend_limit`` if
+        it is bent less than 90 % of it (else it waits in :attr:`bend_pending`); True when
+        given."""
+        lim = self.cfg.bend_limit
+        raw = up.body.angle - down.body.angle  # the joint limits this, unwrapped
+        turns = 2.0 * math.pi * round(raw / (2.0 * math.pi))
+        if abs(raw - turns) > BEND_CATCH * lim:
+            if down not in self.bend_pending:
+                self.bend_pending.append(down)
+            return False
+        j = pymunk.RotaryLimitJoint(down.body, up.body, turns - lim, turns + lim)
+        j.collide_bodies = False
+        down.up_limit = j
+        self.space.add(j)
+        return True
+
+    def tighten_bends(self) -> int:
+        """Give the waiting joints (:attr:`bend_pending`) their bend limit where they have
+        straightened within 90 % of it; returns how many still wait. Call it now and then
+        (a scene: every few steps)."""
+        still = []
+        index = {lk.id: i for i, lk in enumerate(self.links)} if self.bend_pending else {}
+        for down in self.bend_pending:
+            i = index.get(down.id)
+            if i is None or i + 1 >= len(self.links) or down.up_joint is None:
+                continue  # the link or its joint has gone
+            if not self._limit_bend(down, self.links[i + 1]):
+                still.append(down)
+        self.bend_pending = still
+        return len(still)
 
     def _fit_spring(self, down: Link, up: Link) -> None:
         """Give the joint from ``down`` to ``up`` the spring and damper it needs now:
@@ -227,11 +271,11 @@ class Chain:
         return link
 
     def _disconnect(self, down: Link) -> None:
-        """Remove the joint and spring from ``down`` to its upstream neighbour."""
-        for c in (down.up_joint, down.up_spring):
+        """Remove the joint, spring and bend limit from ``down`` to its upstream neighbour."""
+        for c in (down.up_joint, down.up_spring, down.up_limit):
             if c is not None:
                 self.space.remove(c)
-        down.up_joint = down.up_spring = None
+        down.up_joint = down.up_spring = down.up_limit = None
 
     def _remove_objects(self, link: Link) -> None:
         objs: list = [link.body]
@@ -241,9 +285,12 @@ class Chain:
             objs.append(link.up_joint)
         if link.up_spring is not None:
             objs.append(link.up_spring)
+        if link.up_limit is not None:
+            objs.append(link.up_limit)
         self.space.remove(*objs)
         link.up_joint = None
         link.up_spring = None
+        link.up_limit = None
 
     def clear(self) -> None:
         """Remove all links."""

@@ -67,6 +67,12 @@ class ChainConfig:
     self_collision: bool = param(
         False, unit="", doc="Let links collide with each other (costly; off for fountains)"
     )
+    bend_limit: float = param(
+        0.0, unit="rad", doc="Largest bend between two neighbouring links, as a real ball "
+        "chain has (a rotary limit joint; beaker and scene levels). A joint bent further at "
+        "the start (a pile's U-turn) is free until it has straightened within 90 % of the "
+        "limit. 0: free pivots", min=0.0, max=3.0,
+    )
 
 
 @dataclass

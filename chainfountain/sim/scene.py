@@ -31,6 +31,8 @@ from chainfountain.sim.chain import Chain
 from chainfountain.sim.config import ChainConfig, SolverConfig
 from chainfountain.sim.measure import ChainReader, joint_forces, signed_tension
 
+TIGHTEN_EVERY = 40
+"""A joint waiting for its bend limit (``chain.bend_limit``) is tried every this many steps."""
 SCENE_SOLVER = SolverConfig(dt=2.5e-4, substeps=8, iterations=2)
 """Solver of a scene unless told otherwise: 31-us pymunk steps, 2 iterations each."""
 
@@ -93,6 +95,7 @@ class ChainScene:
             self.chain.append(link)
         self.floor: Floor | None = None
         self.time = 0.0
+        self._steps = 0
         self._reader = ChainReader(self.space, self.chain)
         self._last: tuple | None = None  # (pre, post, contacts) of the last pymunk step
         self._floor_impulse = np.zeros(2)
@@ -186,6 +189,9 @@ class ChainScene:
                 if not pin.released:
                     held[i] += pin.joint.impulse
         self.time += self.solver.dt
+        self._steps += 1
+        if self.chain.bend_pending and self._steps % TIGHTEN_EVERY == 0:
+            self.chain.tighten_bends()  # joints bent too far at the start get their limit
         self._floor_impulse = floor_imp
         self._landed += floor_imp
         self._since += self.solver.dt
