@@ -305,9 +305,9 @@ def steady_time(t: Array, series: Array, tol: float, smoothing: float = 0.0,
                 window: float = 1.0) -> float | None:
     """Earliest time from which ``series`` stays within ``tol`` (relative) of its final mean.
 
-    The series is first smoothed with a centred moving average over
-    ``smoothing`` seconds; the reference value is the mean over the final
-    ``window`` seconds. Returns ``None`` when the last sample is outside.
+    The series is first smoothed with a centred moving average over ``smoothing`` seconds
+    (near the ends, over the samples within reach); the reference value is the mean over
+    the final ``window`` seconds. Returns ``None`` when the last sample is outside.
     """
     t = np.asarray(t, dtype=float)
     s = np.asarray(series, dtype=float)
@@ -316,12 +316,11 @@ def steady_time(t: Array, series: Array, tol: float, smoothing: float = 0.0,
     dt = float(np.median(np.diff(t)))
     n = max(1, int(round(smoothing / dt))) if smoothing > 0 else 1
     if n > 1 and len(s) >= n:
-        kernel = np.ones(n) / n
-        sm = np.convolve(s, kernel, mode="same")
-        # the edges of 'same' are biased: fall back to raw values there
-        half = n // 2
-        sm[:half] = s[:half]
-        sm[len(s) - half:] = s[len(s) - half:]
+        kernel = np.ones(n)
+        # near the ends the average is over the samples there are (a raw end sample would
+        # decide alone, and a chaotic fountain's raw top is never within a tight band)
+        sm = np.convolve(s, kernel, mode="same") / np.convolve(np.ones(len(s)), kernel,
+                                                                mode="same")
     else:
         sm = s
     ref = float(np.mean(s[t >= t[-1] - window]))
