@@ -33,12 +33,14 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                                              max=3600),
                    default=None, help="simulated seconds (default 8; 20 for a fed level that "
                    "starts from its stub, to form and then be averaged; an apparatus level "
-                   "without a treadmill: its apparatus.duration; a scene: its scene.duration)")
+                   "without a treadmill: its apparatus.duration; a scene or beaker: its own "
+                   "duration)")
     p.add_argument("--out", type=path_arg("an output folder"), default=None,
                    help="output folder (default runs/<level name>)")
     p.add_argument("--seed", type=integer("a seed", min=0), default=None,
                    help="override the level's random seed (kind 'feed'; kind 'scene' with "
-                   "scene.jitter)")
+                   "scene.jitter; kind 'beaker': a 1e-12 nudge that picks another of the "
+                   "pile's chaotic runs)")
     p.add_argument("--error-bars", action="store_true",
                    help="also estimate the discretisation error (kind 'feed': two short runs "
                    "from the catenary at the level's link length and step and at half of "

@@ -136,7 +136,14 @@ def write_snapshot(path: Path, sim: Simulation, summary: dict[str, Any], title: 
         ax.plot([ex - 0.3, ex + 0.3], [-app.H, -app.H], ":", color="#7f7f7f", lw=1.5,
                 label=f"fountain end height (Tbar_E read here; floor {app.floor_depth:.3g} m "
                 "lower)")
-    if app is None:
+    vessel = sim.vessel_geometry()
+    if vessel is not None:
+        outline, plate = vessel
+        ax.plot(outline[:, 0], outline[:, 1], color="#17becf", lw=2.5, label="pot")
+        ax.plot(plate[:, 0], plate[:, 1], color="#7f7f7f", lw=1.5,
+                label="plate under the pile (rises as it is drawn off)")
+        _beaker_curve(ax, summary.get("beaker") or {}, sim.g)
+    elif app is None:
         (gx, gy), (ux, uy) = sim.guide_geometry()
         ax.plot([gx - 0.15 * ux, gx], [gy - 0.15 * uy, gy], color="#2ca02c", lw=4,
                 label="feed guide")
@@ -154,6 +161,23 @@ def write_snapshot(path: Path, sim: Simulation, summary: dict[str, Any], title: 
         xs = np.concatenate([pts[:, 0], [fx0, fx1]]) if ref is None else pts[:, 0]
         ax.set_xlim(min(xs.min(), -0.2) - 0.1, max(xs.max(), 0.2) + 0.1)
     _save_png(fig, ax, path, title)
+
+
+def _beaker_curve(ax, bk: dict[str, Any], g: float) -> None:
+    """The paper's inverted catenary through a beaker run's measured pick-up, top and
+    landing at its measured speed (``summary.json``'s ``beaker``), when there is one."""
+    from chainfountain.theory import Fountain
+
+    if not (bk.get("paper") or {}).get("q"):
+        return
+    px, py = bk["pickup"]
+    f = Fountain.from_geometry(l=bk["span_from_pickup"], h=bk["rise_above_pickup"],
+                               H=bk["drop_from_pickup"], v=bk["speed"], g=g)
+    xs, ys = f.curve(200)
+    sx, sy = f.start
+    ax.plot(np.asarray(xs) - sx + px, np.asarray(ys) - sy + py, "--", color="#d62728",
+            lw=1.2, label="the paper's curve through the measured ends")
+    ax.plot(px, py, "s", mfc="none", color="#2ca02c", ms=7, label="pick-up (window mean)")
 
 
 def _save_png(fig, ax, path: Path, title: str, legend: str = "best") -> None:

@@ -34,10 +34,12 @@ def default_duration(level: Level) -> float:
     :data:`DEFAULT_DURATION`; :data:`FORMING_DURATION` for a fed level that starts from its
     stub, so that it forms and is then averaged; an apparatus level's own
     ``apparatus.duration`` when its upper table is sized by it (no treadmill), so the run
-    ends before the table does; a scene level's ``scene.duration``."""
+    ends before the table does; a scene or beaker level's own ``duration``."""
     sim = level.sim
     if sim.kind == "scene":
         return float(sim.scene.duration)
+    if sim.kind == "beaker":
+        return float(sim.beaker.duration)
     if sim.kind == "apparatus" and sim.apparatus.plate_links == 0:
         return float(sim.apparatus.duration)
     if sim.kind == "feed" and sim.initial.mode == "stub":
@@ -163,8 +165,8 @@ def _write_outputs(level: Level, out_dir: Path, duration: float, sim: Simulation
             # when the fountain last landed in the end guide's mouth (a lost catch comes
             # about 1 s before the fold's collapse)
             summary["ended_early"]["last_mouth_entry_s"] = _f(app.last_mouth_entry)
-    title = (f"{level.meta.name}: t = {sim.time:.2f} s, "
-             f"v = {summary.get('speed_mean') or 0:.3f} m/s"
+    v = (summary.get("beaker") or {}).get("speed") or summary.get("speed_mean") or 0
+    title = (f"{level.meta.name}: t = {sim.time:.2f} s, v = {v:.3f} m/s"
              + ("" if summary.get("steady") else " (not steady)")
              + ("" if ended is None else " - ended early"))
     if snapshot and "vertex" in summary:
@@ -220,6 +222,19 @@ def describe_outputs(summary_path: Path) -> str:
             f"ENDED EARLY (of {s['requested_duration_s']:g} s asked for): {ended['reason']}",
             width=width, initial_indent="  ", subsequent_indent="    ",
             break_on_hyphens=False))
+    bk = s.get("beaker")
+    if bk and bk.get("alpha"):
+        a = bk["alpha"]
+        w0, w1 = bk["window_s"]
+        lines.append(
+            f"  over {w0:.1f}-{w1:.1f} s: speed {bk['speed']:.3f} m/s (links the floor took), "
+            f"top {bk['rise_above_rim']:.3f} m above the rim, {bk['rise_above_pickup']:.3f} m "
+            f"above the pick-up, which is {bk['drop_from_pickup']:.3f} m above the floor")
+        lines.append(
+            f"  the pile's push alpha (Biggins & Warner, beta = 0): {a['from_speed']:.3f} from "
+            f"the speed, {a['from_rise']:.3f} from the rise of a zero-width fountain"
+            + (f", {a['from_paper_catenary']:.3f} from the paper's curve through the ends"
+               if a.get("from_paper_catenary") is not None else ""))
     if th and s.get("h") is not None and s.get("l") is not None:
         lines.append(
             f"  vertex height {s['h']:.4f} m (theory {th['h']:.4f}, {pct(err.get('h'))}), "

@@ -58,7 +58,7 @@ def summarize(level: Level, sim: Simulation, rec: Recorder, duration: float,
     TE_bar = float(tb[-1]) if tb is not None and len(tb) else float("nan")
     speed_cv = s.speed_uniformity
     app = sim.apparatus
-    H = level.sim.apparatus.drop if app is not None else level.sim.feed.drop
+    H = sim.drop
     out: dict[str, Any] = {
         "level": level.meta.name,
         "kind": level.sim.kind,
@@ -95,6 +95,13 @@ def summarize(level: Level, sim: Simulation, rec: Recorder, duration: float,
     if level.sim.kind == "feed" and level.sim.feed.drive != "motor":
         # what sets the speed: the machine's laws select it, or (loss-free) keep any
         out["machine"] = "keeps any speed" if neutral else "selects"
+    if sim.beaker is not None:
+        from chainfountain.sim.beaker_report import report as beaker_report
+
+        rep = _attempt(failed, "beaker report", beaker_report, sim.beaker,
+                       (s.vertex_x, s.vertex_y), s.landing_x, s.T0_bar, s.t0, s.t1, sim.g)
+        if rep is not None:
+            out["beaker"] = json_safe(rep)
     if app is not None:
         from chainfountain.sim.apparatus_report import report
 

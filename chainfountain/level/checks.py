@@ -35,6 +35,10 @@ def check_consistency(level: Level, where: str) -> None:
         from chainfountain.level.scene_checks import check_scene
 
         check_scene(level, where, MAX_LINKS)
+    if sim.kind == "beaker":
+        from chainfountain.level.beaker_checks import check_beaker
+
+        check_beaker(level, where, MAX_LINKS)
     _check_accuracy_scope(sim, where)
 
 

@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 from chainfountain.fields import param
 from chainfountain.sim.scene_config import SceneConfig
 
-KINDS: tuple[str, ...] = ("feed", "apparatus", "scene")
+KINDS: tuple[str, ...] = ("feed", "apparatus", "scene", "beaker")
 """Level kinds the simulator can build."""
 
 
@@ -72,6 +72,46 @@ class ChainConfig:
         "chain has (a rotary limit joint; beaker and scene levels). A joint bent further at "
         "the start (a pile's U-turn) is free until it has straightened within 90 % of the "
         "limit. 0: free pivots", min=0.0, max=3.0,
+    )
+
+
+@dataclass
+class BeakerConfig:
+    """The beaker (``kind = "beaker"``, :mod:`chainfountain.sim.beaker`): a chain piled in
+    a pot rises over the rim and falls to an absorbing floor (the Mould effect). Frame: the
+    exit rim's top is the origin, the pot at ``x < 0``."""
+
+    pot_width: float = param(
+        0.3, unit="m", doc="Inner width of the pot (the pile's rows run across it)",
+        min=0.05, max=2.0,
+    )
+    pot_depth: float = param(
+        0.3, unit="m", doc="Depth of the pot from the rim to its bottom", min=0.05, max=2.0,
+    )
+    pile_rows: int = param(
+        4, unit="1", doc="Rows of the pile in the solver (a new row is laid under the pile "
+        "as the top is drawn off, with refill)", min=1, max=40,
+    )
+    pile_depth: float = param(
+        0.04, unit="m", doc="Depth of the pile's top row below the rim (where the chain is "
+        "picked up)", min=0.0, max=2.0,
+    )
+    drop: float = param(
+        1.0, unit="m", doc="Drop from the rim to the absorbing floor", min=0.05, max=20.0,
+        min_inclusive=False,
+    )
+    hang: float = param(
+        0.6, unit="m", doc="Chain hanging over the rim at the start (it pulls the rest out)",
+        min=0.02, max=20.0,
+    )
+    refill: bool = param(
+        True, unit="", doc="Keep the pile's top at pile_depth: the pile rises on a plate as "
+        "it is drawn off and a row is laid under it for each row taken (runs as long as you "
+        "watch); false: the pile empties and the run ends",
+    )
+    duration: float = param(
+        30.0, unit="s", doc="Length of a headless run", min=0.01, max=1e5,
+        min_inclusive=False,
     )
 
 
@@ -453,6 +493,7 @@ class SimConfig:
     chain: ChainConfig = field(default_factory=ChainConfig)
     feed: FeedConfig = field(default_factory=FeedConfig)
     apparatus: ApparatusConfig = field(default_factory=ApparatusConfig)
+    beaker: BeakerConfig = field(default_factory=BeakerConfig)
     scene: SceneConfig = field(default_factory=SceneConfig)
     solver: SolverConfig = field(default_factory=SolverConfig)
     initial: InitialConfig = field(default_factory=InitialConfig)

@@ -66,6 +66,10 @@ def limits_for(cfg: SimConfig) -> Limits:
         a = cfg.apparatus
         v = float(a.speed)
         size = a.drop * (1.0 + a.xi2 + a.xi3) + a.floor_depth + v * a.duration
+    elif cfg.kind == "beaker":
+        b = cfg.beaker
+        v = math.sqrt(4.0 * g * b.drop)  # twice the free fall over the drop
+        size = b.drop + b.pot_width + b.pot_depth
     else:
         v = float(cfg.feed.speed)
         size = cfg.feed.drop + cfg.feed.chain_length

@@ -16,6 +16,7 @@ import numpy as np
 import pymunk
 
 from chainfountain.sim.apparatus import Apparatus
+from chainfountain.sim.beaker import Beaker
 from chainfountain.sim.bodies import Cart, Floor, Roller, nudge_bodies
 from chainfountain.sim.chain import Chain
 from chainfountain.sim.config import SimConfig
@@ -86,9 +87,9 @@ class Simulation:
             raise ValueError(f"{config.name or 'this level'} is a scene (kind 'scene'): scenes "
                              "run headless only, with chainfountain run "
                              f"{config.name or 'LEVEL'}")
-        if config.kind not in ("feed", "apparatus"):
+        if config.kind not in ("feed", "apparatus", "beaker"):
             raise ValueError(f"unsupported level kind {config.kind!r} "
-                             "(supported: 'feed', 'apparatus')")
+                             "(supported: 'feed', 'apparatus', 'beaker')")
         self.config = copy.deepcopy(config)
         self.recorder: Observer | None = None
         self.probe: Probe | None = None
@@ -113,8 +114,12 @@ class Simulation:
         """Stops the run when it diverges (:mod:`chainfountain.sim.watchdog`)."""
         self.apparatus: Apparatus | None = None
         self.piston: Piston | None = None
+        self.beaker: Beaker | None = None
         if cfg.kind == "apparatus":
             self._build_apparatus()
+            return
+        if cfg.kind == "beaker":
+            self._build_beaker()
             return
         needs_shapes = (cfg.feed.floor == "solid" or bool(cfg.rollers) or bool(cfg.carts)
                         or cfg.chain.self_collision)
@@ -163,6 +168,34 @@ class Simulation:
         self.carts = []
         self.reference = None
         self.reader = ChainReader(space, self.chain)
+        self.time = 0.0
+        self.steps = 0
+        self._mouse_body = None
+        self._mouse_joint = None
+        self._grabbed = None
+        if self.recorder is not None:
+            self.recorder.clear()
+
+    def _build_beaker(self) -> None:
+        """``kind = "beaker"``: a chain piled in a pot rises over the rim and falls to an
+        absorbing floor (:mod:`chainfountain.sim.beaker`). ``self.feed`` is the
+        :class:`Beaker` (it offers the feed's interface); ``reference`` is ``None`` (the
+        chain chooses its own speed; the window fits the paper's curve to the measured
+        ends)."""
+        cfg = self.config
+        b = cfg.beaker
+        v_guess = math.sqrt(2.0 * cfg.gravity * b.drop)
+        self.chain = Chain(self.space, cfg.chain, cfg.solver, shapes=True,
+                           wave_damping=self._wave_damping(v_guess))
+        self.beaker = Beaker(self.space, self.chain, b, friction=cfg.chain.friction)
+        if cfg.initial.seed:  # the pile is chaotic: a seed picks one of its runs
+            nudge_bodies(self.space, cfg.initial.seed)
+        self.feed = self.beaker  # type: ignore[assignment]
+        self.floor = None
+        self.rollers = []
+        self.carts = []
+        self.reference = None
+        self.reader = ChainReader(self.space, self.chain)
         self.time = 0.0
         self.steps = 0
         self._mouse_body = None
@@ -450,6 +483,8 @@ class Simulation:
         """The fountain's drop ``H`` (m): ``apparatus.drop`` or ``feed.drop`` by level kind."""
         if self.apparatus is not None:
             return float(self.apparatus.H)
+        if self.beaker is not None:
+            return float(self.config.beaker.drop)
         return float(self.config.feed.drop)
 
     def floor_geometry(self) -> tuple[float, float, float, str]:
@@ -465,6 +500,9 @@ class Simulation:
                 a, b = app.floor.a, app.floor.b
                 return -app.H, float(a.x), float(b.x), "solid"
             return -app.H, app.end[0] - 0.1, app.end[0] + 0.1, "none"
+        if self.beaker is not None:
+            x0 = self.beaker.x_in[0] - 0.1
+            return self.beaker.floor_y, x0, 0.5 + 0.5 * self.drop, "absorbing"
         f = self.config.feed
         if self.floor is not None:
             return self.floor.y, self.floor.x0, self.floor.x1, "solid"
@@ -483,6 +521,15 @@ class Simulation:
                 shapes.append(extra)
         return [((float(sh.a.x), float(sh.a.y)), (float(sh.b.x), float(sh.b.y)))
                 for sh in shapes]
+
+    def vessel_geometry(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """A beaker level's pot, as the polyline of its walls' inner faces (left rim, bottom,
+        right rim), and the plate under the pile as a segment ``(2, 2)``; ``None`` for
+        other kinds."""
+        b = self.beaker
+        if b is None:
+            return None
+        return b.pot_outline(), b.plate_segment()
 
     def roller_geometry(self) -> list[tuple[float, float, float, float]]:
         """``(x, y, radius, angle)`` of every roller (apparatus: pick-up, then folding)."""

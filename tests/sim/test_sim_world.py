@@ -169,8 +169,8 @@ def test_steady_time_and_fits() -> None:
 
 def test_unsupported_kind() -> None:
     cfg = SimConfig()
-    cfg.kind = "beaker"
-    with pytest.raises(ValueError, match="beaker"):
+    cfg.kind = "bogus"
+    with pytest.raises(ValueError, match="bogus"):
         Simulation(cfg)
 
 
