@@ -25,10 +25,30 @@ drawing and the readout (at 1.0, classroom at 12.4 m/s ran at 0.46x real time, 2
 under Xvfb while its fountain formed)."""
 
 
+BEAKER_LINK_STEP = 1.6e-6
+"""Wall seconds per link and pymunk step of a beaker (self-colliding links, 6 iterations:
+the shipped ``beaker``, 158 links at 256 us per 250-us step; ``benchmarks/bench_beaker.py``
+times it)."""
+
+
+def beaker_links(sim: SimConfig) -> int:
+    """Links a beaker level keeps in the solver: the drop and a rise of about a third of it,
+    over the rim, and the pile's rows."""
+    from chainfountain.sim.beaker import row_geometry
+
+    b, L = sim.beaker, sim.chain.link_length
+    m = row_geometry(b, L, sim.chain.link_radius)[0]
+    return int((1.35 * b.drop + b.pile_depth + 0.5 * b.pot_width) / L) + b.pile_rows * (m + 1)
+
+
 def cost(sim: SimConfig) -> tuple[int, float] | None:
     """Links in flight and estimated wall seconds per simulated second of a fed level, at
-    its feed speed or at the speed its machine selects (``None`` for other levels or a feed
-    without a fountain)."""
+    its feed speed or at the speed its machine selects, or of a beaker (``None`` for other
+    levels or a feed without a fountain)."""
+    if sim.kind == "beaker":
+        n = beaker_links(sim)
+        s = sim.solver
+        return n, n * BEAKER_LINK_STEP * (s.iterations / 6.0) ** 0.5 * s.substeps / s.dt
     if sim.kind != "feed":
         return None
     try:
@@ -60,7 +80,8 @@ def over_budget(sim: SimConfig, origin: SimConfig) -> str | None:
     if c is None or c[1] <= limit(origin):
         return None
     n, wall = c
-    return (f"the fountain would put {n} links in flight and run at about {1.0 / wall:.2g}x "
+    what = "the beaker would keep" if sim.kind == "beaker" else "the fountain would put"
+    return (f"{what} {n} links in flight and run at about {1.0 / wall:.2g}x "
             "real time, too slow for the window (level files and `chainfountain run` "
             "accept it)")
 

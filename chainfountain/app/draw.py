@@ -241,13 +241,14 @@ class DrawMixin:
             series.append(render.Series(ys, ro.tension_bar, render.CHAIN, "measured",
                                         points=True))
         if math.isfinite(ro.q) and math.isfinite(ro.h):
-            lo = min(float(ys.min()) if len(ys) else -ro.H, -ro.H)
-            hi = max(float(ys.max()) if len(ys) else ro.h, ro.h)
+            top = ro.vertex[1] if ro.vertex is not None else ro.h  # the scene's frame
+            lo = min(float(ys.min()) if len(ys) else top - ro.H - ro.h, top - ro.H - ro.h)
+            hi = max(float(ys.max()) if len(ys) else top, top)
             yy = np.linspace(lo, hi, 50)
-            tb = tension_bar(yy - ro.h, ro.q, ro.k)
+            tb = tension_bar(yy - top, ro.q, ro.k)
             series.append(render.Series(yy, tb, render.THEORY, "1 - k/q + k*y"))
-        render.draw_plot(surf, r1, "Tbar along the chain", "height above launch (m)", series,
-                         ylim=(-0.1, 1.05))
+        render.draw_plot(surf, r1, "Tbar along the chain", f"height above {ro.origin} (m)",
+                         series, ylim=(-0.1, 1.05))
         # 2. speed against time
         t = hist["t"]
         span = 20.0
@@ -266,7 +267,8 @@ class DrawMixin:
                    for k, col, label in extra]
         sp += rollers
         sp.append(render.Series(np.array([t0, max(t1, t0 + 1)]), np.array([fs, fs]),
-                                render.DIM, "feed", width=1))
+                                render.DIM, "floor's take" if s.sim.beaker else "feed",
+                                width=1))
         vals = np.concatenate([hist["speed"][sel]] + [r.y for r in rollers])
         vals = vals[np.isfinite(vals)]
         lo = min(float(vals.min()) if len(vals) else fs, fs) * 0.97
@@ -279,6 +281,16 @@ class DrawMixin:
         if np.isfinite(hist["reaction"][sel]).any():
             self._reaction_plot(surf, r3, t[sel], hist["reaction"][sel], hist["speed"][sel],
                                 (t0, max(t1, t0 + 1)), n)
+            return surf
+        if s.sim.beaker is not None:
+            # a beaker's end tensions are not the paper's machine's: how high it rises is
+            top = _smooth(hist["vertex_y"][sel], n)
+            fin = top[np.isfinite(top)]
+            render.draw_plot(surf, r3, "top of the chain above the rim (m)", "time (s)",
+                             [render.Series(t[sel], top, render.VERTEX, "top")],
+                             xlim=(t0, max(t1, t0 + 1)),
+                             ylim=(min(0.0, float(fin.min()) if len(fin) else 0.0),
+                                   max(0.1, 1.1 * float(fin.max()) if len(fin) else 0.1)))
             return surf
         ts = [render.Series(t[sel], _smooth(hist["T0"][sel], n), render.T0_COL, "Tbar_0"),
               render.Series(t[sel], _smooth(hist["TE"][sel], n), render.TE_COL, "Tbar_E")]

@@ -46,6 +46,10 @@ class Readout:
     paper_h: float = math.nan
     """The paper's vertex height for the level's settings (a fed fountain's launch speed
     and angle, or the speed an ideal machine's laws select); nan where they fix none."""
+    origin: str = "launch"
+    """What the heights and the launch pull are measured from: the launch point, or a
+    beaker's pick-up ('pick-up'; its readout has no end pulls: the pile and the floor are
+    not the paper's machine)."""
     tension_y: np.ndarray = field(default_factory=lambda: np.zeros(0))
     tension_bar: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
@@ -105,10 +109,11 @@ def compute_readout(sim: Simulation, recorder: Recorder, history: History) -> Re
     cfg = sim.config
     H = sim.drop
     g = float(cfg.gravity)
-    r = Readout(t=sim.time, H=H)
+    r = Readout(t=sim.time, H=H, origin="pick-up" if sim.beaker is not None else "launch")
     hist = history.arrays()
     t = hist["t"]
     avg_span = 0.25
+    ox, oy = 0.0, 0.0  # the launch point: the origin, or a beaker's pick-up
     landed = sim.feed.absorbed > 0 or sim.floor_geometry()[3] != "absorbing"
     if len(t) >= 3 and sim.n_free >= 8 and landed:
         sel = t >= t[-1] - avg_span
@@ -121,6 +126,12 @@ def compute_readout(sim: Simulation, recorder: Recorder, history: History) -> Re
         r.measured_vertex = (float(recorder.samples[-1].vertex_x)
                              if recorder.samples else math.nan, h)
         f = None
+        if sim.beaker is not None:
+            # the paper's curve through the measured ends: from where the chain leaves the
+            # pile, over the measured top, to where it reaches the floor
+            ox, oy = sim.beaker.pickup
+            h, lx, H = h - oy, lx - ox, H + oy
+            v = sim.beaker.speed
         if not v * v > g * H:
             # no fountain can reach the floor (k*H >= 1): nothing to compare, and tensions
             # scaled by lambda*v^2 of a chain this slow mean nothing to a reader
@@ -153,6 +164,7 @@ def compute_readout(sim: Simulation, recorder: Recorder, history: History) -> Re
         r.v, r.k, r.q, r.h, r.l = f.v, f.k, f.q, f.h, f.l
         r.T0_theory, r.TE_theory = f.T0_bar, f.TE_bar
         xs, ys = f.curve(160)
+        sx, sy = sx - ox, sy - oy
         r.curve = np.column_stack((np.asarray(xs) - sx, np.asarray(ys) - sy))
         r.vertex = (-sx, -sy)
     elif r.measured:
@@ -184,6 +196,8 @@ def machine_line(sim: Simulation) -> str:
     """What an ideal machine's laws predict (the paper's section "Generating Steady-State
     Chain Fountains"): the speed it selects, or that it keeps any, and its end tensions."""
     cfg = sim.config
+    if sim.beaker is not None:
+        return beaker_line(sim)
     if cfg.kind != "feed" or cfg.feed.drive == "motor":
         return ""
     ref = sim.reference
@@ -193,6 +207,21 @@ def machine_line(sim: Simulation) -> str:
     if keeps_any_speed(cfg):
         return f"paper's laws keep any v: {ends}"
     return f"paper's laws: v {ref.v:.3f} m/s, {ends}"
+
+
+def beaker_line(sim: Simulation) -> str:
+    """The pile's push by Biggins and Warner's relation (:mod:`chainfountain.theory.mould`):
+    ``alpha = 1 - g*H/v**2`` from the speed and the drop below the pick-up."""
+    from chainfountain.theory.mould import alpha_from_speed
+
+    b = sim.beaker
+    v = b.speed
+    H = b.pickup[1] - b.floor_y
+    if not (v > 0.0 and H > 0.0) or b.absorbed == 0:
+        return "Biggins & Warner: the pile's push once the chain reaches the floor"
+    a = alpha_from_speed(v, H, 0.0, sim.g)
+    return (f"Biggins & Warner: the pile pushes with alpha = 1 - gH/v^2 = {a:.2f} "
+            f"(H {H:.2f} m below the pick-up)")
 
 
 def is_steady(sim: Simulation, hist: dict[str, np.ndarray]) -> bool:

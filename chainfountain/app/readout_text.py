@@ -32,12 +32,14 @@ def plain_rows(ro: Readout, lam: float) -> list[Row]:
             "yet)")
     rows = [Row(head + "   (E: expert readout)", "dim")]
     rows.append(Row(f"chain speed  {_num(ro.v, '.2f')} m/s", "text", "v"))
-    top = f"top of the arch  {_num(ro.h, '.2f')} m above the launch"
+    top = f"top of the arch  {_num(ro.h, '.2f')} m above the {ro.origin}"
     rows.append(Row(top, "text", "h"))
     if math.isfinite(ro.paper_h):
         rows.append(Row(f"   paper, from the launch speed and angle: {ro.paper_h:.2f} m", "dim"))
     rows.append(Row(f"lands  {_num(ro.l, '.2f')} m across, {_num(ro.H, '.2f')} m below",
                     "text", "l, H"))
+    if ro.origin != "launch":
+        return rows  # a beaker: the pile's push is in the Biggins & Warner line below
     flux = lam * ro.v * ro.v if math.isfinite(ro.v) else math.nan
     for name, bar, theory, col, sym in (
             ("pull at the launch", ro.T0_bar, ro.T0_theory, "t0", "Tbar_0"),

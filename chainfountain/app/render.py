@@ -34,6 +34,7 @@ VERTEX = (255, 90, 200)
 FLOOR = (150, 160, 175)
 ABSORB = (70, 130, 90)
 GUIDE = (200, 200, 210)
+GLASS = (170, 210, 230)
 ROLLER = (180, 190, 255)
 CART = (120, 220, 160)
 TRACK = (110, 120, 135)
@@ -165,6 +166,10 @@ def scene_bounds(sim: Simulation, readout: Readout | None) -> tuple[float, float
     if len(pts):
         xs += [float(pts[:, 0].max()) + 0.2]
         ys += [float(pts[:, 1].max()) + 0.15]
+    vessel = sim.vessel_geometry()
+    if vessel is not None:
+        xs += [float(vessel[0][:, 0].min()) - 0.1]
+        ys += [float(vessel[0][:, 1].min()) - 0.05]
     for x, y, r, _ in sim.roller_geometry():
         xs += [x - r, x + r]
         ys += [y - r, y + r]
@@ -238,6 +243,9 @@ def draw_scene(surf: pygame.Surface, cam: Camera, sim: Simulation, readout: Read
         pygame.draw.line(surf, ABSORB, (rect.x, y), (rect.right, y), 2)
         label = font(16).render(_floor_label(sim), True, ABSORB)
         surf.blit(label, (rect.x + 8, y + 4))
+    vessel = sim.vessel_geometry()
+    if vessel is not None:
+        _draw_pot(surf, cam, *vessel)
     # cart tracks and carts
     for a, b in sim.track_geometry():
         pygame.draw.line(surf, TRACK, cam.point(*a), cam.point(*b), 2)
@@ -257,7 +265,8 @@ def draw_scene(surf: pygame.Surface, cam: Camera, sim: Simulation, readout: Read
             a = ang + k * 2 * math.pi / 3
             pygame.draw.line(surf, ROLLER, c, cam.point(x + r * math.cos(a), y + r * math.sin(a)),
                              1)
-    _draw_guide(surf, cam, sim)
+    if vessel is None:
+        _draw_guide(surf, cam, sim)
     _part_labels(surf, cam, sim)
     width = max(3, min(8, int(round(2 * sim.config.chain.link_radius * cam.scale))))
     theory = show_theory and readout is not None and readout.curve is not None
@@ -275,6 +284,23 @@ def draw_scene(surf: pygame.Surface, cam: Camera, sim: Simulation, readout: Read
         _height_marker(surf, cam, readout)
     _scale_bar(surf, cam)
     surf.set_clip(old_clip)
+
+
+def _draw_pot(surf: pygame.Surface, cam: Camera, outline: np.ndarray,
+              plate: np.ndarray) -> None:
+    """A beaker level's pot: its walls, and below the plate the part of the pile that is
+    out of the solver, shaded."""
+    (x0, _), (x1, _) = plate
+    bottom = float(outline[1, 1])
+    a, b = cam.point(float(x0), float(plate[0, 1])), cam.point(float(x1), bottom)
+    hidden = pygame.Rect(a[0], a[1], max(1, b[0] - a[0]), max(1, b[1] - a[1]))
+    hidden = hidden.clip(cam.rect)
+    if hidden.w > 0 and hidden.h > 0:
+        surf.blit(_shade(hidden.size, CHAIN, 45), hidden.topleft)
+        for y in range(hidden.top + 3, hidden.bottom, 6):
+            _dashed(surf, (120, 90, 50), (hidden.left + 2, y), (hidden.right - 2, y), 5.0)
+    pygame.draw.line(surf, GUIDE, cam.point(*plate[0]), cam.point(*plate[1]), 2)
+    pygame.draw.lines(surf, GLASS, False, cam.to_screen(outline).tolist(), 3)
 
 
 def _part_labels(surf: pygame.Surface, cam: Camera, sim: Simulation) -> None:
@@ -304,19 +330,19 @@ def _part_labels(surf: pygame.Surface, cam: Camera, sim: Simulation) -> None:
 
 def _height_marker(surf: pygame.Surface, cam: Camera, ro: Readout) -> None:
     """A height marker at the fountain's top: a dashed level line with how high the top
-    is above the launch, an arrow up from the launch height, and (a fed fountain) a tick
+    is above the launch (a beaker: the pick-up), an arrow up from there, and (a fed fountain) a tick
     at the height the paper predicts from the settings."""
     if ro.vertex is None or not math.isfinite(ro.h):
         return
     vx, vy = cam.point(*ro.vertex)
-    x0, y0 = cam.point(ro.vertex[0], 0.0)
+    x0, y0 = cam.point(ro.vertex[0], ro.vertex[1] - ro.h)  # from the launch (or pick-up)
     half = max(40, int(0.25 * abs(cam.point(ro.l, 0.0)[0] - cam.point(0.0, 0.0)[0])))
     _dashed(surf, VERTEX, (vx - half, vy), (vx + half, vy), 6.0, 1)
     if y0 - vy > 24:
         _dashed(surf, VERTEX, (x0, y0), (vx, vy + 2), 4.0, 1)
         pygame.draw.polygon(surf, VERTEX, [(vx, vy + 1), (vx - 4, vy + 9), (vx + 4, vy + 9)])
     f = font(18)
-    label = f.render(f"top: {ro.h:.2f} m above the launch", True, VERTEX)
+    label = f.render(f"top: {ro.h:.2f} m above the {ro.origin}", True, VERTEX)
     surf.blit(label, (vx + half + 6, vy - label.get_height() // 2))
     if math.isfinite(ro.paper_h):
         py = cam.point(0.0, ro.paper_h)[1]

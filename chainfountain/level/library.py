@@ -7,7 +7,7 @@ from pathlib import Path
 
 from chainfountain.level import io
 
-DEFAULT_LEVEL_NAME = "classroom"
+DEFAULT_LEVEL_NAME = "beaker"
 """Stem of the level ``chainfountain`` opens with no arguments."""
 
 
@@ -83,7 +83,7 @@ def twin(name: str) -> str | None:
 
 
 def default_level() -> io.Level:
-    """The built-in default level (``levels/classroom.toml``; the code defaults if absent)."""
+    """The built-in default level (``levels/beaker.toml``; the code defaults if absent)."""
     path = shipped_dir() / f"{DEFAULT_LEVEL_NAME}.toml"
     if path.exists():
         return io.load(path)

@@ -42,8 +42,12 @@ def _grams(kg: float) -> str:
 
 
 def part_labels(sim: Simulation) -> list[PartLabel]:
-    """The apparatus's parts, named as the paper names them (empty for other kinds):
-    the rollers, the carts with their masses, the tables, the guides and the end."""
+    """The apparatus's parts, named as the paper names them (a beaker's pot, pile and
+    pick-up; empty for other kinds): the rollers, the carts with their masses, the tables,
+    the guides and the end."""
+    beaker = getattr(sim, "beaker", None)
+    if beaker is not None:
+        return beaker_labels(beaker)
     app = sim.apparatus
     if app is None:
         return []
@@ -79,3 +83,15 @@ def part_labels(sim: Simulation) -> list[PartLabel]:
     elif a.variant == "open":
         out.append(PartLabel("lower plate: the chain slides away", ex, ey, "below"))
     return out
+
+
+def beaker_labels(beaker: Any) -> list[PartLabel]:
+    """A beaker level's parts (:class:`~chainfountain.sim.beaker.Beaker`): the pot, its
+    rim, the pile with how it is kept full, and where the chain is picked up."""
+    (x0, x1), bottom = beaker.x_in, -float(beaker.cfg.pot_depth)
+    plate_y = float(beaker.plate_segment()[0, 1])
+    px, py = beaker.pickup
+    return [PartLabel("pot", x0, 0.5 * bottom, "left"),
+            PartLabel("rim", x1, 0.0, "right"),
+            PartLabel("pile (topped up from below)", 0.5 * (x0 + x1), plate_y, "below"),
+            PartLabel("pick-up", px, py, "left", tier=0)]

@@ -1,0 +1,55 @@
+"""The beaker in the window: the default level, its parts named, its readout in words of
+the pick-up, and the window's budget for it."""
+
+from __future__ import annotations
+
+import copy
+import os
+
+os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
+
+from chainfountain import cli  # noqa: E402
+from chainfountain.app import budget  # noqa: E402
+from chainfountain.app.readout import Readout  # noqa: E402
+from chainfountain.app.readout_text import readout_rows  # noqa: E402
+from chainfountain.level import io, library  # noqa: E402
+from chainfountain.sim.world import Simulation  # noqa: E402
+
+
+def _beaker():
+    return io.load(library.resolve("beaker"))
+
+
+def test_the_default_level_is_the_beaker():
+    assert library.default_level().sim.kind == "beaker"
+
+
+def test_the_beakers_parts_are_named():
+    texts = {lb.text for lb in Simulation(_beaker().sim).part_labels()}
+    assert {"pot", "rim", "pick-up", "pile (topped up from below)"} <= texts
+
+
+def test_readout_speaks_of_the_pick_up_and_shows_no_machine_pulls():
+    ro = Readout(v=4.4, k=9.81 / 4.4**2, q=26.0, h=0.33, l=0.25, H=0.97, T0_bar=0.0,
+                 TE_bar=0.1, T0_theory=0.8, TE_theory=0.3, measured=True, origin="pick-up")
+    rows = [r.text for r in readout_rows(ro, lam=0.05, expert=False)]
+    assert any("0.33 m above the pick-up" in t for t in rows)
+    assert not any("pull at" in t for t in rows)
+
+
+def test_window_budget_refuses_a_beaker_too_tall_to_run():
+    origin = _beaker().sim
+    tall = copy.deepcopy(origin)
+    tall.beaker.drop = 5.0
+    why = budget.over_budget(tall, origin)
+    assert why is not None and "beaker" in why
+    a_bit = copy.deepcopy(origin)
+    a_bit.beaker.drop = 1.2
+    assert budget.over_budget(a_bit, origin) is None
+
+
+def test_offscreen_window_draws_the_beaker(tmp_path, monkeypatch):
+    monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
+    shot = tmp_path / "beaker.png"
+    assert cli.main(["play", "beaker", "--frames", "20", "--screenshot", str(shot)]) == 0
+    assert shot.stat().st_size > 10_000
