@@ -99,7 +99,7 @@ def summarize(level: Level, sim: Simulation, rec: Recorder, duration: float,
         from chainfountain.sim.beaker_report import report as beaker_report
 
         rep = _attempt(failed, "beaker report", beaker_report, sim.beaker,
-                       (s.vertex_x, s.vertex_y), s.landing_x, s.T0_bar, s.t0, s.t1, sim.g)
+                       (s.vertex_x, s.vertex_y), s.landing_x, s.t0, s.t1, sim.g)
         if rep is not None:
             out["beaker"] = json_safe(rep)
     if app is not None:

@@ -295,10 +295,6 @@ class Beaker:
         slow = in_pot & (vx * vx + vy * vy < max(0.1, 0.1 * self._speed) ** 2)
         return _trailing(in_pot), _trailing(slow)
 
-    def pile_count(self) -> int:
-        """Links in the pot below the rim, counted from the chain's tail."""
-        return self._count()[0]
-
     def _track_pickup(self, n_rest: int, dt: float) -> None:
         """Where the moving chain leaves the resting pile: the front end of the first
         resting link (followed with a time constant of :data:`PICKUP_TAU`)."""

@@ -14,15 +14,17 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from chainfountain.sim.beaker import Beaker
 from chainfountain.theory import Fountain
 from chainfountain.theory.mould import alpha_from_rise, alpha_from_speed, bw_rise
 
 
-def report(beaker: Any, vertex: tuple[float, float], landing_x: float, T0_bar: float,
-           t0: float, t1: float, g: float) -> dict[str, Any]:
+def report(beaker: Beaker, vertex: tuple[float, float], landing_x: float, t0: float,
+           t1: float, g: float) -> dict[str, Any]:
     """The ``beaker`` object for the window ``t0 .. t1`` (s): ``vertex`` and ``landing_x``
-    are the recorder's window means (rim frame, m), ``T0_bar`` its mean scaled tension at
-    the pick-up (``T/(lambda v^2)``, ``v`` the floor's take over the last 0.5 s)."""
+    are the recorder's window means (rim frame, m). (The tension where the chain leaves
+    the pile is no reading of ``alpha``: the links there are still being accelerated, and
+    the recorder's launch tension, taken at the first link at rest, is about 0.)"""
     w = beaker.window(t0, t1)
     v, px, py = w["v"], w["pickup_x"], w["pickup_y"]
     H = py - beaker.floor_y  # pick-up to floor
@@ -45,8 +47,7 @@ def report(beaker: Any, vertex: tuple[float, float], landing_x: float, T0_bar: f
         return out
     a_v = alpha_from_speed(v, H, 0.0, g)
     a_h = alpha_from_rise(h, H, 0.0)
-    out["alpha"] = {"from_speed": a_v, "from_rise": a_h,
-                    "from_pickup_tension": 1.0 - T0_bar if math.isfinite(T0_bar) else None}
+    out["alpha"] = {"from_speed": a_v, "from_rise": a_h}
     out["biggins_warner"] = {
         "beta": 0.0,
         "speed_from_alpha_rise": math.sqrt(g * H / (1.0 - a_h)) if a_h < 1 else None,

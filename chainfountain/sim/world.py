@@ -141,7 +141,11 @@ class Simulation:
             self.piston = Piston(self)
         if cfg.feed.drive == "ideal_fold":
             PutDown(self)
-        self.reader = ChainReader(space, self.chain)
+        self._start()
+
+    def _start(self) -> None:
+        """Time back to zero, nothing held, the recorder emptied: the end of every build."""
+        self.reader = ChainReader(self.space, self.chain)
         self.time = 0.0
         self.steps = 0
         self._mouse_body: pymunk.Body | None = None
@@ -167,14 +171,7 @@ class Simulation:
         self.rollers = []
         self.carts = []
         self.reference = None
-        self.reader = ChainReader(space, self.chain)
-        self.time = 0.0
-        self.steps = 0
-        self._mouse_body = None
-        self._mouse_joint = None
-        self._grabbed = None
-        if self.recorder is not None:
-            self.recorder.clear()
+        self._start()
 
     def _build_beaker(self) -> None:
         """``kind = "beaker"``: a chain piled in a pot rises over the rim and falls to an
@@ -195,14 +192,7 @@ class Simulation:
         self.rollers = []
         self.carts = []
         self.reference = None
-        self.reader = ChainReader(self.space, self.chain)
-        self.time = 0.0
-        self.steps = 0
-        self._mouse_body = None
-        self._mouse_joint = None
-        self._grabbed = None
-        if self.recorder is not None:
-            self.recorder.clear()
+        self._start()
 
     def _wave_damping(self, speed: float) -> float:
         """The numerical joint damper ``D*lambda*v*L**2`` (N*m*s/rad) at chain speed ``v``
