@@ -166,6 +166,7 @@ def refined_config(cfg: SimConfig, factor: int, level: str = "level") -> SimConf
     out.solver.dt = cfg.solver.dt / factor
     out.solver.accuracy = 0.0
     out.initial.mode = "catenary"
+    out.feed.starter = 0.0  # on the fountain, a machine needs no starter
     if out.feed.drive != "motor":  # a machine: start on the fountain at the speed it selects
         from chainfountain.sim.reference import LaunchReference
 

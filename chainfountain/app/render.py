@@ -389,8 +389,10 @@ def _draw_guide(surf: pygame.Surface, cam: Camera, sim: Simulation) -> None:
     pygame.draw.rect(surf, (70, 75, 90), box, 0, 3)
     pygame.draw.rect(surf, GUIDE, box, 1, 3)
     what = "start" if getattr(sim, "apparatus", None) is not None else "feed"
-    if getattr(sim, "piston", None) is not None:  # an ideal machine's upper half
-        what = "pick-up (paper's law), lift xi2*H, upper cart:"
+    piston = getattr(sim, "piston", None)
+    if piston is not None:  # an ideal machine's upper half
+        what = ("starter motor (the machine's laws take over once the fountain has formed):"
+                if piston.starting else "pick-up (paper's law), lift xi2*H, upper cart:")
     lbl = font(16).render(f"{what} {sim.feed.speed:.2f} m/s", True, GUIDE)
     x = box.left - lbl.get_width() - 4
     if x < cam.rect.left + 2:  # no room on the left: put it below the motor box

@@ -192,7 +192,8 @@ def _check_feed(level: Level, where: str) -> None:
 
 DRIVE_FIELDS = {"xi2": ("ideal_floor", "ideal_fold"), "cart_force": ("ideal_floor", "ideal_fold"),
                 "machine_mass": ("ideal_floor", "ideal_fold"), "xi3": ("ideal_fold",),
-                "lower_cart_force": ("ideal_fold",), "bearing_drag": ("ideal_fold",)}
+                "lower_cart_force": ("ideal_fold",), "bearing_drag": ("ideal_fold",),
+                "starter": ("ideal_floor", "ideal_fold")}
 """Feed fields only the ideal machines use, with the drives that use them."""
 
 
@@ -209,11 +210,16 @@ def _check_drive(level: Level, where: str) -> float:
                   + " or ".join(repr(d) for d in drives))
     if feed.drive == "motor":
         return feed.end_tension
-    if sim.initial.mode != "catenary":
+    if sim.initial.mode != "catenary" and feed.starter == 0.0:
         _fail(where, "initial.mode",
               f"{sim.initial.mode!r} with feed.drive = {feed.drive!r}: the machine is driven by "
               "the fall of its fountain, so from a stub it stops before the chain lands; "
-              "allowed: 'catenary' (the machine starts with its fountain)")
+              "allowed: 'catenary' (the machine starts with its fountain), or a starter "
+              "(feed.starter > 0)")
+    if sim.initial.mode == "catenary" and feed.starter != 0.0:
+        _fail(where, "feed.starter",
+              f"{feed.starter!r} s has no effect with initial.mode = 'catenary' (the machine "
+              "starts with its fountain); allowed: 0, or initial.mode = 'stub'")
     if feed.floor != "absorbing" or feed.end_tension != 0.0:
         field = "feed.floor" if feed.floor != "absorbing" else "feed.end_tension"
         why = ("the paper's real floor takes the chain without pull"

@@ -200,6 +200,13 @@ class FeedConfig:
         "and the guided strands (sets how fast the speed changes, not where it goes)",
         min=0.001, max=100.0,
     )
+    starter: float = param(
+        0.0, unit="s", doc="Drives 'ideal_floor' and 'ideal_fold' from a stub "
+        "(initial.mode = 'stub'): the guide runs as a motor at feed.speed until the chain has "
+        "landed and this long after, then the machine's laws take over (a real machine is "
+        "started by hand: its laws need a fountain to drive them). 0: no starter, the level "
+        "starts with its fountain (initial.mode = 'catenary')", min=0.0, max=60.0,
+    )
 
 
 @dataclass

@@ -48,6 +48,9 @@ class Piston:
         self.v_start = float(feed.cfg.speed)
         """The speed the run started at (the stall and runaway checks' scale)."""
         self._off_t = 0.0
+        self.starting = float(feed.cfg.starter) > 0.0
+        """True while the starter runs the guide as a motor (``feed.starter``)."""
+        self._hand_over: float | None = None
         n = len(chain.links)
         for i in range(n - feed.n_guide, n):
             self._hold(chain.links[i])
@@ -103,6 +106,12 @@ class Piston:
     def before_step(self) -> None:
         chain, g = self.sim.chain, self.sim.g
         guide = chain.links[len(chain.links) - self.sim.feed.n_guide:]
+        if self.starting:  # the starter: a motor at the start speed
+            vx, vy = self.v_start * self.u[0], self.v_start * self.u[1]
+            for link in guide:
+                link.body.velocity = (vx, vy)
+            self._floor_pull()
+            return
         for link in guide:  # the law carries the lift: cancel the guide links' weight
             b = link.body
             b.apply_force_at_world_point((0.0, b.mass * g), b.position)
@@ -138,8 +147,19 @@ class Piston:
             feed.fed_links += 1
         if feed.cfg.floor == "absorbing":
             feed._absorb()
+        if self.starting:
+            self._start_up()
+            return
         self.sim.follow_speed(v)
         self._watch(v, dt)
+
+    def _start_up(self) -> None:
+        """Hand the chain to the machine's laws ``feed.starter`` seconds after it landed."""
+        sim = self.sim
+        if self._hand_over is None and sim.feed.absorbed > 0:
+            self._hand_over = sim.time + float(sim.config.feed.starter)
+        if self._hand_over is not None and sim.time >= self._hand_over:
+            self.starting = False
 
     def _watch(self, v: float, dt: float) -> None:
         """End the run with one sentence when the chain stops or runs away (an unbalanced

@@ -20,6 +20,7 @@ from chainfountain.theory.apparatus import ideal_floor_speed
 
 def _run(xi2: float | None = None, seconds: float = 8.0, push: float | None = None):
     lvl = io.load(library.resolve("ideal_floor"))
+    lvl.sim.initial.mode, lvl.sim.feed.starter = "catenary", 0.0  # from the fountain on
     if xi2 is not None:
         lvl.sim.feed.xi2 = xi2
     sim = Simulation(lvl.sim)

@@ -29,6 +29,8 @@ from chainfountain.theory import apparatus as ap
 
 def _sim(name: str, **feed):
     lvl = io.load(library.resolve(name))
+    # the laws from the fountain on: no stub, no starter (test_starter_forms_the_fountain)
+    lvl.sim.initial.mode, lvl.sim.feed.starter = "catenary", 0.0
     for k, v in feed.items():
         setattr(lvl.sim.feed, k, v)
     sim = Simulation(lvl.sim)
@@ -181,12 +183,36 @@ def test_a_machine_held_back_too_hard_stops_with_one_sentence() -> None:
     assert "\n" not in msg and sim.time < 4.0
 
 
-def test_a_machine_cannot_start_from_a_stub() -> None:
+def test_a_machine_cannot_start_from_a_stub_without_a_starter() -> None:
     """The machine is driven by the fall of its fountain: from a stub the laws hold the chain
-    back before it lands (measured: ideal_fold stops at 1.4 s), so the level is refused."""
+    back before it lands (measured: ideal_fold stops at 1.4 s), so a stub needs a starter;
+    a starter on a machine started on its fountain has nothing to do."""
     lvl = io.load(library.resolve("ideal_fold"))
-    lvl.sim.initial.mode = "stub"
+    lvl.sim.initial.mode, lvl.sim.feed.starter = "stub", 0.0
     with pytest.raises(io.LevelError) as exc:
         io.loads(io.dumps(lvl), "bad.toml")
     msg = str(exc.value)
-    assert msg.startswith("bad.toml: initial.mode") and "allowed: 'catenary'" in msg, msg
+    assert msg.startswith("bad.toml: initial.mode") and "feed.starter > 0" in msg, msg
+    lvl.sim.initial.mode, lvl.sim.feed.starter = "catenary", 5.0
+    with pytest.raises(io.LevelError) as exc:
+        io.loads(io.dumps(lvl), "bad.toml")
+    assert str(exc.value).startswith("bad.toml: feed.starter")
+
+
+def test_the_starter_forms_the_fountain_and_hands_it_to_the_laws() -> None:
+    """``ideal_limit`` as shipped: a starter motor fires the chain from a stub at 3.6 m/s
+    until 5 s after it lands; then the machine runs on its laws and climbs to the speed
+    they select, 3.744 m/s (from the stub: 3.737 m/s at 8 s, 3.738-3.745 m/s over 10-40 s)."""
+    lvl = io.load(library.resolve("ideal_limit"))
+    assert lvl.sim.initial.mode == "stub" and lvl.sim.feed.starter > 0
+    sim = Simulation(lvl.sim)
+    rec = Recorder(sim, profiles=False)
+    sim.advance(1.0)
+    # the motor sets the guide's speed before each step (the step's solve moves it a little)
+    assert sim.piston.starting and sim.piston.speed == pytest.approx(3.6, rel=0.01)
+    sim.advance(11.0)
+    assert not sim.piston.starting
+    f = lvl.sim.feed
+    v_s = ap.ideal_fold_speed(f.cart_force, 0.0, f.xi2, f.xi3, f.bearing_drag,
+                              lvl.sim.chain.linear_density, f.drop, sim.g)
+    assert _mean_speed(rec, 9.0, 12.0) == pytest.approx(v_s, rel=0.005)
