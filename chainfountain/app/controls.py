@@ -313,19 +313,22 @@ variant a slider would change nothing (xi3 is the lower table's height, and only
 
 def unused_fields(config: Any) -> set[str]:
     """Field paths that ``config`` has but does not use (see :data:`ONLY_FOR_VARIANT`;
-    a fed level's machine fields its ``feed.drive`` does not use)."""
-    if getattr(config, "kind", None) == "feed":
+    a fed level's machine fields its ``feed.drive`` does not use; the bend limit of a
+    chain whose links do not pile, outside a beaker)."""
+    kind = getattr(config, "kind", None)
+    bend = set() if kind == "beaker" else {"chain.bend_limit"}
+    if kind == "feed":
         from chainfountain.level.checks import DRIVE_FIELDS
 
         drive = config.feed.drive
         unused = {f"feed.{name}" for name, drives in DRIVE_FIELDS.items() if drive not in drives}
         if drive != "motor":
             unused.add("feed.end_tension")  # the machine (or the real floor) sets the pull
-        return unused
-    if getattr(config, "kind", None) != "apparatus":
-        return set()
+        return unused | bend
+    if kind != "apparatus":
+        return bend
     variant = config.apparatus.variant
-    return {p for p, variants in ONLY_FOR_VARIANT.items() if variant not in variants}
+    return {p for p, variants in ONLY_FOR_VARIANT.items() if variant not in variants} | bend
 
 
 def control_fields(config: Any, patterns: tuple[str, ...] = CONTROL_PATTERNS) -> list[FieldSpec]:

@@ -53,3 +53,14 @@ def test_offscreen_window_draws_the_beaker(tmp_path, monkeypatch):
     shot = tmp_path / "beaker.png"
     assert cli.main(["play", "beaker", "--frames", "20", "--screenshot", str(shot)]) == 0
     assert shot.stat().st_size > 10_000
+
+
+def test_the_bend_limit_has_a_slider_in_the_beaker_only():
+    from chainfountain.app.controls import control_fields
+
+    def paths(name):
+        return {f.path for f in control_fields(io.load(library.resolve(name)).sim)}
+
+    assert {"beaker.drop", "beaker.pile_depth", "chain.bend_limit"} <= paths("beaker")
+    for name in ("classroom", "ideal_fold", "apparatus_floor"):
+        assert "chain.bend_limit" not in paths(name)
