@@ -235,6 +235,9 @@ def describe_outputs(summary_path: Path) -> str:
             f"the speed, {a['from_rise']:.3f} from the rise of a zero-width fountain"
             + (f", {a['from_paper_catenary']:.3f} from the paper's curve through the ends"
                if a.get("from_paper_catenary") is not None else ""))
+        how = (bk.get("error_bars") or {}).get("how")
+        if how:
+            lines.append(f"  discretisation error: {how}")
     if th and s.get("h") is not None and s.get("l") is not None:
         lines.append(
             f"  vertex height {s['h']:.4f} m (theory {th['h']:.4f}, {pct(err.get('h'))}), "

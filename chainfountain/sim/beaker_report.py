@@ -18,6 +18,12 @@ from chainfountain.sim.beaker import Beaker
 from chainfountain.theory import Fountain
 from chainfountain.theory.mould import alpha_from_rise, alpha_from_speed, bw_rise
 
+STEP_ERROR = ("not estimated in a run: python research/beaker_refinement.py --level LEVEL "
+              "refines the step and the iterations; the shipped beaker at its 250-us step "
+              "runs about 6 % slow with its top about 19 % low against a zero step "
+              "(first order in the step; docs/beaker.md)")
+"""What a beaker run says of its discretisation error (measured by refinement)."""
+
 
 def report(beaker: Beaker, vertex: tuple[float, float], landing_x: float, t0: float,
            t1: float, g: float) -> dict[str, Any]:
@@ -42,6 +48,7 @@ def report(beaker: Beaker, vertex: tuple[float, float], landing_x: float, t0: fl
         "alpha": {},
         "biggins_warner": {},
         "paper": None,
+        "error_bars": {"method": None, "how": STEP_ERROR},
     }
     if not (math.isfinite(v) and v > 0 and H > 0 and math.isfinite(h)):
         return out
