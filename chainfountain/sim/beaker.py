@@ -5,10 +5,10 @@ Frame: the exit rim's top is the origin, ``y`` up; the pot lies at ``x < 0`` and
 falls at ``x > 0`` onto an absorbing floor ``drop`` below the rim, which takes each link
 whose centre reaches it (the chain's end is free there: Biggins and Warner's ``beta = 0``).
 
-The pile is a zig-zag of horizontal rows of links (:func:`pile_points`) lying on a plate
+The pile is a zig-zag of horizontal rows of links (:func:`next_row`) lying on a plate
 inside the pot; the links collide with each other, the pot and the plate, and every joint
-can bend at most ``chain.bend_limit`` (a ball chain's largest bend: without it the model
-shows no fountain, ``research/notes/beaker.md``). Only ``pile_rows`` rows are simulated:
+can bend at most ``chain.bend_limit`` (a ball chain's largest bend: without it the chain
+barely clears the rim, ``docs/beaker.md``). Only ``pile_rows`` rows are simulated:
 the plate rises as the chain is drawn off, so the top of the pile, where the chain is
 picked up, stays ``pile_depth`` below the rim, and whenever it has risen by one row's
 spacing a new row is laid under the pile (out of the solver until then: "the pile refilled
@@ -51,9 +51,9 @@ CHECK_EVERY = 16
 TIGHTEN_EVERY = 40
 """Waiting bend limits are tried every this many steps (:meth:`Chain.tighten_bends`)."""
 HASH_CELL = 2.5
-"""Cell size of the space's spatial hash, in links: the shipped beaker stepped in 308 us
-per step in it against 492 us in pymunk's default tree (``benchmarks/bench_beaker.py``
-times the level)."""
+"""Cell size of the space's spatial hash, in links: the beaker (at two sub-steps a step)
+stepped in 308 us per step in it against 492 us in pymunk's default tree
+(``benchmarks/bench_beaker.py`` times the level)."""
 
 
 class PotEmpty(RunEnded):
