@@ -32,7 +32,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--duration", type=number("a duration in s", min=0, min_inclusive=False,
                                              max=3600),
                    default=None, help="simulated seconds (default 8; 20 for a fed level that "
-                   "starts from its stub, to form and then be averaged; an apparatus level "
+                   "starts from its stub, to form and then be averaged, 40 for an ideal "
+                   "machine's, which settles after its starter; an apparatus level "
                    "without a treadmill: its apparatus.duration; a scene or beaker: its own "
                    "duration)")
     p.add_argument("--out", type=path_arg("an output folder"), default=None,

@@ -110,6 +110,22 @@ def test_demo_fed_levels_form_from_a_stub_and_run_long_enough_to_be_averaged() -
         assert FORMING_DURATION >= 12.5 + 2 * lvl.sim.recording.window
 
 
+def test_ideal_machines_from_a_stub_run_long_enough_to_settle() -> None:
+    """The ideal presets start from a stub with a 5-s starter and settle on their laws'
+    speed 10-15 s after it hands over: their headless run is long enough for that and a
+    window."""
+    from chainfountain.headless import MACHINE_FORMING_DURATION, default_duration
+    from chainfountain.level import io as level_io
+
+    levels = Path(__file__).resolve().parents[2] / "levels"
+    for name in ("ideal_floor", "ideal_fold", "ideal_special", "ideal_limit"):
+        lvl = level_io.load(levels / f"{name}.toml")
+        assert lvl.sim.initial.mode == "stub" and lvl.sim.feed.starter > 0, name
+        assert default_duration(lvl) == MACHINE_FORMING_DURATION
+        assert MACHINE_FORMING_DURATION >= 2 + lvl.sim.feed.starter + 15 + \
+            2 * lvl.sim.recording.window
+
+
 def test_run_that_ends_early_writes_its_part_and_exits_3(tmp_path):
     """A collapsing fold (the paper's limit case, apparatus_limit) ends the run early:
     the outputs cover the part simulated, summary.json says why, and `run` exits with 3."""
