@@ -74,6 +74,8 @@ from dataclasses import dataclass
 import numpy as np
 import pymunk
 
+from chainfountain.sim.scene_layout import along_polyline
+
 G = 9.81
 CHAIN_CAT = 0b10
 WALL_CAT = 0b100
@@ -125,29 +127,6 @@ def zigzag(n_lines: int, m: int, s: float, L: float) -> np.ndarray:
             pts.append((u, w))
             sgn = -sgn
     return np.array(pts)
-
-
-def along_polyline(vertices: np.ndarray, L: float) -> np.ndarray:
-    """Points along ``vertices`` from the first, each exactly ``L`` from the one before."""
-    pts = [np.asarray(vertices[0], float)]
-    seg, s_now = 0, 0.0
-    while True:
-        p = pts[-1]
-        for j in range(seg, len(vertices) - 1):
-            a, b = np.asarray(vertices[j], float), np.asarray(vertices[j + 1], float)
-            dd, f = b - a, a - p
-            A = float(dd @ dd)
-            B, C = 2.0 * float(f @ dd), float(f @ f) - L * L
-            disc = B * B - 4.0 * A * C
-            if A == 0.0 or disc < 0.0:
-                continue
-            t = (-B + math.sqrt(disc)) / (2.0 * A)
-            if (t > s_now if j == seg else t >= 0.0) and t <= 1.0:
-                pts.append(a + t * dd)
-                seg, s_now = j, t
-                break
-        else:
-            return np.array(pts)
 
 
 def layout_points(p: Params) -> tuple[np.ndarray, dict]:

@@ -29,6 +29,7 @@ from chainfountain.sim.bodies import SCENERY_CATEGORY
 from chainfountain.sim.chain import Chain
 from chainfountain.sim.config import BeakerConfig
 from chainfountain.sim.measure import ChainReader
+from chainfountain.sim.scene_layout import along_polyline
 
 WALL_RADIUS = 0.003
 """Radius (m) of the pot's walls, floor and plate (static and kinematic segments)."""
@@ -334,27 +335,3 @@ def _trailing(mask: np.ndarray) -> int:
     """How many of ``mask``'s last entries are True without a break."""
     off = np.flatnonzero(~mask)
     return len(mask) if len(off) == 0 else len(mask) - 1 - int(off[-1])
-
-
-def along_polyline(vertices: np.ndarray, L: float) -> np.ndarray:
-    """Points along ``vertices`` from the first, each exactly ``L`` (straight) from the one
-    before, as far as the polyline reaches."""
-    pts = [np.asarray(vertices[0], float)]
-    seg, s_now = 0, 0.0
-    while True:
-        p = pts[-1]
-        for j in range(seg, len(vertices) - 1):
-            a, b = np.asarray(vertices[j], float), np.asarray(vertices[j + 1], float)
-            dd, f = b - a, a - p
-            A = float(dd @ dd)
-            B, C = 2.0 * float(f @ dd), float(f @ f) - L * L
-            disc = B * B - 4.0 * A * C
-            if A == 0.0 or disc < 0.0:
-                continue
-            t = (-B + math.sqrt(disc)) / (2.0 * A)
-            if (t > s_now if j == seg else t >= 0.0) and t <= 1.0:
-                pts.append(a + t * dd)
-                seg, s_now = j, t
-                break
-        else:
-            return np.array(pts)
