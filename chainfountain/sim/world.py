@@ -115,6 +115,11 @@ class Simulation:
         self.apparatus: Apparatus | None = None
         self.piston: Piston | None = None
         self.beaker: Beaker | None = None
+        self.floor: Floor | None = None
+        self.rollers: list[Roller] = []
+        self.carts: list[Cart] = []
+        self.reference: LaunchReference | None = None
+        """The paper's fountain for a fed level (``None`` for an apparatus or a beaker)."""
         if cfg.kind == "apparatus":
             self._build_apparatus()
             return
@@ -125,7 +130,6 @@ class Simulation:
                         or cfg.chain.self_collision)
         self.chain = Chain(space, cfg.chain, cfg.solver, shapes=needs_shapes,
                            wave_damping=self._wave_damping(cfg.feed.speed))
-        self.floor: Floor | None = None
         if cfg.feed.floor == "solid":
             w = cfg.feed.floor_width
             self.floor = Floor.add(space, -cfg.feed.drop, -0.5 * w, 0.5 * w,
@@ -133,7 +137,7 @@ class Simulation:
         self.rollers = [Roller.add(space, r) for r in cfg.rollers]
         self.carts = [Cart.add(space, c, error_bias=cfg.solver.joint_error_bias)
                       for c in cfg.carts]
-        self.reference: LaunchReference | None = self.reference_at(cfg.feed.speed)
+        self.reference = self.reference_at(cfg.feed.speed)
         self.feed = Feed(self.chain, cfg.feed)
         self.feed.initialise(cfg.initial, self.reference)
         self.feed.set_reference(self.reference)
@@ -167,10 +171,6 @@ class Simulation:
                            wave_damping=self._wave_damping(cfg.apparatus.speed))
         self.apparatus = Apparatus(space, self.chain, cfg)
         self.feed = self.apparatus  # type: ignore[assignment]
-        self.floor = None
-        self.rollers = []
-        self.carts = []
-        self.reference = None
         self._start()
 
     def _build_beaker(self) -> None:
@@ -188,10 +188,6 @@ class Simulation:
         if cfg.initial.seed:  # the pile is chaotic: a seed picks one of its runs
             nudge_bodies(self.space, cfg.initial.seed)
         self.feed = self.beaker  # type: ignore[assignment]
-        self.floor = None
-        self.rollers = []
-        self.carts = []
-        self.reference = None
         self._start()
 
     def _wave_damping(self, speed: float) -> float:
