@@ -33,9 +33,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                                              max=3600),
                    default=None, help="simulated seconds (default 8; 20 for a fed level that "
                    "starts from its stub, to form and then be averaged, 40 for an ideal "
-                   "machine's, which settles after its starter; an apparatus level "
-                   "without a treadmill: its apparatus.duration; a scene or beaker: its own "
-                   "duration)")
+                   "machine's, which settles after its starter; 20 for an apparatus level "
+                   "started from rest; one without a treadmill: its apparatus.duration; a "
+                   "scene or beaker: its own duration)")
     p.add_argument("--out", type=path_arg("an output folder"), default=None,
                    help="output folder (default runs/<level name>)")
     p.add_argument("--seed", type=integer("a seed", min=0), default=None,

@@ -24,7 +24,8 @@ from chainfountain.sim.world import Simulation
 DEFAULT_DURATION = 8.0
 """Simulated seconds of a headless run when none is given."""
 FORMING_DURATION = 20.0
-"""... of a fed level that starts from its stub: the shipped ones are steady after 4-12 s."""
+"""... of a fed level that starts from its stub (the shipped ones are steady after 4-12 s),
+and of an apparatus started from rest (its starter lets go about 4 s in)."""
 MACHINE_FORMING_DURATION = 40.0
 """... of an ideal machine started from its stub: the starter hands over 5 s after landing,
 and the presets settle on their laws' speed 10-15 s after that (``ideal_fold`` from 4.7
@@ -39,7 +40,8 @@ def default_duration(level: Level) -> float:
     stub, so that it forms and is then averaged (:data:`MACHINE_FORMING_DURATION` for an
     ideal machine's, which settles on its laws' speed after its starter); an apparatus level's own
     ``apparatus.duration`` when its upper table is sized by it (no treadmill), so the run
-    ends before the table does; a scene or beaker level's own ``duration``."""
+    ends before the table does, and :data:`FORMING_DURATION` for one started from rest;
+    a scene or beaker level's own ``duration``."""
     sim = level.sim
     if sim.kind == "scene":
         return float(sim.scene.duration)
@@ -47,6 +49,8 @@ def default_duration(level: Level) -> float:
         return float(sim.beaker.duration)
     if sim.kind == "apparatus" and sim.apparatus.plate_links == 0:
         return float(sim.apparatus.duration)
+    if sim.kind == "apparatus" and sim.initial.mode == "stub":
+        return FORMING_DURATION
     if sim.kind == "feed" and sim.initial.mode == "stub":
         return FORMING_DURATION if sim.feed.drive == "motor" else MACHINE_FORMING_DURATION
     return DEFAULT_DURATION

@@ -190,6 +190,44 @@ def _check_feed(level: Level, where: str) -> None:
               "initial.mode = 'stub'")
 
 
+def _check_apparatus_start(sim: SimConfig, where: str) -> None:
+    """How an apparatus starts: laid along its path, moving (``initial`` at its defaults,
+    no starter), or from rest with a starter (``initial.mode = "stub"``, the 'floor'
+    variant with the upper joint guide)."""
+    a = sim.apparatus
+    default_initial = type(sim.initial)()
+    from_rest = sim.initial.mode == "stub"
+    for f in dataclasses.fields(sim.initial):
+        value, default = getattr(sim.initial, f.name), getattr(default_initial, f.name)
+        if value == default or (from_rest and f.name in ("mode", "stub_length")):
+            continue
+        _fail(where, f"initial.{f.name}",
+              f"{value!r} has no effect in an 'apparatus' level: the apparatus lays its "
+              "chain along its own path, moving at apparatus.speed, or from rest with "
+              "initial.mode = 'stub' (to start a perturbed run, change apparatus.speed "
+              f"slightly); allowed: {default!r}" + (", or 'stub'" if f.name == "mode" else ""))
+    if not from_rest:
+        if a.starter:
+            _fail(where, "apparatus.starter",
+                  f"{a.starter!r} s has no effect with initial.mode = 'catenary' (the chain "
+                  "starts laid along its path at apparatus.speed); allowed: 0, or "
+                  "initial.mode = 'stub'")
+        return
+    if a.variant != "floor" or a.upper_guide != "joints":
+        field, value = (("apparatus.variant", a.variant) if a.variant != "floor"
+                        else ("apparatus.upper_guide", a.upper_guide))
+        _fail(where, field,
+              f"{value!r} cannot start from rest (initial.mode = 'stub'): the starter runs the "
+              "chain in the upper joint guide and only the floor catches a forming fountain; "
+              "allowed: variant = 'floor' with upper_guide = 'joints', or initial.mode = "
+              "'catenary'")
+    if a.starter <= 0.0:
+        _fail(where, "apparatus.starter",
+              f"{a.starter!r} s with initial.mode = 'stub': at rest the cart holds the chain "
+              "and nothing falls, so the machine needs a starter; allowed: a time > 0 "
+              "(seconds the starter runs on after the chain lands, e.g. 3)")
+
+
 DRIVE_FIELDS = {"xi2": ("ideal_floor", "ideal_fold"), "cart_force": ("ideal_floor", "ideal_fold"),
                 "machine_mass": ("ideal_floor", "ideal_fold"), "xi3": ("ideal_fold",),
                 "lower_cart_force": ("ideal_fold",), "bearing_drag": ("ideal_fold",),
@@ -381,14 +419,7 @@ def _check_apparatus(level: Level, where: str) -> None:
         _fail(where, "apparatus.pickup_rest_links",
               f"{a.pickup_rest_links!r} leaves the pick-up roller too little resting chain to "
               "roll on; allowed: 0 (as apparatus.rest_links) or at least 5")
-    default_initial = type(sim.initial)()
-    for f in dataclasses.fields(sim.initial):
-        value, default = getattr(sim.initial, f.name), getattr(default_initial, f.name)
-        if value != default:
-            _fail(where, f"initial.{f.name}",
-                  f"{value!r} has no effect in an 'apparatus' level: the apparatus lays its "
-                  "chain along its own path, moving at apparatus.speed (to start a perturbed "
-                  f"run, change apparatus.speed slightly); allowed: {default!r}")
+    _check_apparatus_start(sim, where)
     if a.fold_clearance and (a.variant != "fold" or a.plate != "groove"):
         _fail(where, "apparatus.fold_clearance",
               f"{a.fold_clearance!r} m only applies to variant = 'fold' with plate = 'groove' "

@@ -88,7 +88,10 @@ def schema_markdown() -> str:
         "- settings that would have no effect are refused: the `[apparatus]` table in a feed "
         "level and the `[feed]` table in an apparatus level (other than their defaults), "
         "`initial.stub_length` with `initial.mode = \"catenary\"`; in an apparatus level "
-        "`[initial]` other than its defaults, `[[rollers]]`, carts beyond those its rollers "
+        "`[initial]` other than its defaults (except `mode = \"stub\"` with its "
+        "`stub_length`: the 'floor' variant with `upper_guide = \"joints\"` and a starter, "
+        "`apparatus.starter > 0`, starts from rest; a starter without it is refused), "
+        "`[[rollers]]`, carts beyond those its rollers "
         "take (`carts[0]`; `carts[1]` in 'fold'), and `apparatus.xi3` "
         "(other than 'fold'), `apparatus.end_pull` (other than 'open'), `apparatus.end` "
         "and `apparatus.floor_width` (other than 'floor') away from their defaults;",

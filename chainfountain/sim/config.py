@@ -478,6 +478,15 @@ class ApparatusConfig:
         "roller unit (bearings and cart rolling resistance), a force -c*u on its carriage "
         "moving at u (about v/2). 0: loss-free bearings", min=0.0, max=10.0, live=True,
     )
+    starter: float = param(
+        0.0, unit="s", doc="Variant 'floor' from rest (initial.mode = 'stub'): the chain lies "
+        "at rest from the upper table to a stub at the start, and a starter motor in the "
+        "upper guide's last straight runs it up to apparatus.speed (over 0.5 s) and holds it "
+        "there until the chain has landed and this long after; then the carts and the fall "
+        "alone drive it (a real machine is started by hand). Needs upper_guide = 'joints'. "
+        "0: no starter, the chain starts laid along its path at apparatus.speed",
+        min=0.0, max=60.0,
+    )
     upper_guide: str = param(
         "walls", unit="", doc="Upper guide channel (plate end to fountain start): 'walls' is "
         "a frictionless two-sided channel of static segments (one contact per link; the "

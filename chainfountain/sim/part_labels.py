@@ -70,6 +70,10 @@ def part_labels(sim: Simulation) -> list[PartLabel]:
         cx, cy = np.asarray(verts).mean(axis=0)
         out.append(PartLabel(f"{names[i]} {_grams(units[i].cart.mass)}",
                              float(cx), float(cy), "below", tier=1))
+    if getattr(app, "starting", False) and app.up_guide:
+        (ax, ay), (bx, by) = app.up_guide[-1].a, app.up_guide[-1].b
+        out.append(PartLabel("starter motor: runs the chain up, lets go once it has landed",
+                             0.5 * (ax + bx), 0.5 * (ay + by), "left"))
     ex, ey = app.end
     if a.variant == "fold":
         out.append(PartLabel(f"end guide up xi3*H = {a.xi3 * app.H:.2f} m",

@@ -2,8 +2,13 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
+from chainfountain.level import io
+from chainfountain.level.model import Level
 from chainfountain.sim import Recorder, SimConfig, Simulation
 from chainfountain.sim.apparatus_report import report
+from chainfountain.study.changes import with_changes
 
 
 def run_fold(cfg: SimConfig, until: float, clean: tuple[float, float],
@@ -42,3 +47,13 @@ def design_speed(g: float, H: float, xi2: float, F_uc: float, lam: float) -> flo
     for _ in range(200):
         v = (num / design_pickup(v)) ** 0.5
     return v
+
+
+def load_on_path(path: Path) -> Level:
+    """The level at ``path`` started the study way: laid along its path at
+    ``apparatus.speed`` (``initial.mode = "catenary"``, no starter), so that a test reads
+    the machine's steady state without waiting for it to form from rest."""
+    lvl = io.load(path)
+    if lvl.sim.initial.mode == "catenary":
+        return lvl
+    return with_changes(lvl, {"initial.mode": "catenary", "apparatus.starter": 0.0})

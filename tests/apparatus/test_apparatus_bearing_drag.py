@@ -16,8 +16,8 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from apparatus_runs import load_on_path
 
-from chainfountain.level import io
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import report
 
@@ -29,7 +29,7 @@ pytestmark = pytest.mark.xdist_group("apparatus_bearing_drag")
 
 def _ratio(drag: float) -> tuple[float, float]:
     """(measured speed / rig law's speed with the drag, the law's speed) over STEADY."""
-    cfg = io.load(LEVEL).sim
+    cfg = load_on_path(LEVEL).sim
     cfg.apparatus.bearing_drag = drag
     sim = Simulation(cfg)
     rec = Recorder(sim, profiles=False)
@@ -46,7 +46,7 @@ def test_drag_lowers_the_selected_speed_as_the_law_says() -> None:
 
 
 def test_drag_is_a_live_field() -> None:
-    cfg = io.load(LEVEL).sim
+    cfg = load_on_path(LEVEL).sim
     sim = Simulation(cfg)
     sim.set_param("apparatus.bearing_drag", 0.02)
     assert sim.apparatus.cfg.bearing_drag == 0.02

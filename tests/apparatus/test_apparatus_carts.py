@@ -43,6 +43,7 @@ import dataclasses
 from pathlib import Path
 
 import pytest
+from apparatus_runs import load_on_path
 
 from chainfountain.level import io
 from chainfountain.sim.apparatus import CART_GAIN_2CM
@@ -57,7 +58,7 @@ pytestmark = pytest.mark.xdist_group("apparatus_carts")
 
 @pytest.fixture(scope="module")
 def step() -> CartStep:
-    cfg = io.load(LEVEL).sim
+    cfg = load_on_path(LEVEL).sim
     # the real geometry (the pick-up roller travels, the upper strand is long); the
     # preset's treadmill strand is in docs/apparatus.md
     cfg = dataclasses.replace(cfg, apparatus=dataclasses.replace(cfg.apparatus, plate_links=0))

@@ -35,6 +35,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from apparatus_runs import load_on_path
 
 from chainfountain.level import io
 from chainfountain.sim import Recorder, Simulation
@@ -67,7 +68,7 @@ def test_open_preset_is_the_floor_presets_chain_and_cart() -> None:
     drop to its floor (0.35 m), so it selects the same speed. It starts at 2.92 m/s (the
     floor preset's speed with the walls, FLOOR_SPEED: the floor preset now uses the joint
     guide, which runs 2 % faster, and starts at 2.98)."""
-    cfg, floor = io.load(LEVEL).sim, io.load(FLOOR).sim
+    cfg, floor = io.load(LEVEL).sim, load_on_path(FLOOR).sim
     assert cfg.chain == floor.chain and cfg.carts == floor.carts
     a, f = cfg.apparatus, floor.apparatus
     assert (a.variant, a.upper_guide, a.plate_links) == ("open", "walls", 0)

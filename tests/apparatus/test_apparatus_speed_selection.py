@@ -20,8 +20,8 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from apparatus_runs import load_on_path
 
-from chainfountain.level import io
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import report
 from chainfountain.sim.budget import EnergyBudget, rig_law_speed
@@ -36,7 +36,7 @@ pytestmark = pytest.mark.xdist_group("apparatus_speed_selection")
 
 @pytest.fixture(scope="module")
 def rep():
-    sim = Simulation(io.load(LEVEL).sim)
+    sim = Simulation(load_on_path(LEVEL).sim)
     rec = Recorder(sim, profiles=False)
     budget = EnergyBudget(sim, start=3.0, every=2)
     sim.advance(RUN)
@@ -70,7 +70,7 @@ def test_heavy_cart_within_two_sigma_of_the_rig_law(rep) -> None:
                    "0.007 lambda v^2 more than the rig's; docs/apparatus.md, 'Energy budget'")
 def test_heavy_cart_within_two_sigma_of_the_rig_law_with_the_losses(rep) -> None:
     sel, b = rep["speed_selection"], rep["energy_budget"]
-    v = rig_law_speed(io.load(LEVEL).sim, b.total)
+    v = rig_law_speed(load_on_path(LEVEL).sim, b.total)
     assert abs(sel["v_measured"] - v) <= 2.0 * sel["v_rig_2cm_sigma"]
 
 

@@ -27,6 +27,7 @@ from pathlib import Path
 import numpy as np
 import pymunk
 import pytest
+from apparatus_runs import load_on_path
 
 from chainfountain.level import io
 from chainfountain.sim import Recorder, Simulation
@@ -45,7 +46,7 @@ pytestmark = pytest.mark.xdist_group("apparatus_treadmill")
 
 @pytest.fixture(scope="module")
 def run():
-    sim = Simulation(io.load(LEVEL).sim)
+    sim = Simulation(load_on_path(LEVEL).sim)
     app = sim.apparatus
     assert app.treadmill
     counts, xs, gaps = [], [], []
@@ -96,7 +97,7 @@ def test_plate_links_needs_groove_plate(tmp_path) -> None:
 
 
 def test_without_treadmill_the_roller_travels() -> None:
-    cfg = io.load(LEVEL).sim
+    cfg = load_on_path(LEVEL).sim
     cfg = dataclasses.replace(cfg, apparatus=dataclasses.replace(cfg.apparatus, plate_links=0))
     sim = Simulation(cfg)
     app = sim.apparatus
@@ -109,7 +110,7 @@ def test_without_treadmill_the_roller_travels() -> None:
 def test_used_up_table_is_one_clear_error() -> None:
     # the real geometry sized for a 0.2-s run at the start speed: the roller reaches the
     # channel and the run stops with a message naming the field, not a traceback
-    cfg = io.load(LEVEL).sim
+    cfg = load_on_path(LEVEL).sim
     cfg = dataclasses.replace(cfg, apparatus=dataclasses.replace(
         cfg.apparatus, plate_links=0, duration=0.2))
     sim = Simulation(cfg)
@@ -119,7 +120,7 @@ def test_used_up_table_is_one_clear_error() -> None:
 
 def test_tiny_links_keep_a_table() -> None:
     # 1-mm links: the treadmill strand would be 22 mm; the table keeps at least 15 cm
-    cfg = io.load(LEVEL).sim
+    cfg = load_on_path(LEVEL).sim
     cfg = dataclasses.replace(cfg, chain=dataclasses.replace(cfg.chain, link_length=0.001))
     sim = Simulation(cfg)
     sim.advance(0.002)

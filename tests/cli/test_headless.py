@@ -84,15 +84,17 @@ def test_cli_seed_on_an_apparatus_level_is_refused(tmp_path):
 
 
 def test_default_duration_of_a_table_sized_apparatus_is_its_own() -> None:
-    from chainfountain.headless import DEFAULT_DURATION, default_duration
+    from chainfountain.headless import DEFAULT_DURATION, FORMING_DURATION, default_duration
     from chainfountain.level import io as level_io
 
     levels = Path(__file__).resolve().parents[2] / "levels"
     fold = level_io.load(levels / "apparatus_fold.toml")
     assert fold.sim.apparatus.plate_links == 0
     assert default_duration(fold) == fold.sim.apparatus.duration  # the table is sized for it
-    floor = level_io.load(levels / "apparatus_floor.toml")  # treadmill: any length
-    assert default_duration(floor) == DEFAULT_DURATION
+    floor = level_io.load(levels / "apparatus_floor.toml")  # treadmill, from rest: forms
+    assert floor.sim.initial.mode == "stub" and default_duration(floor) == FORMING_DURATION
+    special = level_io.load(levels / "apparatus_special.toml")  # treadmill, on its path
+    assert special.sim.apparatus.plate_links and default_duration(special) == DEFAULT_DURATION
 
 
 def test_demo_fed_levels_form_from_a_stub_and_run_long_enough_to_be_averaged() -> None:

@@ -26,6 +26,7 @@ from chainfountain.sim.apparatus.fold_watch import FoldWatch
 from chainfountain.sim.apparatus.grooves import PlateGrooves
 from chainfountain.sim.apparatus.open_tail import OpenTail
 from chainfountain.sim.apparatus.stall_watch import StallWatch
+from chainfountain.sim.apparatus.starter import StarterPart
 from chainfountain.sim.apparatus.treadmill import Treadmills
 from chainfountain.sim.apparatus.tuning import FOLD_CAPTURE, FOLD_CLOSE_RATE
 from chainfountain.sim.apparatus.upper import UpperPart
@@ -43,7 +44,7 @@ class TableUsedUp(RunEnded):
 
 
 class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, FoldWatch,
-                StallWatch, Treadmills, OpenTail):
+                StallWatch, Treadmills, OpenTail, StarterPart):
     """Builds the apparatus into a space and keeps its bookkeeping (duck-types the
     :class:`~chainfountain.sim.feed.Feed` interface the simulation uses).
 
@@ -100,6 +101,12 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
         self.added = 0
         self.floor_depth = float(a.floor_depth) if self.variant == "floor" else 0.0
         """Depth (m) of the absorbing floor below the fountain end ('floor' variant)."""
+        self.from_rest = cfg.initial.mode == "stub"
+        """The chain starts at rest with a stub at the start, run up by the starter
+        (:mod:`.starter`); else it starts laid along its path, moving."""
+        self.stub_length = float(cfg.initial.stub_length)
+        self.v_lay = 0.0 if self.from_rest else float(a.speed)
+        """The speed (m/s) the chain is laid moving at."""
 
     def _predict_fountain(self) -> None:
         """The predicted fountain (the layout; it aims the end channel). A floor ``d``
@@ -120,7 +127,10 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
 
     def _fountain_path(self) -> np.ndarray:
         """The chain's path through the predicted fountain (to ``x_floor``, the end's x
-        without a ``floor_depth``)."""
+        without a ``floor_depth``); from rest, a straight stub along the launch line."""
+        if self.from_rest:
+            s = np.linspace(0.0, self.stub_length, 8)[1:]
+            return np.column_stack((s * self.launch_u[0], s * self.launch_u[1]))
         f = self.fountain
         x_rise = self.vertex_pred[0]
         xs = np.linspace(0.0, self.x_floor, 400)[1:]  # x_floor = ex without a floor_depth
@@ -131,7 +141,7 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
         length, moving as the steady state would: at rest on the tables, rolling with
         the rollers on their wraps, at the start speed elsewhere."""
         L = self.L
-        v0 = float(self.cfg.speed)
+        v0 = self.v_lay
         vR = 0.5 * v0
         R = self.r + self.rho
         s_wrap0 = self.n_ahead * L
@@ -190,6 +200,7 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
         self._init_fold_state()
         self._init_watch_state()
         self._init_stall_state()
+        self._init_starter_state()
 
     def _take_in_held_links(self) -> None:
         """Put the links laid on the plates and along the joint guides into their grooves
@@ -253,6 +264,8 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
                 (self.end_pull, 0.0), self.chain.links[0].body.position)
         if self._preload:
             self._apply_preload()
+        if self.starting:
+            self._drive_starter()
 
     def after_step(self, dt: float) -> None:
         """Move the plate ends with the rollers; add resting links ahead of the pick-up
@@ -279,7 +292,10 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
                 self._treadmill_lower()
         if self.lower is not None:
             self._check_fold(dt)
-        self._check_stall(dt)
+        if self.starting:
+            self._check_starter()
+        else:
+            self._check_stall(dt)
 
     def _check_table(self) -> None:
         """Raise :class:`TableUsedUp` once the pick-up roller is within 5 cm of the upper

@@ -63,7 +63,7 @@ class UpperPart:
         if self.treadmill:  # at least 15 cm: the table check keeps a 5-cm margin
             travel = max((int(a.plate_links) + 2) * L, 0.15)
         x_R = self.x_plate_up_end - travel
-        vR = 0.5 * float(a.speed)
+        vR = 0.5 * self.v_lay
         R = r + rho
         self.upper = add_roller(space, x_R, y_tab, rho, r, a.roller_mass, a.carriage_mass,
                                 carts[0] if carts else None, -1.0, self.g,
