@@ -474,14 +474,15 @@ def draw_plot(surf: pygame.Surface, rect: pygame.Rect, title: str, xlabel: str,
         return inner.bottom - (np.asarray(v) - y0) / (y1 - y0) * inner.h
 
     old = surf.get_clip()
+    band_labels: list[tuple[pygame.Surface, tuple[int, int]]] = []
     for lo, hi, col, *label in bands:
         a, b = max(lo, y0), min(hi, y1)
         if b > a:
             band = pygame.Rect(inner.x, int(sy(b)), inner.w, max(1, int(sy(a) - sy(b))))
             surf.blit(_shade(band.size, col, 45), band.topleft)
-            if label:
+            if label:  # written last, over the grid and the curves
                 img = font(14).render(label[0], True, col)
-                surf.blit(img, (band.right - img.get_width() - 4, band.y + 3))
+                band_labels.append((img, (band.right - img.get_width() - 4, band.y + 3)))
     # axes and ticks
     small = font(14)
     for val in _ticks(y0, y1, 4):
@@ -513,6 +514,10 @@ def draw_plot(surf: pygame.Surface, rect: pygame.Rect, title: str, xlabel: str,
                     pygame.draw.line(surf, s.colour, a, b, s.width)
             else:
                 pygame.draw.lines(surf, s.colour, False, pts.tolist(), s.width)
+    for img, at in band_labels:  # on a backing, so that no grid line or curve crosses it
+        surf.blit(_shade((img.get_width() + 4, img.get_height()), BG, 200),
+                  (at[0] - 2, at[1]))
+        surf.blit(img, at)
     surf.set_clip(old)
     # legend
     lx = rect.right - 8

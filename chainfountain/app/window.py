@@ -97,6 +97,11 @@ def gui_theme(scale: float) -> dict:
                               "selection_list", "tool_tip", "window", "horizontal_slider")}
 
 
+TOOLTIP_WIDTH = 420
+"""Width (px) a field's tooltip wraps at: the longest dotted path (``chain.bending_stiffness:``)
+fits on a line, so the wrap never breaks a word (pygame_gui hyphenates one that does not fit)."""
+
+
 def _tooltip(spec: FieldSpec) -> str:
     how = "applies live" if spec.live else "rebuilds the scene"
     return html.escape(f"{spec.path}: {spec.doc}. Allowed: {spec.allowed()}. Changing it {how}.")
@@ -236,7 +241,7 @@ class App(InputMixin, DrawMixin):
             unit = f" ({spec.unit})" if spec.unit and spec.unit != "1" else ""
             label = UILabel(pygame.Rect(8, y, lw - 30, px(20)), f"{spec.label}{unit}  [{tag}]",
                             self.ui, container=box, object_id="#field_label")
-            label.set_tooltip(_tooltip(spec))
+            label.set_tooltip(_tooltip(spec), wrap_width=TOOLTIP_WIDTH)
             slider = UIHorizontalSlider(pygame.Rect(8, y + px(21), px(180), px(24)), 0,
                                         (0, SLIDER_STEPS),
                                         self.ui, container=box, click_increment=1)
@@ -244,7 +249,7 @@ class App(InputMixin, DrawMixin):
                                     self.ui,
                                     container=box)
             entry.set_allowed_characters(list("0123456789.-+eE"))
-            entry.set_tooltip(_tooltip(spec))
+            entry.set_tooltip(_tooltip(spec), wrap_width=TOOLTIP_WIDTH)
             row = ControlRow(spec, label, slider, entry)
             self.rows.append(row)
             self._show_value(row)
