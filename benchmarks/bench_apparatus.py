@@ -26,6 +26,7 @@ from chainfountain.headless import default_duration
 from chainfountain.level import io
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import catenary_through, report
+from chainfountain.study.changes import laid_on_path
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -77,7 +78,7 @@ def figure(out: Path) -> None:
     runs = (("apparatus_floor", 6.0, "C0", None), ("apparatus_floor_heavy", 5.0, "C3", None),
             ("apparatus_floor", 6.0, "C0", 3.1))
     for name, T, col, v0 in runs:
-        lvl = io.load(ROOT / "levels" / f"{name}.toml")
+        lvl = laid_on_path(io.load(ROOT / "levels" / f"{name}.toml"))
         if v0 is not None:  # same level started faster: it relaxes toward its speed
             lvl.sim.apparatus.speed = v0
             sim = Simulation(lvl.sim)

@@ -35,8 +35,9 @@ LEVELS = Path(__file__).resolve().parents[1] / "levels"
 def _sim(name: str, seed: int, cfg=None):
     from chainfountain.level import io
     from chainfountain.sim import Simulation
+    from chainfountain.study.changes import laid_on_path
 
-    sim = Simulation(cfg if cfg is not None else io.load(LEVELS / f"{name}.toml").sim)
+    sim = Simulation(cfg if cfg is not None else laid_on_path(io.load(LEVELS / f"{name}.toml")).sim)
     if seed:
         sim.nudge(seed)
     return sim
@@ -67,8 +68,9 @@ def cart_step(seed: int) -> dict[str, float]:
     from chainfountain.level import io
     from chainfountain.sim.apparatus import CART_GAIN_2CM
     from chainfountain.sim.cart_step import cart_step as step
+    from chainfountain.study.changes import laid_on_path
 
-    cfg = io.load(LEVELS / "apparatus_floor.toml").sim
+    cfg = laid_on_path(io.load(LEVELS / "apparatus_floor.toml")).sim
     cfg = dataclasses.replace(cfg, apparatus=dataclasses.replace(cfg.apparatus, plate_links=0))
     s = step(cfg, 0.06, 1.0, 0.6, seed=seed)
     return {"closure/M_up": s.closure_mass / s.m_up, "dT_launch/dT_exit": s.dT_launch / s.dT_exit,

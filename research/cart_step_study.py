@@ -27,6 +27,7 @@ from chainfountain.level import io
 from chainfountain.level.io import LevelError
 from chainfountain.sim.apparatus import CART_GAIN_2CM, RunEnded
 from chainfountain.sim.cart_step import CartStep, cart_step
+from chainfountain.study.changes import laid_on_path
 
 LEVELS = Path(__file__).resolve().parents[1] / "levels"
 
@@ -99,7 +100,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.plate_links < 0:
         ap.error(f"--plate-links {args.plate_links}: must be >= 0")
     try:
-        cfg = io.load(LEVELS / f"{args.level}.toml").sim
+        cfg = laid_on_path(io.load(LEVELS / f"{args.level}.toml")).sim
     except LevelError as e:
         ap.error(f"--level {args.level!r}: {e}")
     cfg = dataclasses.replace(cfg, apparatus=dataclasses.replace(

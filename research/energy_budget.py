@@ -30,6 +30,7 @@ from pathlib import Path
 from chainfountain.level import io
 from chainfountain.sim import Simulation
 from chainfountain.sim.budget import REGIONS, EnergyBudget, open_windows, rig_law_speed
+from chainfountain.study.changes import laid_on_path
 
 LEVELS = Path(__file__).resolve().parents[1] / "levels"
 PRESETS = {"9g": "apparatus_floor", "15g": "apparatus_floor_heavy"}
@@ -38,7 +39,7 @@ OPEN_WINDOW = (0.2, 2.2)
 
 
 def budget(name: str, radius: float | None, start: float, end: float, every: int) -> None:
-    cfg = io.load(LEVELS / f"{name}.toml").sim
+    cfg = laid_on_path(io.load(LEVELS / f"{name}.toml")).sim
     a = dataclasses.replace(cfg.apparatus, duration=max(cfg.apparatus.duration, end + 0.5))
     if radius is not None:
         a = dataclasses.replace(a, channel_radius=radius)
@@ -66,7 +67,7 @@ def budget(name: str, radius: float | None, start: float, end: float, every: int
 
 
 def open_budget(start: float, end: float, width: float, every: int) -> None:
-    cfg = io.load(LEVELS / "apparatus_floor.toml").sim
+    cfg = laid_on_path(io.load(LEVELS / "apparatus_floor.toml")).sim
     a = dataclasses.replace(cfg.apparatus, variant="open", xi2=0.546, end_tension=0.144,
                             plate_links=0, upper_guide="joints", speed=2.92,
                             duration=end + 0.4)

@@ -47,3 +47,14 @@ def _set(data: dict[str, Any], path: str, value: Any, where: str) -> None:
         table[rest] = value
     else:
         data[head] = value
+
+
+def laid_on_path(level: Level) -> Level:
+    """An apparatus ``level`` started the study way: laid along its path, moving at
+    ``apparatus.speed`` (``initial.mode = "catenary"``, no starter), so that a study reads
+    the machine's steady state without first waiting for it to form from rest. A level
+    that already starts so is returned as it is."""
+    if level.sim.kind != "apparatus" or level.sim.initial.mode == "catenary":
+        return level
+    return with_changes(level, {"initial.mode": "catenary", "apparatus.starter": 0.0},
+                        where=level.meta.name or "level")

@@ -8,7 +8,7 @@ from chainfountain.level import io
 from chainfountain.level.model import Level
 from chainfountain.sim import Recorder, SimConfig, Simulation
 from chainfountain.sim.apparatus_report import report
-from chainfountain.study.changes import with_changes
+from chainfountain.study.changes import laid_on_path, with_changes
 
 
 def run_fold(cfg: SimConfig, until: float, clean: tuple[float, float],
@@ -50,10 +50,24 @@ def design_speed(g: float, H: float, xi2: float, F_uc: float, lam: float) -> flo
 
 
 def load_on_path(path: Path) -> Level:
-    """The level at ``path`` started the study way: laid along its path at
-    ``apparatus.speed`` (``initial.mode = "catenary"``, no starter), so that a test reads
-    the machine's steady state without waiting for it to form from rest."""
+    """The level at ``path`` started the study way, laid along its path at
+    ``apparatus.speed`` (:func:`~chainfountain.study.changes.laid_on_path`), so that a test
+    reads the machine's steady state without waiting for it to form from rest."""
+    return laid_on_path(io.load(path))
+
+
+UNDAMPED_SPECIAL = {"apparatus.swing_damper": 0.0, "apparatus.fold_clearance": 0.0,
+                    "carts[1].mass": 0.058}
+"""``apparatus_special`` as it was built before its swing damper: no damper, the lower
+table flush with the folding roller, the 58 g lower cart that balances it there. Its
+landing swing grows until the fold fails at about 18 s (docs/apparatus.md, "The landing
+swing"); the tests of the contact fold's own laws read this machine."""
+
+
+def load_undamped(path: Path) -> Level:
+    """The fold level at ``path`` without its swing damper (:data:`UNDAMPED_SPECIAL` for
+    ``apparatus_special``; others lose only the damper)."""
     lvl = io.load(path)
-    if lvl.sim.initial.mode == "catenary":
-        return lvl
-    return with_changes(lvl, {"initial.mode": "catenary", "apparatus.starter": 0.0})
+    changes = (UNDAMPED_SPECIAL if lvl.meta.name == "apparatus_special"
+               else {"apparatus.swing_damper": 0.0})
+    return with_changes(lvl, changes)

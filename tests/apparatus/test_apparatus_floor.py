@@ -319,6 +319,7 @@ def test_forms_from_rest_and_selects_the_same_speed(run, from_rest) -> None:
     ({"apparatus.variant": "fold"}, "apparatus.variant"),
     ({"apparatus.upper_guide": "walls"}, "apparatus.upper_guide"),
     ({"initial.jitter": 0.01}, "initial.jitter"),
+    ({"apparatus.swing_damper": 0.5}, "apparatus.swing_damper"),
 ])
 def test_a_start_that_cannot_work_is_refused_naming_the_field(change, field) -> None:
     """From rest without a starter the carts hold the chain and nothing falls; a starter
