@@ -339,28 +339,109 @@ def _type_into(app: App, row, text: str, end: int) -> None:
     app.run_frame()  # the field's own event (entry finished) arrives one frame later
 
 
+def _last(app: App) -> str:
+    return app.session.messages[-1][1] if app.session.messages else ""
+
+
+def _press_every_key(app: App) -> tuple[list[str], set[str]]:
+    """Press every key of the help (:data:`chainfountain.app.draw.KEYS`) and check that each
+    acted; returns the keys that did not, and the help rows pressed."""
+    s = app.session
+    fails: list[str] = []
+    pressed: set[str] = set()
+
+    def chk(row: str, name: str, ok: bool) -> None:
+        pressed.add(row)
+        if not ok:
+            fails.append(name)
+
+    p = s.paused
+    key(app, pygame.K_SPACE)
+    chk("Space", "Space", s.paused != p)
+    if not s.paused:
+        key(app, pygame.K_SPACE)  # paused, so that a step is one step
+    t = s.sim.time
+    key(app, pygame.K_RIGHT)
+    chk("Right  or  .", "Right", s.sim.time > t)
+    t = s.sim.time
+    key(app, pygame.K_PERIOD, unicode=".")
+    chk("Right  or  .", ".", s.sim.time > t)
+    t = s.sim.time
+    key(app, pygame.K_RIGHT, mod=pygame.KMOD_SHIFT)
+    chk("Shift+Right", "Shift+Right", abs(s.sim.time - t - s.sim.dt) < 1e-9)
+    i = s.slow_index
+    key(app, pygame.K_s, unicode="s")
+    chk("S", "S", s.slow_index != i)
+    key(app, pygame.K_r, unicode="r")
+    chk("R", "R", s.sim.time == 0.0)
+    app.camera.zoom(3.0, app.scene_rect.center)
+    app.follow = False
+    scale = app.camera.scale
+    key(app, pygame.K_f, unicode="f")
+    chk("F", "F", app.follow and app.camera.scale != scale)
+    theory = app.show_theory
+    key(app, pygame.K_t, unicode="t")
+    chk("T", "T", app.show_theory != theory)
+    key(app, pygame.K_t, unicode="t")
+    key(app, pygame.K_h, unicode="h")
+    chk("H  or  F1", "H", app.show_help)
+    key(app, pygame.K_ESCAPE)
+    chk("Esc", "Esc closes the help", not app.show_help and app.running)
+    key(app, pygame.K_F1)
+    chk("H  or  F1", "F1", app.show_help)
+    key(app, pygame.K_F1)
+    about = app.about_visible
+    key(app, pygame.K_i, unicode="i")
+    chk("I", "I", app.about_visible != about)
+    key(app, pygame.K_p, unicode="p")
+    chk("P", "P", app.projector)
+    key(app, pygame.K_p, unicode="p")
+    key(app, pygame.K_e, unicode="e")
+    chk("E", "E", app.expert)
+    key(app, pygame.K_e, unicode="e")
+    key(app, pygame.K_g, unicode="g")
+    chk("G  (Shift: with the plots)", "G", app.clip is not None)
+    key(app, pygame.K_g, unicode="g")
+    chk("G  (Shift: with the plots)", "G again", app.clip is None)
+    key(app, pygame.K_m, unicode="m")  # this level has no twin: it says so
+    chk("M", "M", "twin" in _last(app))
+    key(app, pygame.K_l, unicode="l")
+    chk("Ctrl+O  or  L", "L", app.load_window is not None)
+    key(app, pygame.K_ESCAPE)
+    chk("Esc", "Esc closes the picker", app.load_window is None and app.running)
+    key(app, pygame.K_o, mod=pygame.KMOD_CTRL)
+    chk("Ctrl+O  or  L", "Ctrl+O", app.load_window is not None)
+    key(app, pygame.K_ESCAPE)
+    key(app, pygame.K_s, mod=pygame.KMOD_CTRL)
+    chk("Ctrl+S", "Ctrl+S", app.save_window is not None)
+    key(app, pygame.K_ESCAPE)
+    chk("Esc", "Esc closes the save prompt", app.save_window is None and app.running)
+    before = app.last_capture
+    key(app, pygame.K_F12)
+    app.saver.wait()
+    chk("F12  (Shift: with the plots)", "F12",
+        app.last_capture is not None and app.last_capture != before
+        and app.last_capture.exists())
+    return fails, pressed
+
+
 @pytest.mark.parametrize("end", [pygame.K_RETURN, pygame.K_ESCAPE], ids=["enter", "esc"])
 def test_every_key_works_after_typing_in_any_field(app, end):
     """Enter or Esc in a field gives the keys back to the scene: after each field of the
-    panel is typed into, Space, H, T and F act at once (no click on the scene needed)."""
+    panel is typed into, every key of the help acts at once (no click on the scene
+    needed), and Esc, with no dialog open, then quits."""
+    from chainfountain.app.draw import KEYS
+
+    mouse = {"Mouse wheel", "Drag (empty space)", "Drag (on the chain)", "Enter (in a field)"}
     for row in app.rows:
         _type_into(app, row, row.entry.get_text() or "1", end)
         assert not app._text_focused(), row.spec.path
-        paused = app.session.paused
-        key(app, pygame.K_SPACE)
-        assert app.session.paused != paused, row.spec.path
-        key(app, pygame.K_h)
-        assert app.show_help, row.spec.path
-        key(app, pygame.K_h)
-        theory = app.show_theory
-        key(app, pygame.K_t)
-        assert app.show_theory != theory, row.spec.path
-        key(app, pygame.K_t)
-        app.camera.zoom(3.0, app.scene_rect.center)
-        scale = app.camera.scale
-        key(app, pygame.K_f)
-        assert app.camera.scale != scale, row.spec.path
+        fails, pressed = _press_every_key(app)
+        assert not fails, (row.spec.path, fails)
+    assert pressed | mouse == {k for k, _ in KEYS}  # every key of the help was pressed
     assert app.running  # Esc in a field released it and did not quit
+    key(app, pygame.K_ESCAPE)
+    assert not app.running
 
 
 def test_play_button_says_what_it_does(app):
