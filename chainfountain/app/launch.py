@@ -50,11 +50,12 @@ def _load_or_default(level: Level | None) -> Level:
 def open_app(level: Level | None = None, source: Path | None = None, *,
              frames: int | None = None, screenshot: Path | None = None,
              size: tuple[int, int] | None = None, offscreen: bool = False,
-             paused: bool = False, projector: bool = False) -> int:
+             paused: bool = False, projector: bool = False, notice: str | None = None) -> int:
     """Open the window on ``level`` (default level when ``None``).
 
     With ``offscreen`` the SDL dummy driver is used and every frame advances
-    exactly 1/60 s of simulated time (``--frames``/``--screenshot`` runs).
+    exactly 1/60 s of simulated time (``--frames``/``--screenshot`` runs). ``notice``:
+    the window opens paused, saying it over the scene until R starts the level.
     """
     if offscreen:
         os.environ["SDL_VIDEODRIVER"] = "dummy"
@@ -70,6 +71,8 @@ def open_app(level: Level | None = None, source: Path | None = None, *,
         raise UserError(f"cannot open level {lvl.meta.name!r}: {exc}") from None
     if paused:
         session.paused = True
+    if notice is not None:
+        session.hold(notice)
     app = App(session, size=size or DEFAULT_SIZE, offscreen=offscreen, projector=projector)
     return app.run(frames=frames, screenshot=screenshot)
 

@@ -353,6 +353,13 @@ class Session:
         self.say("paused" if self.paused else "running")
         return self.paused
 
+    def hold(self, notice: str) -> None:
+        """Pause at the start with ``notice`` over the scene (as a run that stopped itself
+        keeps its reason) until R starts the level."""
+        self.paused = True
+        self.stopped = notice
+        self.say(paused_message(notice))
+
     def _step(self, n: int) -> None:
         try:
             self._step_n(n)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 
 from chainfountain.commands.args import integer, path_arg, shown, writable_file
@@ -65,9 +66,13 @@ def run(args: argparse.Namespace) -> int:
 
     level = None
     source = None
+    refused: UserError | None = None
     if args.level is not None:
-        source = resolve_level(args.level)
-        level = io.load(source)  # LevelError: one line, exit 2
+        try:
+            source = resolve_level(args.level)
+            level = io.load(source)
+        except UserError as exc:  # one line; in a window it is also shown there
+            refused, source = exc, None
     if args.screenshot is not None and args.screenshot.suffix.lower() != ".png":
         raise UserError(f"argument --screenshot: {str(args.screenshot)!r} must end in .png")
     offscreen = args.frames is not None or args.screenshot is not None
@@ -79,15 +84,31 @@ def run(args: argparse.Namespace) -> int:
         writable_file(args.screenshot, "--screenshot")
     from chainfountain.app import launch
 
+    if refused is not None and offscreen:
+        raise refused
     if offscreen:
         frames = args.frames if args.frames is not None else 120
         return launch.open_app(level, source, frames=frames, screenshot=args.screenshot,
                                size=args.size, offscreen=True, paused=args.paused,
                                projector=args.projector)
     ok, why = launch.display_available()
+    if refused is not None and not ok:
+        raise refused
     if not ok:
         from chainfountain.app.session import default_level
 
         return launch.run_headless(level or default_level(), why, out_dir=args.out)
+    if refused is not None:  # a teacher looks at the screen: the window says it too
+        print(f"chainfountain: error: {refused}", file=sys.stderr)
+        launch.open_app(None, None, size=args.size, projector=args.projector,
+                        notice=refused_notice(refused))
+        return 2
     return launch.open_app(level, source, size=args.size, paused=args.paused,
                            projector=args.projector)
+
+
+def refused_notice(exc: UserError) -> str:
+    """What the window says, paused on the default level, when the level asked for on the
+    command line could not be opened."""
+    return (f"could not open that level: {exc}. The window shows the default level "
+            "instead; L opens another")
