@@ -1,4 +1,4 @@
-"""The window's guard-rail: a fed fountain the window cannot show at real time.
+"""The window's guard-rail: a fountain the window cannot show at real time.
 
 Level files and ``chainfountain run`` accept any fountain the schema allows (a 30 m/s
 feed flies 28 m up with thousands of links); the window keeps a fed level within what
@@ -41,10 +41,48 @@ def beaker_links(sim: SimConfig) -> int:
     return int((1.35 * b.drop + b.pile_depth + 0.5 * b.pot_width) / L) + b.pile_rows * (m + 1)
 
 
+APPARATUS_LINK_STEP = 1.9e-6
+"""Wall seconds per link and pymunk step of an apparatus (the machine's bookkeeping makes
+it nearly independent of the iterations: ``apparatus_special`` 1.8e-6 with about 200
+links at 15 iterations, ``apparatus_floor`` 1.9e-6 with about 125 at 10;
+``benchmarks/bench_apparatus.py`` times them)."""
+
+
+def apparatus_links(sim: SimConfig) -> int | None:
+    """Links an apparatus level keeps in the solver, by its parts: the fountain predicted at
+    its start speed, the upper guide, the resting chain ahead of the pick-up and its wrap,
+    the upper plate strand (the treadmill's, or the table's length), and with a fold the
+    end guide, the lower wrap, plate strand and resting chain (``None`` when no fountain
+    leaves the start at that speed)."""
+    from chainfountain.theory import Fountain
+
+    a, L = sim.apparatus, sim.chain.link_length
+    d = a.floor_depth if a.variant == "floor" else 0.0
+    try:
+        f = Fountain.from_launch(v=a.speed, alpha0=a.launch_angle, H=a.drop,
+                                 TE_bar=a.end_tension + sim.gravity * d / a.speed**2,
+                                 g=sim.gravity)
+        flight = f.length
+    except ValueError:
+        return None
+    wrap = math.pi * (a.roller_radius + sim.chain.link_radius) / L
+    plate = a.plate_links or (0.5 * a.speed * a.duration + 0.15) / L
+    n = flight / L + (a.xi2 * a.drop + 0.4) / L + (a.pickup_rest_links or a.rest_links)
+    n += wrap + plate
+    if a.variant == "fold":
+        n += (a.xi3 * a.drop + 0.4) / L + wrap + a.plate_links + a.rest_links
+    return int(n)
+
+
 def cost(sim: SimConfig) -> tuple[int, float] | None:
     """Links in flight and estimated wall seconds per simulated second of a fed level, at
-    its feed speed or at the speed its machine selects, or of a beaker (``None`` for other
-    levels or a feed without a fountain)."""
+    its feed speed or at the speed its machine selects, of a beaker, or of an apparatus
+    (links in the solver; ``None`` for other levels or a feed without a fountain)."""
+    if sim.kind == "apparatus":
+        n = apparatus_links(sim)
+        if n is None:
+            return None
+        return n, n * APPARATUS_LINK_STEP / sim.solver.dt
     if sim.kind == "beaker":
         n = beaker_links(sim)
         s = sim.solver
@@ -80,8 +118,10 @@ def over_budget(sim: SimConfig, origin: SimConfig) -> str | None:
     if c is None or c[1] <= limit(origin):
         return None
     n, wall = c
-    what = "the beaker would keep" if sim.kind == "beaker" else "the fountain would put"
-    return (f"{what} {n} links in flight and run at about {1.0 / wall:.2g}x "
+    what = {"beaker": "the beaker would keep {n} links in flight",
+            "apparatus": "the machine would keep {n} links moving"}.get(
+        sim.kind, "the fountain would put {n} links in flight").format(n=n)
+    return (f"{what} and run at about {1.0 / wall:.2g}x "
             "real time, too slow for the window (level files and `chainfountain run` "
             "accept it)")
 

@@ -331,3 +331,25 @@ def test_a_level_that_cannot_be_opened_is_said_in_the_window() -> None:
     assert s.paused and s.messages[-1][1] == shown
     s.reset()
     assert s.stopped is None and not s.paused
+
+
+def test_window_keeps_an_apparatus_at_real_time() -> None:
+    """Guard-rail: a start speed of 30 m/s on apparatus_floor would put about 8,000 links
+    in the solver (0.03x real time): the window refuses it, saying why and that level
+    files accept it; 4 m/s (about 180 links) is taken. The estimate follows the machine's
+    parts: within 10 % of the links the presets build (134 against 125 for the floor,
+    191 against 193 for the special case)."""
+    from chainfountain.app import budget
+    from chainfountain.sim import Simulation
+    from chainfountain.study.changes import laid_on_path
+
+    root = Path(__file__).resolve().parents[2] / "levels"
+    for name in ("apparatus_floor", "apparatus_special", "apparatus_fold"):
+        lvl = laid_on_path(io.load(root / f"{name}.toml"))
+        built = len(Simulation(lvl.sim).chain.links)
+        assert budget.apparatus_links(lvl.sim) == pytest.approx(built, rel=0.1), name
+    s = Session(io.load(root / "apparatus_floor.toml"))
+    r = s.set_field("apparatus.speed", 30.0)
+    assert not r.ok and r.message.startswith("refused:") and "links moving" in r.message
+    assert "level files" in r.message and s.value("apparatus.speed") == pytest.approx(2.98)
+    assert s.set_field("apparatus.speed", 4.0).ok
