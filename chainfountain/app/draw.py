@@ -234,7 +234,8 @@ class DrawMixin:
         r1 = pygame.Rect(6, 0, w, ph - 4)
         r2 = pygame.Rect(6, ph, w, ph - 4)
         r3 = pygame.Rect(6, 2 * ph, w, ph - 4)
-        # 1. tension along the chain against height
+        # 1. tension along the chain against height (plain words unless E: expert)
+        ex = self.expert
         series = []
         ys = ro.tension_y
         if len(ys):
@@ -246,8 +247,10 @@ class DrawMixin:
             hi = max(float(ys.max()) if len(ys) else top, top)
             yy = np.linspace(lo, hi, 50)
             tb = tension_bar(yy - top, ro.q, ro.k)
-            series.append(render.Series(yy, tb, render.THEORY, "1 - k/q + k*y"))
-        render.draw_plot(surf, r1, "Tbar along the chain", f"height above {ro.origin} (m)",
+            series.append(render.Series(yy, tb, render.THEORY,
+                                        "1 - k/q + k*y" if ex else "paper"))
+        render.draw_plot(surf, r1, "Tbar along the chain" if ex else
+                         "pull along the chain / (lambda v^2)", f"height above {ro.origin} (m)",
                          series, ylim=(-0.1, 1.05))
         # 2. speed against time
         t = hist["t"]
@@ -260,8 +263,9 @@ class DrawMixin:
         # apparatus: the chain speed at each roller (twice its speed) shows the slow swing
         # of the stored length, which the fountain's mean link speed averages away
         extra = [(k, col, label) for k, col, label in (
-            ("speed_in", render.T0_COL, "pick-up 2 v_R"),
-            ("speed_out", render.TE_COL, "fold 2 v_R")) if np.isfinite(hist[k][sel]).any()]
+            ("speed_in", render.T0_COL, "pick-up 2 v_R" if ex else "at pick-up"),
+            ("speed_out", render.TE_COL, "fold 2 v_R" if ex else "at fold"))
+            if np.isfinite(hist[k][sel]).any()]
         n_sm = max(1, round(0.05 / s.recorder.cfg.sample_interval))  # rollers jitter
         rollers = [render.Series(t[sel], _smooth(hist[k][sel], n_sm), col, label, width=1)
                    for k, col, label in extra]
@@ -292,17 +296,21 @@ class DrawMixin:
                              ylim=(min(0.0, float(fin.min()) if len(fin) else 0.0),
                                    max(0.1, 1.1 * float(fin.max()) if len(fin) else 0.1)))
             return surf
-        ts = [render.Series(t[sel], _smooth(hist["T0"][sel], n), render.T0_COL, "Tbar_0"),
-              render.Series(t[sel], _smooth(hist["TE"][sel], n), render.TE_COL, "Tbar_E")]
+        ts = [render.Series(t[sel], _smooth(hist["T0"][sel], n), render.T0_COL,
+                            "Tbar_0" if ex else "launch"),
+              render.Series(t[sel], _smooth(hist["TE"][sel], n), render.TE_COL,
+                            "Tbar_E" if ex else "landing")]
         # the paper's ranges are what its pulley machine delivers; a motor's guide is not
         # that machine, so a fed fountain may sit outside them
         motor = s.sim.config.kind == "feed" and s.sim.config.feed.drive == "motor"
-        title = ("end tensions (a motor feeds this chain)" if motor else
-                 "end tensions (0.1 s mean)")
+        what = "end tensions" if ex else "pull at the ends / (lambda v^2)"
+        title = f"{what} (a motor feeds this chain)" if motor else f"{what} (0.1 s mean)"
+        bands = (((0.5, 1.0, render.T0_COL, "paper's machine: Tbar_0 in (1/2, 1)"),
+                  (0.0, 0.5, render.TE_COL, "paper's machine: Tbar_E in [0, 1/2)")) if ex else
+                 ((0.5, 1.0, render.T0_COL, "the paper's machine: launch 1/2 to 1"),
+                  (0.0, 0.5, render.TE_COL, "landing 0 to 1/2")))
         render.draw_plot(surf, r3, title, "time (s)", ts,
-                         xlim=(t0, max(t1, t0 + 1)), ylim=(-0.1, 1.05),
-                         bands=((0.5, 1.0, render.T0_COL, "paper's machine: Tbar_0 in (1/2, 1)"),
-                                (0.0, 0.5, render.TE_COL, "paper's machine: Tbar_E in [0, 1/2)")))
+                         xlim=(t0, max(t1, t0 + 1)), ylim=(-0.1, 1.05), bands=bands)
         return surf
 
     def _reaction_plot(self, surf: pygame.Surface, rect: pygame.Rect, t: np.ndarray,

@@ -28,9 +28,8 @@ def plain_rows(ro: Readout, lam: float) -> list[Row]:
     """The readout in plain words, SI units, for a class. ``lam``: the chain's mass per
     length (kg/m), which turns the scaled end tensions into newtons (``T = Tbar*lambda*v^2``,
     paper eq. for ``Tbar``)."""
-    head = ("Measured now" if ro.measured else "Predicted from the settings (no fountain "
-            "yet)")
-    rows = [Row(head + "   (E: expert readout)", "dim")]
+    head = "Measured now" if ro.measured else "Predicted (no fountain yet)"
+    rows = [Row(head + "   (E: symbols)", "dim")]
     rows.append(Row(f"chain speed  {_num(ro.v, '.2f')} m/s", "text", "v"))
     top = f"top of the arch  {_num(ro.h, '.2f')} m above the {ro.origin}"
     rows.append(Row(top, "text", "h"))
