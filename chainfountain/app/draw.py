@@ -25,6 +25,9 @@ PLOT_EVERY = 4
 """Redraw the live plots every this many frames (15 Hz at 60 frames/s)."""
 ABOUT_ROWS = 10
 """Rows of a level's description shown on the view (:meth:`DrawMixin._draw_about`)."""
+ABOUT_SWITCH = 5
+"""Link ends the level's card must hide fewer of at the other end of the view to move
+there (so that it does not flicker between the top and the bottom)."""
 ABOUT_SECONDS = 6.0
 """Simulated seconds the level's description stays on the view unless I pins it."""
 STOP_ROWS = 12
@@ -121,7 +124,8 @@ class DrawMixin:
 
     def _draw_about(self) -> None:
         """The level's description (what it shows and what to watch) on a card at the top
-        of the view, under the time line; I hides it."""
+        of the view, under the time line, or at its bottom when that hides less of the
+        chain (a fountain forming rises into the top); I hides it."""
         text = self.session.level.meta.description.strip()
         if not text:
             return
@@ -131,6 +135,14 @@ class DrawMixin:
         lh = body.get_linesize()
         rows = render.wrap(body, text, width - 20)[:ABOUT_ROWS]
         box = pygame.Rect(rect.x + 10, render.px(72), width, render.px(34) + lh * len(rows))
+        low = box.move(0, rect.bottom - render.px(40) - box.bottom)
+        if low.top > box.bottom:  # room for both: the one hiding less, without flicker
+            now = getattr(self, "_about_low", False)
+            here, there = (low, box) if now else (box, low)
+            if self._chain_under(there) + ABOUT_SWITCH < self._chain_under(here):
+                now = not now
+            self._about_low = now
+            box = low if now else box
         shade = pygame.Surface(box.size, pygame.SRCALPHA)
         shade.fill((10, 12, 18, 215))
         self.screen.blit(shade, box.topleft)
@@ -141,6 +153,15 @@ class DrawMixin:
         for row in rows:
             self.screen.blit(body.render(row, True, render.TEXT), (box.x + 10, y))
             y += lh
+
+    def _chain_under(self, box: pygame.Rect) -> int:
+        """How many of the chain's link ends a card at ``box`` would hide."""
+        poly = self.session.sim.chain_polyline()
+        if len(poly) == 0:
+            return 0
+        pts = self.camera.to_screen(poly)
+        return int(np.count_nonzero((pts[:, 0] >= box.left) & (pts[:, 0] <= box.right)
+                                    & (pts[:, 1] >= box.top) & (pts[:, 1] <= box.bottom)))
 
     def _draw_overlay(self, ro) -> None:
         s = self.session

@@ -64,3 +64,19 @@ def test_the_bend_limit_has_a_slider_in_the_beaker_only():
     assert {"beaker.drop", "beaker.pile_depth", "chain.bend_limit"} <= paths("beaker")
     for name in ("classroom", "ideal_fold", "apparatus_floor"):
         assert "chain.bend_limit" not in paths(name)
+
+
+def test_the_what_to_watch_card_leaves_the_rising_fountain_in_view(tmp_path, monkeypatch):
+    """While the beaker forms, its chain rises into the top of the view: the level's card
+    moves to the bottom, where it hides fewer links (it covered the top for its first 6 s)."""
+    from chainfountain.app.session import Session
+    from chainfountain.app.window import App
+
+    monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
+    app = App(Session(_beaker()), size=(1280, 760), offscreen=True)
+    try:
+        while app.session.sim.time < 2.5:
+            app.run_frame()
+        assert app.about_visible and app._about_low
+    finally:
+        app.finish()
