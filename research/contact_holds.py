@@ -33,7 +33,8 @@ def run(name: str, duration: float, window: float, dt_factor: float,
 
     level = io.load(LEVELS / f"{name}.toml")
     if changes:
-        level = with_changes(level, {k: float(v) for k, v in changes.items()})
+        level = with_changes(level, {k: int(v) if v.isdigit() else float(v)
+                                      for k, v in changes.items()})
     cfg = level.sim
     cfg.solver.dt *= dt_factor
     sim = Simulation(cfg)

@@ -35,6 +35,7 @@ CONTROL_PATTERNS: tuple[str, ...] = (
     r"apparatus\.floor_depth",
     r"apparatus\.fold_clearance",
     r"apparatus\.bearing_drag",
+    r"apparatus\.swing_damper",
     r"carts\[\d+\]\.mass",
     r"carts\[\d+\]\.incline",
     r"(.*\.)?launch_speed",
@@ -62,6 +63,7 @@ LABELS: dict[str, str] = {
     "apparatus.floor_depth": "floor below end d",
     "apparatus.fold_clearance": "fold clearance",
     "apparatus.bearing_drag": "bearing drag c",
+    "apparatus.swing_damper": "swing damper c_s",
     "beaker.drop": "drop H (rim to floor)",
     "beaker.pile_depth": "pile below the rim",
     "chain.bend_limit": "largest bend per joint",
@@ -305,6 +307,7 @@ ONLY_FOR_VARIANT: dict[str, tuple[str, ...]] = {
     "apparatus.xi3": ("fold",),
     "apparatus.floor_depth": ("floor",),
     "apparatus.fold_clearance": ("fold",),
+    "apparatus.swing_damper": ("fold",),
 }
 """Apparatus fields that only the named ``apparatus.variant`` values use: for any other
 variant a slider would change nothing (xi3 is the lower table's height, and only

@@ -420,6 +420,10 @@ def _check_apparatus(level: Level, where: str) -> None:
               f"{a.pickup_rest_links!r} leaves the pick-up roller too little resting chain to "
               "roll on; allowed: 0 (as apparatus.rest_links) or at least 5")
     _check_apparatus_start(sim, where)
+    if a.swing_damper and a.variant != "fold":
+        _fail(where, "apparatus.swing_damper",
+              f"{a.swing_damper!r} N*s/m only applies to variant = 'fold' (it acts between the "
+              f"pick-up and the folding roller; here variant {a.variant!r}); allowed: 0")
     if a.fold_clearance and (a.variant != "fold" or a.plate != "groove"):
         _fail(where, "apparatus.fold_clearance",
               f"{a.fold_clearance!r} m only applies to variant = 'fold' with plate = 'groove' "

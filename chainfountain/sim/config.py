@@ -478,6 +478,14 @@ class ApparatusConfig:
         "roller unit (bearings and cart rolling resistance), a force -c*u on its carriage "
         "moving at u (about v/2). 0: loss-free bearings", min=0.0, max=10.0, live=True,
     )
+    swing_damper: float = param(
+        0.0, unit="N*s/m", doc="Variant 'fold': a dashpot c between the two roller "
+        "carriages, a force -c*(u_up - u_lo) on the upper and its opposite on the lower "
+        "(u: each carriage's speed). In a steady run both move at v/2 and it does nothing, "
+        "so the carts still choose the fountain; it damps the landing swing, in which the "
+        "pick-up and the fold run at different speeds (docs/apparatus.md). 0: none",
+        min=0.0, max=10.0, live=True,
+    )
     starter: float = param(
         0.0, unit="s", doc="Variant 'floor' from rest (initial.mode = 'stub'): the chain lies "
         "at rest from the upper table to a stub at the start, and a starter motor in the "

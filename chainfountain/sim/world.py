@@ -378,6 +378,8 @@ class Simulation:
             unit.set_cart_mass(v, self.config.apparatus.carriage_mass)
         elif path == "apparatus.bearing_drag":
             self.config.apparatus.bearing_drag = v  # read by an apparatus every step
+        elif path == "apparatus.swing_damper":
+            self.config.apparatus.swing_damper = v  # read by an apparatus every step
         elif path.startswith("rollers[") and path.endswith("].angular_speed"):
             i = int(path[len("rollers["):path.index("]")])
             self.set_roller_speed(i, v)

@@ -56,18 +56,9 @@ def load_on_path(path: Path) -> Level:
     return laid_on_path(io.load(path))
 
 
-UNDAMPED_SPECIAL = {"apparatus.swing_damper": 0.0, "apparatus.fold_clearance": 0.0,
-                    "carts[1].mass": 0.058}
-"""``apparatus_special`` as it was built before its swing damper: no damper, the lower
-table flush with the folding roller, the 58 g lower cart that balances it there. Its
-landing swing grows until the fold fails at about 18 s (docs/apparatus.md, "The landing
-swing"); the tests of the contact fold's own laws read this machine."""
-
-
 def load_undamped(path: Path) -> Level:
-    """The fold level at ``path`` without its swing damper (:data:`UNDAMPED_SPECIAL` for
-    ``apparatus_special``; others lose only the damper)."""
-    lvl = io.load(path)
-    changes = (UNDAMPED_SPECIAL if lvl.meta.name == "apparatus_special"
-               else {"apparatus.swing_damper": 0.0})
-    return with_changes(lvl, changes)
+    """The fold level at ``path`` without its swing damper (``apparatus.swing_damper = 0``):
+    the contact fold's own behaviour, whose landing swing grows until the fold fails
+    (``apparatus_special`` at about 18 s; docs/apparatus.md, "The landing swing"), which
+    the tests of the fold's laws read."""
+    return with_changes(io.load(path), {"apparatus.swing_damper": 0.0})

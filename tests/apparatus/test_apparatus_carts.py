@@ -43,9 +43,8 @@ import dataclasses
 from pathlib import Path
 
 import pytest
-from apparatus_runs import load_on_path
+from apparatus_runs import load_on_path, load_undamped
 
-from chainfountain.level import io
 from chainfountain.sim.apparatus import CART_GAIN_2CM
 from chainfountain.sim.cart_step import CartStep, cart_step
 
@@ -99,6 +98,6 @@ def test_rig_law_predicts_the_step_and_the_papers_gain_does_not(step: CartStep) 
 
 
 def test_cart_step_needs_a_floor_level() -> None:
-    cfg = io.load(LEVEL.parent / "apparatus_special.toml").sim
+    cfg = load_undamped(LEVEL.parent / "apparatus_special.toml").sim
     with pytest.raises(ValueError, match="variant = 'floor'"):
         cart_step(cfg, HEAVY)

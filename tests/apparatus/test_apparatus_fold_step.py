@@ -41,8 +41,8 @@ import dataclasses
 from pathlib import Path
 
 import pytest
+from apparatus_runs import load_undamped
 
-from chainfountain.level import io
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus import FoldCollapsed
 from chainfountain.sim.apparatus_report import report
@@ -53,7 +53,7 @@ pytestmark = pytest.mark.xdist_group("apparatus_fold_step")
 
 
 def _special(dt: float, clearance: float = 0.0, lower_cart: float = 0.058) -> SimConfig:
-    cfg = io.load(LEVEL).sim
+    cfg = load_undamped(LEVEL).sim
     assert cfg.apparatus.fold_clearance == 0.0 and cfg.carts[1].mass == 0.058
     carts = [cfg.carts[0], dataclasses.replace(cfg.carts[1], mass=lower_cart)]
     return dataclasses.replace(

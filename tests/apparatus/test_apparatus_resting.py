@@ -7,6 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from apparatus_runs import load_undamped
 
 from chainfountain.level import io
 from chainfountain.sim import Simulation
@@ -31,7 +32,7 @@ def _resting(sim: Simulation) -> tuple[int, int]:
 
 
 def test_pickup_side_keeps_its_own_count() -> None:
-    cfg = io.load(LEVEL).sim
+    cfg = load_undamped(LEVEL).sim
     a = cfg.apparatus
     assert (a.pickup_rest_links, a.rest_links) == (8, 20)
     sim = Simulation(cfg)

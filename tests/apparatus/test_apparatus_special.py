@@ -36,9 +36,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from apparatus_runs import run_fold
+from apparatus_runs import load_undamped, run_fold
 
-from chainfountain.level import io
 from chainfountain.sim.apparatus_report import pivot_offset
 
 LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_special.toml"
@@ -52,7 +51,7 @@ pytestmark = pytest.mark.xdist_group("apparatus_special")
 
 @pytest.fixture(scope="module")
 def run():
-    cfg = io.load(LEVEL).sim
+    cfg = load_undamped(LEVEL).sim
     a = cfg.apparatus
     assert (a.variant, a.xi2, a.xi3, a.plate_links, a.pickup_rest_links,
             cfg.solver.iterations, a.upper_guide) == ("fold", 0.5, 0.5, 20, 8, 15, "joints")

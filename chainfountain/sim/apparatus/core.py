@@ -259,6 +259,8 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
             if c:
                 f -= c * fastbody.get_velocity(h).x
             fastbody.apply_force_at_local_point(h, (f, 0.0), (0.0, 0.0))
+        if self.cfg.swing_damper and self.lower is not None:
+            self._damp_swing(self.cfg.swing_damper)
         if self.end_pull:
             self.chain.links[0].body.apply_force_at_world_point(
                 (self.end_pull, 0.0), self.chain.links[0].body.position)
@@ -266,6 +268,14 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
             self._apply_preload()
         if self.starting:
             self._drive_starter()
+
+    def _damp_swing(self, c: float) -> None:
+        """The swing damper (``apparatus.swing_damper``): ``-c*(u_up - u_lo)`` on the
+        upper carriage and its opposite on the lower; zero when both roll at one speed."""
+        hu, hl = fastbody.handle(self.upper.carriage), fastbody.handle(self.lower.carriage)
+        f = -c * (fastbody.get_velocity(hu).x - fastbody.get_velocity(hl).x)
+        fastbody.apply_force_at_local_point(hu, (f, 0.0), (0.0, 0.0))
+        fastbody.apply_force_at_local_point(hl, (-f, 0.0), (0.0, 0.0))
 
     def after_step(self, dt: float) -> None:
         """Move the plate ends with the rollers; add resting links ahead of the pick-up
