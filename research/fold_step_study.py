@@ -71,10 +71,12 @@ def _clamp_force(sim: Simulation, seconds: float) -> float:
 
 
 def fold_config(level: str, dt: float, clearance: float | None = None,
-                lower_cart: float | None = None, speed: float | None = None) -> SimConfig:
+                lower_cart: float | None = None, speed: float | None = None,
+                damper: float = 0.0) -> SimConfig:
     """A 'fold' level (a name in ``levels/`` or a ``.toml`` path) at solver step ``dt`` (s),
-    with the study's changes (``None``: as in the level). A missing, bad or non-fold level
-    stops the script with one line."""
+    with the study's changes (``None``: as in the level) and the swing damper ``damper``
+    (N s/m; 0 by default: these studies read the fold's own behaviour, not the shipped
+    presets' damped one). A missing, bad or non-fold level stops the script with one line."""
     path = Path(level) if level.endswith(".toml") else ROOT / "levels" / f"{level}.toml"
     try:
         cfg = io.load(path).sim
@@ -83,6 +85,7 @@ def fold_config(level: str, dt: float, clearance: float | None = None,
     a = cfg.apparatus
     if a is None or a.variant != "fold":
         raise SystemExit(f"{path.name}: not a 'fold' apparatus level")
+    a = dataclasses.replace(a, swing_damper=damper)
     if clearance is not None:
         a = dataclasses.replace(a, fold_clearance=clearance)
     if speed is not None:

@@ -76,6 +76,8 @@ def main(argv: list[str] | None = None) -> int:
         print(f"--level: {exc}", file=sys.stderr)
         return 2
     cfg = level.sim
+    if cfg.kind == "apparatus":  # the fold's own swing: without the presets' damper
+        cfg.apparatus.swing_damper = 0.0
     if cfg.kind != "apparatus" or cfg.apparatus.variant != "fold":
         print(f"--level: {args.level!r} is not a 'fold' apparatus level", file=sys.stderr)
         return 2

@@ -62,3 +62,11 @@ def load_undamped(path: Path) -> Level:
     (``apparatus_special`` at about 18 s; docs/apparatus.md, "The landing swing"), which
     the tests of the fold's laws read."""
     return with_changes(io.load(path), {"apparatus.swing_damper": 0.0})
+
+
+def load_real_geometry(path: Path) -> Level:
+    """The fold level at ``path`` in the real geometry without its swing damper: tables
+    sized by ``apparatus.duration`` (no treadmills), the rollers travelling at ``v/2``
+    (``apparatus_fold`` as the tests of the full arrangement read it)."""
+    return with_changes(io.load(path), {"apparatus.plate_links": 0,
+                                        "apparatus.swing_damper": 0.0})

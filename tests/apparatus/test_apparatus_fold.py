@@ -32,9 +32,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from apparatus_runs import run_fold
-
-from chainfountain.level import io
+from apparatus_runs import load_real_geometry, run_fold
 
 LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_fold.toml"
 CLEAN = (0.2, 2.5)
@@ -48,7 +46,7 @@ pytestmark = pytest.mark.xdist_group("apparatus_fold")
 
 @pytest.fixture(scope="module")
 def run():
-    cfg = io.load(LEVEL).sim
+    cfg = load_real_geometry(LEVEL).sim
     a = cfg.apparatus
     assert (a.variant, a.xi2, a.xi3, a.plate_links, a.pickup_rest_links,
             cfg.solver.iterations, a.upper_guide) == ("fold", 0.5, 0.303, 0, 8, 20, "joints")

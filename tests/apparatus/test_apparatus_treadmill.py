@@ -27,7 +27,7 @@ from pathlib import Path
 import numpy as np
 import pymunk
 import pytest
-from apparatus_runs import load_on_path
+from apparatus_runs import load_on_path, load_real_geometry
 
 from chainfountain.level import io
 from chainfountain.sim import Recorder, Simulation
@@ -168,7 +168,7 @@ def fold_runs():
     geometry (plate_links = 0, its upper table sized by duration)."""
     out = {}
     for n in (20, 0):
-        cfg = io.load(FOLD).sim
+        cfg = load_real_geometry(FOLD).sim
         assert cfg.apparatus.variant == "fold" and cfg.apparatus.plate_links == 0
         cfg = dataclasses.replace(cfg, apparatus=dataclasses.replace(
             cfg.apparatus, plate_links=n, duration=3.0))

@@ -88,7 +88,7 @@ def test_default_duration_of_a_table_sized_apparatus_is_its_own() -> None:
     from chainfountain.level import io as level_io
 
     levels = Path(__file__).resolve().parents[2] / "levels"
-    fold = level_io.load(levels / "apparatus_fold.toml")
+    fold = level_io.load(levels / "apparatus_limit.toml")
     assert fold.sim.apparatus.plate_links == 0
     assert default_duration(fold) == fold.sim.apparatus.duration  # the table is sized for it
     floor = level_io.load(levels / "apparatus_floor.toml")  # treadmill, from rest: forms

@@ -81,8 +81,9 @@ IMPOSSIBLE = [  # (level text, field, words in the message)
      ["only 'fold' uses it"]),
     (lf.SHIPPED["apparatus_floor"].replace("rollers = []", "rollers = [{}]"), "rollers",
      ["no effect"]),
-    (lf.SHIPPED["apparatus_fold"].replace("duration = 3.0", "duration = 600.0")
-     .replace("speed = 3.0", "speed = 30.0"), "apparatus.duration", ["treadmill"]),
+    (re.sub(r"^speed = .*$", "speed = 30.0", re.sub(r"^duration = .*$", "duration = 600.0",
+            lf.SHIPPED["apparatus_limit"], flags=re.M), flags=re.M),
+     "apparatus.duration", ["treadmill"]),
     (re.sub(r"^xi3 = .*$", "xi3 = 6.89e-07", lf.SHIPPED["apparatus_limit"], flags=re.M),
      "apparatus.xi3", ["too little for the end channel", "allowed: 0 or at least"]),
     (lf.SHIPPED["apparatus_fold"].replace("end_tension = 0.17", "end_tension = 0.6"),
