@@ -15,8 +15,10 @@ from __future__ import annotations
 import copy
 import dataclasses
 import math
+import sys
 import time
 import tomllib
+import traceback
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -367,6 +369,12 @@ class Session:
             self.paused = True
             self.stopped = str(exc)
             self.say(paused_message(str(exc)))
+        except Exception as exc:  # noqa: BLE001 - a bug: said plainly, details on stderr
+            traceback.print_exc(file=sys.stderr)
+            self.paused = True
+            self.stopped = (f"the simulation stopped on an internal error "
+                            f"({type(exc).__name__}; the details are on the terminal)")
+            self.say(paused_message(self.stopped))
 
     def _step_n(self, n: int) -> None:
         sim = self.sim

@@ -353,3 +353,37 @@ def test_window_keeps_an_apparatus_at_real_time() -> None:
     assert not r.ok and r.message.startswith("refused:") and "links moving" in r.message
     assert "level files" in r.message and s.value("apparatus.speed") == pytest.approx(2.98)
     assert s.set_field("apparatus.speed", 4.0).ok
+
+
+def test_an_internal_error_in_a_step_is_said_plainly(monkeypatch, capsys) -> None:
+    """Nothing raw from an exception reaches the screen: a bug in a step (here a division
+    by zero) pauses the window with one plain sentence naming the kind of error and
+    pointing to the terminal, where the traceback goes; R starts the level again."""
+    s = Session(small_level())
+
+    def broken() -> None:
+        raise ZeroDivisionError("float division by zero")
+
+    monkeypatch.setattr(s.sim, "step", broken)
+    s.advance(0.05)  # no exception escapes
+    shown = s.messages[-1][1]
+    assert s.paused and "internal error (ZeroDivisionError" in shown and "press R" in shown
+    assert "float division by zero" not in shown and "\n" not in shown
+    assert "float division by zero" in capsys.readouterr().err
+    s.reset()
+    assert s.stopped is None
+
+
+def test_level_files_and_run_accept_what_the_window_refuses(tmp_path) -> None:
+    """The guard-rails are the window's: a 30 m/s classroom, which the window refuses (about
+    0.03x real time), loads as a level and runs headless."""
+    import chainfountain
+    from chainfountain.app import budget
+    from chainfountain.study.changes import with_changes
+
+    lvl = io.load(Path(__file__).resolve().parents[2] / "levels" / "classroom.toml")
+    changes = {"feed.speed": 30.0, "solver.accuracy": 0.0}  # its own link length and step
+    fast = with_changes(lvl, changes)
+    assert budget.over_budget(fast.sim, lvl.sim) is not None
+    r = chainfountain.run("classroom", duration=0.05, changes=changes, out=tmp_path / "o")
+    assert r.summary["ended_early"] is None and r.summary["duration_s"] >= 0.05 - 1e-9
