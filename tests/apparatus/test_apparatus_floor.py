@@ -330,3 +330,20 @@ def test_a_start_that_cannot_work_is_refused_naming_the_field(change, field) -> 
 
     with pytest.raises(LevelError, match=field.replace(".", r"\.")):
         with_changes(io.load(LEVEL), change)
+
+
+def test_the_starter_runs_a_short_rise_up_and_says_when_it_cannot(monkeypatch) -> None:
+    """With a short rise (xi2 = 0.2) the guide's last straight holds one link; the starter
+    drives every link of the guide, so the chain still lands within 1 s. A chain that has
+    not landed within ``LAND_WITHIN`` s ends the run with one sentence (here forced by a
+    limit of 0.2 s), not a machine left standing with no message."""
+    from chainfountain.sim.apparatus import starter
+    from chainfountain.study.changes import with_changes
+
+    sim = Simulation(with_changes(io.load(LEVEL), {"apparatus.xi2": 0.2}).sim)
+    sim.advance(1.0)
+    assert sim.apparatus.absorbed > 0 and sim.apparatus.speed > 2.5
+    monkeypatch.setattr(starter, "LAND_WITHIN", 0.2)
+    sim = Simulation(io.load(LEVEL).sim)
+    with pytest.raises(starter.StarterFailed, match="the starter could not run the chain up"):
+        sim.advance(0.5)

@@ -11,8 +11,19 @@ settles at the speed the machine selects (a mixin of
 
 from __future__ import annotations
 
+import math
+
+from chainfountain.errors import RunEnded
+
 RAMP = 0.5
 """Time (s) over which the starter runs the chain up from rest to ``apparatus.speed``."""
+LAND_WITHIN = 10.0
+"""Time (s) by which a started chain must have reached the floor (it takes about 1 s)."""
+
+
+class StarterFailed(RunEnded):
+    """The starter could not run the chain up to the floor (raised by
+    :meth:`StarterPart._check_starter`)."""
 
 
 class StarterPart:
@@ -30,17 +41,38 @@ class StarterPart:
         return float(self.cfg.speed) * min(1.0, self._t / RAMP)
 
     def _drive_starter(self) -> None:
-        """Set the links in the upper guide's last straight moving along the launch line
-        at :attr:`starter_speed` (before each step; the solver passes the pull on)."""
+        """Set the links held in the upper guide moving along it at :attr:`starter_speed`
+        (before each step; the solver passes the pull on): along a straight's line, on a
+        bend along its tangent. (The last straight alone holds one link when the rise
+        ``xi2*H`` is short, too little to pull the chain.)"""
         v = self.starter_speed
-        vx, vy = v * self.launch_u[0], v * self.launch_u[1]
-        for link, _ in self._uq[-1]:
-            link.body.velocity = (vx, vy)
+        for el, q in zip(self.up_guide, self._uq, strict=True):
+            if el.kind == "line":
+                (ax, ay), (bx, by) = el.a, el.b
+                ln = math.hypot(bx - ax, by - ay)
+                vel = (v * (bx - ax) / ln, v * (by - ay) / ln)
+                for link, _ in q:
+                    link.body.velocity = vel
+                continue
+            cx, cy = el.a
+            turn = 1.0 if el.ccw else -1.0
+            for link, _ in q:
+                p = link.body.position
+                dx, dy = p.x - cx, p.y - cy
+                d = math.hypot(dx, dy) or 1.0
+                link.body.velocity = (-turn * v * dy / d, turn * v * dx / d)
 
     def _check_starter(self) -> None:
         """Let go :attr:`~chainfountain.sim.config.ApparatusConfig.starter` seconds after
-        the first link has reached the floor."""
+        the first link has reached the floor; end the run with one sentence if the chain
+        has not landed within :data:`LAND_WITHIN` s (the starter could not run it up)."""
         if self._hand_over is None and self.absorbed > 0:
             self._hand_over = self._t + float(self.cfg.starter)
         if self._hand_over is not None and self._t >= self._hand_over:
             self.starting = False
+        elif self._hand_over is None and self._t > LAND_WITHIN:
+            raise StarterFailed(
+                f"t = {self._t:.2f} s: the starter could not run the chain up (it moves at "
+                f"{self.speed:.2g} m/s and has not reached the floor): the carts hold it "
+                "harder than the starter pulls; make the upper cart lighter (carts[0].mass) "
+                "or raise the guide (apparatus.xi2)")
