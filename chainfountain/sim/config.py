@@ -489,7 +489,7 @@ class ApparatusConfig:
     starter: float = param(
         0.0, unit="s", doc="Variant 'floor' from rest (initial.mode = 'stub'): the chain lies "
         "at rest from the upper table to a stub at the start, and a starter motor in the "
-        "upper guide's last straight runs it up to apparatus.speed (over 0.5 s) and holds it "
+        "upper guide runs it up to apparatus.speed (over 0.5 s) and holds it "
         "there until the chain has landed and this long after; then the carts and the fall "
         "alone drive it (a real machine is started by hand). Needs upper_guide = 'joints'. "
         "0: no starter, the chain starts laid along its path at apparatus.speed",

@@ -1,8 +1,8 @@
 """Starting the machine from rest (``initial.mode = "stub"``, ``apparatus.starter > 0``).
 
 A real chain-fountain machine is started by hand: at rest its carts hold the chain and
-nothing falls. The starter is that hand, a motor in the upper joint guide's last straight:
-it runs the links there along the launch line, from rest up to ``apparatus.speed`` over
+nothing falls. The starter is that hand, a motor in the upper joint guide: it runs the
+links held there along the guide, from rest up to ``apparatus.speed`` over
 :data:`RAMP` s, and holds that speed until the chain has landed and ``apparatus.starter``
 seconds after. Then it lets go, and the carts and the fall alone drive the chain, which
 settles at the speed the machine selects (a mixin of
@@ -75,4 +75,4 @@ class StarterPart:
                 f"t = {self._t:.2f} s: the starter could not run the chain up (it moves at "
                 f"{self.speed:.2g} m/s and has not reached the floor): the carts hold it "
                 "harder than the starter pulls; make the upper cart lighter (carts[0].mass) "
-                "or raise the guide (apparatus.xi2)")
+                "or lift the chain less (a smaller apparatus.xi2)")
