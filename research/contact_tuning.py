@@ -23,35 +23,19 @@ Cost: 15 points of 20 s at about 3x real time: about 1 min on two cores.
 
 from __future__ import annotations
 
-import argparse
 import sys
-from pathlib import Path
 
 import numpy as np
+from ideal_tuning import run_grid, tuning_args  # sibling script (research/ on sys.path)
 
-ROOT = Path(__file__).resolve().parents[1]
 MASSES = (0.005, 0.009, 0.013, 0.017, 0.021)
 XI2 = (0.2, 0.3, 0.4)
 KEY = "apparatus_speed_selection_"
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--out", type=Path, required=True)
-    ap.add_argument("--duration", type=float, default=20.0)
-    ap.add_argument("--jobs", type=int, default=2)
-    ap.add_argument("--figure", type=Path)
-    a = ap.parse_args(argv)
-    a.out.mkdir(parents=True, exist_ok=True)
-    sweep_file = a.out / "tuning.toml"
-    sweep_file.write_text(
-        f'base = "{ROOT / "levels" / "apparatus_floor.toml"}"\nduration = {a.duration}\n'
-        f'[grid]\n"carts[0].mass" = {list(MASSES)}\n"apparatus.xi2" = {list(XI2)}\n')
-    from chainfountain.study import sweep
-
-    sw = sweep.load(sweep_file)
-    sweep.execute(sw, a.out, jobs=a.jobs)
-    rows = sweep.collect(sw, a.out)
+    a = tuning_args(__doc__, 20.0, argv)
+    rows = run_grid("apparatus_floor", {"carts[0].mass": MASSES, "apparatus.xi2": XI2}, a)
     print(f"{'cart g':>7s} {'xi2':>5s} {'status':>8s} {'paper':>7s} {'rig law':>8s} "
           f"{'measured':>9s} {'vs rig':>8s}")
     pts = []

@@ -27,23 +27,36 @@ LOWER = (0.14, 0.17, 0.2, 0.23, 0.26)
 XI2 = (0.15, 0.25, 0.35)
 
 
-def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+def tuning_args(doc: str, duration: float, argv: list[str] | None) -> argparse.Namespace:
+    """The tuning scripts' options: ``--out`` (required), ``--duration``, ``--jobs``,
+    ``--figure``."""
+    ap = argparse.ArgumentParser(description=doc.split("\n\n")[0])
     ap.add_argument("--out", type=Path, required=True)
-    ap.add_argument("--duration", type=float, default=25.0)
+    ap.add_argument("--duration", type=float, default=duration)
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--figure", type=Path)
-    a = ap.parse_args(argv)
+    return ap.parse_args(argv)
+
+
+def run_grid(level: str, grid: dict[str, tuple[float, ...]], a: argparse.Namespace
+             ) -> list[dict]:
+    """Sweep the shipped ``level`` over ``grid`` (field: values) for ``a.duration`` s per
+    point into ``a.out`` on ``a.jobs`` processes (``chainfountain sweep``); its rows."""
     a.out.mkdir(parents=True, exist_ok=True)
     sweep_file = a.out / "tuning.toml"
-    sweep_file.write_text(
-        f'base = "{ROOT / "levels" / "ideal_fold.toml"}"\nduration = {a.duration}\n[grid]\n'
-        f'"feed.lower_cart_force" = {list(LOWER)}\n"feed.xi2" = {list(XI2)}\n')
+    lines = "".join(f'"{k}" = {list(v)}\n' for k, v in grid.items())
+    sweep_file.write_text(f'base = "{ROOT / "levels" / f"{level}.toml"}"\n'
+                          f"duration = {a.duration}\n[grid]\n{lines}")
     from chainfountain.study import sweep
 
     sw = sweep.load(sweep_file)
     sweep.execute(sw, a.out, jobs=a.jobs)
-    rows = sweep.collect(sw, a.out)
+    return sweep.collect(sw, a.out)
+
+
+def main(argv: list[str] | None = None) -> int:
+    a = tuning_args(__doc__, 25.0, argv)
+    rows = run_grid("ideal_fold", {"feed.lower_cart_force": LOWER, "feed.xi2": XI2}, a)
     print(f"{'F_lc N':>7s} {'xi2':>5s} {'status':>8s} {'paper v':>8s} {'measured':>9s} "
           f"{'error':>8s}")
     pts = []
