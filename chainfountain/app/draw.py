@@ -137,12 +137,11 @@ class DrawMixin:
         box = pygame.Rect(rect.x + 10, render.px(72), width, render.px(34) + lh * len(rows))
         low = box.move(0, rect.bottom - render.px(40) - box.bottom)
         if low.top > box.bottom:  # room for both: the one hiding less, without flicker
-            now = getattr(self, "_about_low", False)
-            here, there = (low, box) if now else (box, low)
-            if self._chain_under(there) + ABOUT_SWITCH < self._chain_under(here):
-                now = not now
-            self._about_low = now
-            box = low if now else box
+            at_top, at_low = self._chain_under((box, low))
+            hidden, other = (at_low, at_top) if self._about_low else (at_top, at_low)
+            if other + ABOUT_SWITCH < hidden:
+                self._about_low = not self._about_low
+            box = low if self._about_low else box
         shade = pygame.Surface(box.size, pygame.SRCALPHA)
         shade.fill((10, 12, 18, 215))
         self.screen.blit(shade, box.topleft)
@@ -154,14 +153,14 @@ class DrawMixin:
             self.screen.blit(body.render(row, True, render.TEXT), (box.x + 10, y))
             y += lh
 
-    def _chain_under(self, box: pygame.Rect) -> int:
-        """How many of the chain's link ends a card at ``box`` would hide."""
+    def _chain_under(self, boxes: tuple[pygame.Rect, ...]) -> list[int]:
+        """How many of the chain's link ends a card at each of ``boxes`` would hide."""
         poly = self.session.sim.chain_polyline()
         if len(poly) == 0:
-            return 0
-        pts = self.camera.to_screen(poly)
-        return int(np.count_nonzero((pts[:, 0] >= box.left) & (pts[:, 0] <= box.right)
-                                    & (pts[:, 1] >= box.top) & (pts[:, 1] <= box.bottom)))
+            return [0] * len(boxes)
+        x, y = self.camera.to_screen(poly).T
+        return [int(np.count_nonzero((x >= b.left) & (x <= b.right) & (y >= b.top)
+                                     & (y <= b.bottom))) for b in boxes]
 
     def _draw_overlay(self, ro) -> None:
         s = self.session

@@ -142,6 +142,8 @@ class App(InputMixin, DrawMixin):
         """The level's description on the view (I); shown again whenever a level opens,
         for its first :data:`~chainfountain.app.draw.ABOUT_SECONDS` of simulated time
         unless I pinned it."""
+        self._about_low = False
+        """The level's card is at the bottom of the view (:meth:`_draw_about`)."""
         self.about_pinned = False
         """I showed the description: it stays until I hides it."""
         self.show_theory = True
