@@ -26,7 +26,11 @@ from __future__ import annotations
 import sys
 
 import numpy as np
-from ideal_tuning import run_grid, tuning_args  # sibling script (research/ on sys.path)
+from ideal_tuning import (  # sibling script (research/ on sys.path)
+    run_grid,
+    save_figure,
+    tuning_args,
+)
 
 MASSES = (0.005, 0.009, 0.013, 0.017, 0.021)
 XI2 = (0.2, 0.3, 0.4)
@@ -73,12 +77,7 @@ def main(argv: list[str] | None = None) -> int:
         ax.set_ylabel("chain speed (m/s)")
         ax.set_title(f"apparatus_floor from rest: selected speed, last 2 s of {a.duration:g}-s "
                      "runs", fontsize=10)
-        ax.legend(fontsize=7)
-        ax.grid(alpha=0.3)
-        fig.tight_layout()
-        a.figure.parent.mkdir(parents=True, exist_ok=True)
-        fig.savefig(a.figure)
-        print(f"wrote {a.figure}")
+        save_figure(fig, ax, a.figure, 7)
     return 0
 
 

@@ -54,6 +54,16 @@ def run_grid(level: str, grid: dict[str, tuple[float, ...]], a: argparse.Namespa
     return sweep.collect(sw, a.out)
 
 
+def save_figure(fig, ax, path: Path, legend_size: int) -> None:  # noqa: ANN001 (matplotlib)
+    """The tuning figures' common end: legend, grid, layout, written to ``path``."""
+    ax.legend(fontsize=legend_size)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path)
+    print(f"wrote {path}")
+
+
 def main(argv: list[str] | None = None) -> int:
     a = tuning_args(__doc__, 25.0, argv)
     rows = run_grid("ideal_fold", {"feed.lower_cart_force": LOWER, "feed.xi2": XI2}, a)
@@ -86,12 +96,7 @@ def main(argv: list[str] | None = None) -> int:
         ax.set_xlabel("lower cart F_lc (N)")
         ax.set_ylabel("chain speed (m/s)")
         ax.set_title(f"ideal_fold: selected speed, last 2 s of {a.duration:g}-s runs", fontsize=10)
-        ax.legend(fontsize=8)
-        ax.grid(alpha=0.3)
-        fig.tight_layout()
-        a.figure.parent.mkdir(parents=True, exist_ok=True)
-        fig.savefig(a.figure)
-        print(f"wrote {a.figure}")
+        save_figure(fig, ax, a.figure, 8)
     return 0
 
 
