@@ -146,11 +146,11 @@ class DrawMixin:
         shade.fill((10, 12, 18, 215))
         self.screen.blit(shade, box.topleft)
         pygame.draw.rect(self.screen, render.DIM, box, 1, 6)
-        self.screen.blit(head.render(f"{self.session.name}: what to watch   (I hides this)",
+        self.screen.blit(render.text(head, f"{self.session.name}: what to watch   (I hides this)",
                                      True, render.SPEED_COL), (box.x + 10, box.y + render.px(8)))
         y = box.y + render.px(30)
         for row in rows:
-            self.screen.blit(body.render(row, True, render.TEXT), (box.x + 10, y))
+            self.screen.blit(render.text(body, row, True, render.TEXT), (box.x + 10, y))
             y += lh
 
     def _chain_under(self, boxes: tuple[pygame.Rect, ...]) -> list[int]:
@@ -178,15 +178,15 @@ class DrawMixin:
         x = rect.x + 10
         head = f"t = {s.sim.time:7.2f} s   links {s.sim.n_free} free"
         scr = self.screen
-        scr.blit(f.render(head, True, render.TEXT), (x, render.px(8)))
+        scr.blit(render.text(f, head, True, render.TEXT), (x, render.px(8)))
         rtf_col = render.WARN if s.behind else render.DIM
         speed = (f"off-screen: {s.speed_factor / self.fps * 1e3:.1f} ms simulated per frame"
                  if self.offscreen else
                  f"real-time factor {s.rtf:4.2f}  ({self.fps_measured:4.1f} fps)")
-        scr.blit(render.font(18).render(speed, True, rtf_col), (x, render.px(28)))
+        scr.blit(render.text(render.font(18), speed, True, rtf_col), (x, render.px(28)))
         xx = x
         for txt, col in state:
-            surf = f.render(txt, True, col)
+            surf = render.text(f, txt, True, col)
             scr.blit(surf, (xx, render.px(48)))
             xx += surf.get_width() + 14
         # status messages (newest last), shown for 6 s, wrapped to the view's width; why
@@ -200,13 +200,13 @@ class DrawMixin:
         lh = small.get_linesize()
         y = rect.bottom - render.px(44) - lh * len(rows)
         for m in rows:
-            img = small.render(m, True, render.TEXT)
+            img = render.text(small, m, True, render.TEXT)
             bg = pygame.Surface((img.get_width() + 8, img.get_height() + 2), pygame.SRCALPHA)
             bg.fill((0, 0, 0, 150))
             scr.blit(bg, (rect.x + 6, y - 1))
             scr.blit(img, (rect.x + 10, y))
             y += lh
-        hint = render.font(16).render("H: help", True, render.DIM)
+        hint = render.text(render.font(16), "H: help", True, render.DIM)
         scr.blit(hint, (rect.right - hint.get_width() - 8, render.px(8)))
 
     def _draw_right(self, ro) -> None:
@@ -236,10 +236,10 @@ class DrawMixin:
         f, sym_f = render.font(19), render.font(17)
         y = render.px(8)
         for row in rows:
-            self.screen.blit(f.render(row.text, True, ROW_COLOURS[row.colour]),
+            self.screen.blit(render.text(f, row.text, True, ROW_COLOURS[row.colour]),
                              (rect.x + 8, y))
             if row.symbol:
-                img = sym_f.render(row.symbol, True, render.DIM)
+                img = render.text(sym_f, row.symbol, True, render.DIM)
                 self.screen.blit(img, (rect.right - img.get_width() - 10, y + 1))
             y += f.get_linesize() + 1
         return y
@@ -372,12 +372,12 @@ class DrawMixin:
         scr.blit(shade, box.topleft)
         pygame.draw.rect(scr, render.DIM, box, 1, 6)
         f = render.font(22)
-        scr.blit(f.render("Keys and mouse  (H, F1 or Esc closes)", True, render.TEXT),
+        scr.blit(render.text(f, "Keys and mouse  (H, F1 or Esc closes)", True, render.TEXT),
                  (box.x + 16, box.y + render.px(14)))
         y = box.y + render.px(46)
         for key, what in KEYS:
-            scr.blit(small.render(key, True, render.SPEED_COL), (box.x + 20, y))
-            scr.blit(small.render(what, True, render.TEXT), (box.x + render.px(210), y))
+            scr.blit(render.text(small, key, True, render.SPEED_COL), (box.x + 20, y))
+            scr.blit(render.text(small, what, True, render.TEXT), (box.x + render.px(210), y))
             y += lh
 
     # ------------------------------------------------------------------ main loop

@@ -8,6 +8,7 @@ changes the model.
 from __future__ import annotations
 
 import math
+from collections import OrderedDict
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -78,10 +79,48 @@ def font(size: int) -> pygame.font.Font:
 
 _FONTS: dict[int, pygame.font.Font] = {}
 
+TEXT_CACHE = 1024
+"""Most rendered texts (and wrapped paragraphs) kept for the next frames: a frame draws
+the same labels again, and rendering and measuring text cost about a third of drawing."""
+_TEXTS: OrderedDict[tuple, pygame.Surface] = OrderedDict()
+_WRAPS: OrderedDict[tuple, list[str]] = OrderedDict()
+
+
+def _remember(cache: OrderedDict, key: tuple, value: object) -> None:
+    cache[key] = value
+    if len(cache) > TEXT_CACHE:
+        cache.popitem(last=False)
+
+
+def text(f: pygame.font.Font, s: str, antialias: bool,
+         colour: tuple[int, int, int] | pygame.Color) -> pygame.Surface:
+    """``f.render(s, antialias, colour)``, kept for the next frames (at most
+    :data:`TEXT_CACHE` texts, the least recently drawn forgotten first). The surface is
+    shared: blit it, do not draw on it."""
+    key = (id(f), s, antialias, tuple(colour))
+    img = _TEXTS.get(key)
+    if img is None:
+        img = f.render(s, antialias, colour)
+        _remember(_TEXTS, key, img)
+    else:
+        _TEXTS.move_to_end(key)
+    return img
+
 
 def wrap(f: pygame.font.Font, text: str, width: int) -> list[str]:
     """``text`` split at spaces into lines no wider than ``width`` pixels in font ``f``
-    (a single word wider than that gets a line of its own)."""
+    (a single word wider than that gets a line of its own; kept like :func:`text`)."""
+    key = (id(f), text, width)
+    rows = _WRAPS.get(key)
+    if rows is None:
+        rows = _wrap(f, text, width)
+        _remember(_WRAPS, key, rows)
+    else:
+        _WRAPS.move_to_end(key)
+    return list(rows)
+
+
+def _wrap(f: pygame.font.Font, text: str, width: int) -> list[str]:
     lines: list[str] = []
     cur = ""
     for word in text.split():
@@ -241,7 +280,7 @@ def draw_scene(surf: pygame.Surface, cam: Camera, sim: Simulation, readout: Read
         if band.top < rect.bottom:
             surf.blit(_shade(band.size, ABSORB, 60), band.topleft)
         pygame.draw.line(surf, ABSORB, (rect.x, y), (rect.right, y), 2)
-        label = font(16).render(_floor_label(sim), True, ABSORB)
+        label = text(font(16), _floor_label(sim), True, ABSORB)
         surf.blit(label, (rect.x + 8, y + 4))
     vessel = sim.vessel_geometry()
     if vessel is not None:
@@ -309,7 +348,7 @@ def _part_labels(surf: pygame.Surface, cam: Camera, sim: Simulation) -> None:
     f = font(16)
     for lb in sim.part_labels():
         ax, ay = cam.point(lb.x, lb.y)
-        img = f.render(lb.text, True, LABEL)
+        img = text(f, lb.text, True, LABEL)
         w, h = img.get_size()
         out = (h + 4) * lb.tier
         if lb.side == "above":
@@ -342,12 +381,12 @@ def _height_marker(surf: pygame.Surface, cam: Camera, ro: Readout) -> None:
         _dashed(surf, VERTEX, (x0, y0), (vx, vy + 2), 4.0, 1)
         pygame.draw.polygon(surf, VERTEX, [(vx, vy + 1), (vx - 4, vy + 9), (vx + 4, vy + 9)])
     f = font(18)
-    label = f.render(f"top: {ro.h:.2f} m above the {ro.origin}", True, VERTEX)
+    label = text(f, f"top: {ro.h:.2f} m above the {ro.origin}", True, VERTEX)
     surf.blit(label, (vx + half + 6, vy - label.get_height() // 2))
     if math.isfinite(ro.paper_h):
         py = cam.point(0.0, ro.paper_h)[1]
         pygame.draw.line(surf, THEORY, (vx + half - 16, py), (vx + half, py), 2)
-        txt = f.render(f"paper: {ro.paper_h:.2f} m", True, THEORY)
+        txt = text(f, f"paper: {ro.paper_h:.2f} m", True, THEORY)
         dy = txt.get_height() if abs(py - vy) < txt.get_height() else 0
         surf.blit(txt, (vx + half + 6, py - txt.get_height() // 2 + (dy if py >= vy else -dy)))
 
@@ -393,7 +432,7 @@ def _draw_guide(surf: pygame.Surface, cam: Camera, sim: Simulation) -> None:
     if piston is not None:  # an ideal machine's upper half
         what = ("starter motor (the machine's laws take over once the fountain has formed):"
                 if piston.starting else "pick-up (paper's law), lift xi2*H, upper cart:")
-    lbl = font(16).render(f"{what} {sim.feed.speed:.2f} m/s", True, GUIDE)
+    lbl = text(font(16), f"{what} {sim.feed.speed:.2f} m/s", True, GUIDE)
     x = box.left - lbl.get_width() - 4
     if x < cam.rect.left + 2:  # no room on the left: put it below the motor box
         surf.blit(lbl, (box.left, box.bottom + 2))
@@ -413,7 +452,7 @@ def _scale_bar(surf: pygame.Surface, cam: Camera) -> None:
     for x in (x0, x0 + bar):
         pygame.draw.line(surf, TEXT, (x, y0 - 5), (x, y0 + 5), 2)
     txt = f"{length:g} m" if length >= 0.01 else f"{length * 1000:g} mm"
-    lbl = font(18).render(txt, True, TEXT)
+    lbl = text(font(18), txt, True, TEXT)
     surf.blit(lbl, (x0 + bar // 2 - lbl.get_width() // 2, y0 - 6 - lbl.get_height()))
 
 
@@ -448,7 +487,7 @@ def draw_plot(surf: pygame.Surface, rect: pygame.Rect, title: str, xlabel: str,
     """
     pygame.draw.rect(surf, (28, 34, 45), rect, 0, 4)
     f = font(16)
-    surf.blit(f.render(title, True, TEXT), (rect.x + 6, rect.y + px(4)))
+    surf.blit(text(f, title, True, TEXT), (rect.x + 6, rect.y + px(4)))
     inner = pygame.Rect(rect.x + px(40), rect.y + px(22), rect.w - px(50), rect.h - px(44))
     if inner.w < 20 or inner.h < 20:
         return
@@ -481,22 +520,22 @@ def draw_plot(surf: pygame.Surface, rect: pygame.Rect, title: str, xlabel: str,
             band = pygame.Rect(inner.x, int(sy(b)), inner.w, max(1, int(sy(a) - sy(b))))
             surf.blit(_shade(band.size, col, 45), band.topleft)
             if label:  # written last, over the grid and the curves
-                img = font(14).render(label[0], True, col)
+                img = text(font(14), label[0], True, col)
                 band_labels.append((img, (band.right - img.get_width() - 4, band.y + 3)))
     # axes and ticks
     small = font(14)
     for val in _ticks(y0, y1, 4):
         yy = int(sy(val))
         pygame.draw.line(surf, GRID, (inner.x, yy), (inner.right, yy), 1)
-        lbl = small.render(f"{val:g}", True, DIM)
+        lbl = text(small, f"{val:g}", True, DIM)
         surf.blit(lbl, (inner.x - lbl.get_width() - 4, yy - lbl.get_height() // 2))
     for val in _ticks(x0, x1, 5):
         xx = int(sx(val))
         pygame.draw.line(surf, GRID, (xx, inner.y), (xx, inner.bottom), 1)
-        lbl = small.render(f"{val:g}", True, DIM)
+        lbl = text(small, f"{val:g}", True, DIM)
         surf.blit(lbl, (xx - lbl.get_width() // 2, inner.bottom + 3))
     pygame.draw.rect(surf, DIM, inner, 1)
-    xl = small.render(xlabel, True, DIM)
+    xl = text(small, xlabel, True, DIM)
     surf.blit(xl, (inner.right - xl.get_width(), inner.bottom + 3 + small.get_height()))
     surf.set_clip(inner)
     for s in series:
@@ -522,7 +561,7 @@ def draw_plot(surf: pygame.Surface, rect: pygame.Rect, title: str, xlabel: str,
     # legend
     lx = rect.right - 8
     for s in reversed([s for s in series if s.label]):
-        lbl = small.render(s.label, True, s.colour)
+        lbl = text(small, s.label, True, s.colour)
         lx -= lbl.get_width()
         surf.blit(lbl, (lx, rect.y + 6))
         lx -= 12
@@ -546,6 +585,6 @@ def text_block(surf: pygame.Surface, pos: tuple[int, int], lines: Sequence[tuple
     x, y = pos
     lh = line_h or int(size * 0.95)
     for txt, col in lines:
-        surf.blit(f.render(txt, True, col), (x, y))
+        surf.blit(text(f, txt, True, col), (x, y))
         y += lh
     return y

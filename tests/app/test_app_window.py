@@ -603,3 +603,19 @@ def test_p_switches_projector_mode_and_everything_grows_with_it(app):
     key(app, pygame.K_h)
     key(app, pygame.K_p)
     assert not app.projector and render.text_scale() == pytest.approx(1080 / 760)
+
+
+def test_rendered_text_is_kept_and_bounded(app):
+    """A frame's labels are rendered once and drawn again from the cache; the cache keeps
+    at most TEXT_CACHE texts however many different ones a long run draws (the time
+    line's text changes every frame)."""
+    f = render.font(18)
+    first = render.text(f, "speed 3.00 m/s", True, render.TEXT)
+    assert render.text(f, "speed 3.00 m/s", True, render.TEXT) is first
+    assert render.text(f, "speed 3.00 m/s", True, render.DIM) is not first
+    for i in range(render.TEXT_CACHE + 50):
+        render.text(f, f"t = {i * 0.01:7.2f} s", True, render.TEXT)
+        render.wrap(f, f"a long paragraph number {i} " * 4, 120)
+    assert len(render._TEXTS) <= render.TEXT_CACHE
+    assert len(render._WRAPS) <= render.TEXT_CACHE
+    assert render.wrap(f, "one two three", 10_000) == ["one two three"]
