@@ -382,13 +382,19 @@ def _height_marker(surf: pygame.Surface, cam: Camera, ro: Readout) -> None:
         pygame.draw.polygon(surf, VERTEX, [(vx, vy + 1), (vx - 4, vy + 9), (vx + 4, vy + 9)])
     f = font(18)
     label = text(f, f"top: {ro.h:.2f} m above the {ro.origin}", True, VERTEX)
-    surf.blit(label, (vx + half + 6, vy - label.get_height() // 2))
+    # right of the level line, or left of it when the view ends first (never cut off)
+    right = vx + half + 6 + label.get_width() <= cam.rect.right - 4
+    lx = vx + half + 6 if right else vx - half - 6 - label.get_width()
+    lx = max(cam.rect.left + 4, lx)
+    surf.blit(label, (lx, vy - label.get_height() // 2))
     if math.isfinite(ro.paper_h):
         py = cam.point(0.0, ro.paper_h)[1]
-        pygame.draw.line(surf, THEORY, (vx + half - 16, py), (vx + half, py), 2)
+        tick = (vx + half - 16, vx + half) if right else (vx - half, vx - half + 16)
+        pygame.draw.line(surf, THEORY, (tick[0], py), (tick[1], py), 2)
         txt = text(f, f"paper: {ro.paper_h:.2f} m", True, THEORY)
         dy = txt.get_height() if abs(py - vy) < txt.get_height() else 0
-        surf.blit(txt, (vx + half + 6, py - txt.get_height() // 2 + (dy if py >= vy else -dy)))
+        tx = vx + half + 6 if right else max(cam.rect.left + 4, vx - half - 6 - txt.get_width())
+        surf.blit(txt, (tx, py - txt.get_height() // 2 + (dy if py >= vy else -dy)))
 
 
 def _grid(surf: pygame.Surface, cam: Camera) -> None:
