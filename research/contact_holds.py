@@ -24,6 +24,16 @@ import numpy as np
 LEVELS = Path(__file__).resolve().parents[1] / "levels"
 
 
+def _value(text: str) -> int | float | str:
+    """A ``--set`` value: a whole number, a number, or a word (``joints``)."""
+    if text.lstrip("-").isdigit():
+        return int(text)
+    try:
+        return float(text)
+    except ValueError:
+        return text
+
+
 def run(name: str, duration: float, window: float, dt_factor: float,
         changes: dict[str, str]) -> dict:
     """One run; per-window figures and the end."""
@@ -33,8 +43,7 @@ def run(name: str, duration: float, window: float, dt_factor: float,
 
     level = io.load(LEVELS / f"{name}.toml")
     if changes:
-        level = with_changes(level, {k: int(v) if v.isdigit() else float(v)
-                                      for k, v in changes.items()})
+        level = with_changes(level, {k: _value(v) for k, v in changes.items()})
     cfg = level.sim
     cfg.solver.dt *= dt_factor
     sim = Simulation(cfg)
