@@ -3,6 +3,11 @@
     .venv/bin/python benchmarks/bench_apparatus.py [--seconds 6] [--repeat 3] [--only special]
     .venv/bin/python benchmarks/bench_apparatus.py --only special --upper-guide walls joints
     .venv/bin/python benchmarks/bench_apparatus.py --figure docs/img/apparatus_floor.png
+    .venv/bin/python benchmarks/bench_apparatus.py --overhead [--only fold]
+
+``--overhead`` times each preset's ``Simulation.step`` against the ``space.step`` inside it
+(wall clock, 4000 steps after 500, each preset laid along its path): the apparatus's
+per-step bookkeeping (cart forces, guides, treadmills, absorbing) is the difference.
 
 ``--figure`` instead runs the two floor presets (6 s and 5 s) and the 9 g one
 started at 3.1 m/s (about 25 s of wall time) and draws the chain speed against
@@ -22,6 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
+from chainfountain.errors import RunEnded
 from chainfountain.headless import default_duration
 from chainfountain.level import io
 from chainfountain.sim import Recorder, Simulation
@@ -64,6 +70,40 @@ def bench(seconds: float, repeat: int = 1, only: str = "",
             best, med = min(w), float(np.median(w))
             print(f"| {path.stem} ({T:g} s) | {cfg.apparatus.upper_guide} | {n0}/{n1} | "
                   f"{steps / best:.0f} | {T / best:.2f} / {T / med:.2f} |", flush=True)
+
+
+def overhead(only: str = "", steps: int = 4000, warmup: int = 500) -> None:
+    """Markdown table: microseconds per ``Simulation.step`` and per ``space.step`` inside it
+    for each apparatus preset (names containing ``only``), and their ratio."""
+    print("| preset | links | step (us) | space.step (us) | step / space.step |")
+    print("|---|---|---|---|---|")
+    for path in sorted((ROOT / "levels").glob("apparatus_*.toml")):
+        if only not in path.stem:
+            continue
+        sim = Simulation(laid_on_path(io.load(path)).sim)
+        sim.advance(warmup * sim.dt)
+        inner = [0.0]
+        space_step = sim.space.step
+
+        def timed(dt: float, _step=space_step, _acc=inner) -> None:
+            t = time.perf_counter()
+            _step(dt)
+            _acc[0] += time.perf_counter() - t
+
+        sim.space.step = timed  # type: ignore[method-assign]
+        n = min(steps, int(round(default_duration(io.load(path)) / sim.dt)) - warmup)
+        t0 = time.perf_counter()
+        done, note = 0, ""
+        try:
+            for _ in range(n):
+                sim.step()
+                done += 1
+        except RunEnded:  # apparatus_limit's fold: timed up to its end
+            note = f" (its run ends at {sim.time:.2f} s)"
+        total = time.perf_counter() - t0
+        n = max(done, 1)
+        print(f"| {path.stem}{note} | {sim.n_links} | {total / n * 1e6:.0f} | "
+              f"{inner[0] / n * 1e6:.0f} | {total / inner[0]:.2f} |", flush=True)
 
 
 def figure(out: Path) -> None:
@@ -143,6 +183,8 @@ def main() -> None:
                     help="runs per preset; the table gives the best and the median")
     ap.add_argument("--only", default="", help="only presets whose name contains this")
     ap.add_argument("--figure", type=Path, default=None, help="draw the speed-selection figure")
+    ap.add_argument("--overhead", action="store_true",
+                    help="time each preset's step against the space.step inside it")
     ap.add_argument("--upper-guide", nargs="+", default=[None], choices=("walls", "joints"),
                     help="build each preset with these apparatus.upper_guide values "
                     "(default: as in the level)")
@@ -155,6 +197,8 @@ def main() -> None:
                  f"{', '.join(names)}")
     if args.figure is not None:
         figure(args.figure)
+    elif args.overhead:
+        overhead(args.only)
     else:
         bench(args.seconds, args.repeat, args.only, tuple(args.upper_guide))
 
