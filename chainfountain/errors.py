@@ -13,7 +13,16 @@ class RunEnded(UserError):
     """The simulated machine cannot go on (an apparatus table used up, the fold
     collapsed). Not bad input: ``chainfountain run`` writes its outputs for the part
     that was simulated, marks ``summary.json`` ``ended_early`` and exits with status 3;
-    the window pauses and shows the message."""
+    the window pauses and shows the message.
+
+    A message longer than a sentence (the fold's collapse explains its cause at length)
+    comes with ``plain``: one sentence of what happened and what to change, which the
+    window shows while the full message goes to the terminal. Without it ``plain`` is the
+    message itself."""
+
+    def __init__(self, message: str, plain: str | None = None) -> None:
+        super().__init__(message)
+        self.plain = plain or message
 
 
 class OutputError(UserError):

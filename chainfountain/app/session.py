@@ -33,8 +33,8 @@ from chainfountain.app.readout import (
     Readout,
     compute_readout,
 )
-from chainfountain.errors import UserError
-from chainfountain.level import io
+from chainfountain.errors import RunEnded, UserError
+from chainfountain.level import io, library
 from chainfountain.level.io import Level, LevelError
 from chainfountain.sim.config import SimConfig
 from chainfountain.sim.machine_rules import follow
@@ -365,7 +365,13 @@ class Session:
     def _step(self, n: int) -> None:
         try:
             self._step_n(n)
-        except UserError as exc:  # the run cannot go on (a table used up, the fold collapsed)
+        except RunEnded as exc:  # the machine cannot go on (a table used up, the fold collapsed)
+            self.paused = True
+            self.stopped = exc.plain + self._twin_hint()
+            if exc.plain != str(exc):  # the long explanation, for whoever wants it
+                print(f"chainfountain: {exc}", file=sys.stderr)
+            self.say(paused_message(self.stopped))
+        except UserError as exc:
             self.paused = True
             self.stopped = str(exc)
             self.say(paused_message(str(exc)))
@@ -375,6 +381,15 @@ class Session:
             self.stopped = (f"the simulation stopped on an internal error "
                             f"({type(exc).__name__}; the details are on the terminal)")
             self.say(paused_message(self.stopped))
+
+    def _twin_hint(self) -> str:
+        """For a machine preset with a twin: that M opens it (the ideal machine runs where
+        the contact one fails, and the other way round)."""
+        other = library.twin(self.level.meta.name)
+        if other is None:
+            return ""
+        kind = "ideal" if other.startswith("ideal") else "contact"
+        return f" (M opens {other}, the {kind} machine)"
 
     def _step_n(self, n: int) -> None:
         sim = self.sim

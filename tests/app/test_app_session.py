@@ -161,7 +161,8 @@ def test_used_up_apparatus_table_pauses_with_a_message() -> None:
     s = Session(lvl)
     s.advance(2.0)  # no exception escapes
     assert s.paused
-    assert "upper table is used up" in s.messages[-1][1]
+    shown = s.messages[-1][1]
+    assert "upper table ran out of chain" in shown and "built for 0.2 s" in shown
     assert s.sim.time < 1.0
 
 
@@ -212,16 +213,23 @@ def test_floor_depth_control_rebuilds_and_refuses() -> None:
     assert s.value("apparatus.floor_depth") == 0.1
 
 
-def test_collapsed_fold_pauses_and_keeps_the_reason() -> None:
+def test_collapsed_fold_pauses_and_keeps_the_reason(capsys) -> None:
     """apparatus_limit (no lower cart): the folding roller rolls back at about 1 s; the
-    session pauses and keeps why until the scene is rebuilt."""
+    session pauses and keeps why until the scene is rebuilt: in the window one plain
+    sentence with what to do (here: open the ideal twin), on the terminal the full
+    explanation (push, catch) that a headless run also gives."""
     from pathlib import Path
 
     lvl = io.load(Path(__file__).resolve().parents[2] / "levels" / "apparatus_limit.toml")
     s = Session(lvl)
     s.advance(2.0)  # no exception escapes
     assert s.paused and 0.5 < s.sim.time < 2.0
-    assert s.stopped is not None and "folding roller rolls backwards" in s.stopped
+    shown = s.stopped
+    assert shown is not None and "fold collapsed" in shown and "M opens ideal_limit" in shown
+    assert shown.count(". ") == 0 and len(shown) < 200 and "lambda" not in shown
+    assert "[[carts]]" not in shown and "docs/" not in shown  # nothing a window cannot do
+    err = capsys.readouterr().err
+    assert "folding roller rolls backwards" in err and "lambda*v^2" in err
     s.reset()
     assert s.stopped is None and s.sim.time == 0.0
 

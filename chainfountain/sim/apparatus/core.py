@@ -316,11 +316,16 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
                 raise TableUsedUp(
                     f"t = {self._t:.2f} s: the pick-up roller has reached the channel although "
                     "the treadmill should hold it (the upper strand has left its plate "
-                    "grooves); reset the level")
+                    "grooves); reset the level",
+                    plain=f"At {self._t:.1f} s the chain left the upper treadmill's grooves "
+                    "and the pick-up roller reached the channel")
             raise TableUsedUp(
                 f"t = {self._t:.2f} s: the pick-up roller has reached the channel: the upper "
                 f"table is used up (apparatus.duration = {self.cfg.duration:g} s sizes it for "
-                f"the start speed; raise it, or set apparatus.plate_links > 0 for a treadmill)")
+                f"the start speed; raise it, or set apparatus.plate_links > 0 for a treadmill)",
+                plain=f"At {self._t:.1f} s the upper table ran out of chain: this level's "
+                f"table is built for {self.cfg.duration:g} s (a longer one is a level-file "
+                "change, apparatus.duration)")
 
     def _feed_resting_links(self) -> None:
         """Add links at rest on the upper table until ``n_ahead`` lie ahead of the pick-up

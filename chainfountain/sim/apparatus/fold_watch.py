@@ -61,8 +61,15 @@ class FoldWatch:
         if self._back_t < COLLAPSE_TIME:
             return
         clamped = dt < FOLD_DT_MIN and not self.cfg.fold_clearance
+        t = self._t
         if self._held_t >= LATE_COLLAPSE and not clamped:
-            raise FoldCollapsed(self._late_collapse_message(v_R))
+            cure = ("this contact fold holds only close to the speed it was built for"
+                    if self.cfg.swing_damper else
+                    "the swing damper holds the swing down (0.5 holds apparatus_special)")
+            raise FoldCollapsed(
+                self._late_collapse_message(v_R),
+                plain=f"At {t:.1f} s the folding roller lost the chain after holding it "
+                f"{self._held_t:.0f} s: the chain's speed swung until the fold failed; {cure}")
         push = self.lower.force
         lam, v = self.sim_cfg.chain.linear_density, self.speed
         pushed = (f"a push of {push / (lam * v * v):.2f} lambda*v^2" if push
@@ -72,13 +79,19 @@ class FoldWatch:
                 "and the chain piles up in the lower guide. ")
         if clamped:
             raise FoldCollapsed(
-                head + f"solver.dt = {dt:g} s is below {FOLD_DT_MIN:g} s, where the folding "
-                "roller locks between the lower plate's grooves and the table (with "
+                plain=f"At {t:.1f} s the fold locked: at a time step below "
+                f"{FOLD_DT_MIN * 1e3:g} ms the folding roller jams against its table; set "
+                "the solver's dt back to 0.5 ms",
+                message=head + f"solver.dt = {dt:g} s is below {FOLD_DT_MIN:g} s, where the "
+                "folding roller locks between the lower plate's grooves and the table (with "
                 "apparatus.fold_clearance = 0 the fold only holds at dt 0.35-0.5 ms; "
                 "docs/apparatus.md): set apparatus.fold_clearance = "
                 "0.002 (with a lighter lower cart) or solver.dt = 0.0005")
+        cure = ("make the lower cart heavier" if push else
+                "this model's fold needs a lower cart to push it, which the paper's does not")
         raise FoldCollapsed(
-            head + "This model's put-down needs a forward push of about 0.3 lambda*v^2 or "
+            plain=f"At {t:.1f} s the folding roller fell behind and the fold collapsed; {cure}",
+            message=head + "This model's put-down needs a forward push of about 0.3 lambda*v^2 or "
             "more (docs/apparatus.md); "
             + ("raise the lower cart mass" if push else
                "give the level a second [[carts]] entry (the lower cart)") + "."
