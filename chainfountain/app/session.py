@@ -188,7 +188,9 @@ class Session:
         self.say("reset: t = 0")
 
     def load_level(self, level: Level, source: Path | None = None) -> bool:
-        """Replace the running level; on failure keep the old one and say why."""
+        """Replace the running level; on failure keep the old one and say why. After a run
+        that stopped itself the new level runs (a pause the user chose stays)."""
+        stopped = self.stopped is not None
         old = (self.level, self.source)
         self.level = copy.deepcopy(level)
         self.source = source
@@ -201,6 +203,8 @@ class Session:
             return False
         self.dirty = False
         self._origin = copy.deepcopy(level)
+        if stopped:
+            self.paused = False
         self.say(f"opened level {level.meta.name!r}" + (f" ({source})" if source else ""))
         return True
 
@@ -456,7 +460,7 @@ class Session:
         t0 = self.clock()
         done = 0
         chunk = max(1, min(want, 8))
-        while done < want:
+        while done < want and self.stopped is None:
             n = min(chunk, want - done)
             self._step(n)
             done += n

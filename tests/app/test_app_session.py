@@ -230,6 +230,13 @@ def test_collapsed_fold_pauses_and_keeps_the_reason(capsys) -> None:
     assert "[[carts]]" not in shown and "docs/" not in shown  # nothing a window cannot do
     err = capsys.readouterr().err
     assert "folding roller rolls backwards" in err and "lambda*v^2" in err
+    s.load_path(Path(__file__).resolve().parents[2] / "levels" / "ideal_limit.toml")
+    assert s.stopped is None and not s.paused  # M after the stop: the twin runs
+    s.load_level(lvl)
+    assert not s.paused
+    s.toggle_pause()
+    s.load_path(Path(__file__).resolve().parents[2] / "levels" / "ideal_limit.toml")
+    assert s.paused  # a pause the user chose stays
     s.reset()
     assert s.stopped is None and s.sim.time == 0.0
 
@@ -395,3 +402,23 @@ def test_level_files_and_run_accept_what_the_window_refuses(tmp_path) -> None:
     assert budget.over_budget(fast.sim, lvl.sim) is not None
     r = chainfountain.run("classroom", duration=0.05, changes=changes, out=tmp_path / "o")
     assert r.summary["ended_early"] is None and r.summary["duration_s"] >= 0.05 - 1e-9
+
+
+def test_a_run_that_stops_within_a_frame_steps_no_further(capsys) -> None:
+    """A window frame asks for many physics steps; when the machine stops itself in one
+    of them the frame ends there (it said why once, and the clock stays at the stop)."""
+    from pathlib import Path
+
+    lvl = io.load(Path(__file__).resolve().parents[2] / "levels" / "apparatus_limit.toml")
+    s = Session(lvl)
+    s.advance(0.9)
+    assert s.stopped is None
+    capsys.readouterr()
+    for _ in range(3):  # 0.1 s of wall time per frame: past the collapse near 1 s
+        s.tick(0.1, budget=60.0)
+    assert s.stopped is not None and s.paused
+    t_stop = s.sim.time
+    assert t_stop < 1.1
+    assert capsys.readouterr().err.count("rolls backwards") == 1
+    s.tick(0.1, budget=60.0)  # paused: nothing more
+    assert s.sim.time == t_stop
