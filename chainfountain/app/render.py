@@ -97,7 +97,7 @@ def text(f: pygame.font.Font, s: str, antialias: bool,
     """``f.render(s, antialias, colour)``, kept for the next frames (at most
     :data:`TEXT_CACHE` texts, the least recently drawn forgotten first). The surface is
     shared: blit it, do not draw on it."""
-    key = (id(f), s, antialias, tuple(colour))
+    key = (f, s, antialias, tuple(colour))  # the font itself: its id could be reused
     img = _TEXTS.get(key)
     if img is None:
         img = f.render(s, antialias, colour)
@@ -110,7 +110,7 @@ def text(f: pygame.font.Font, s: str, antialias: bool,
 def wrap(f: pygame.font.Font, text: str, width: int) -> list[str]:
     """``text`` split at spaces into lines no wider than ``width`` pixels in font ``f``
     (a single word wider than that gets a line of its own; kept like :func:`text`)."""
-    key = (id(f), text, width)
+    key = (f, text, width)
     rows = _WRAPS.get(key)
     if rows is None:
         rows = _wrap(f, text, width)
