@@ -5,7 +5,6 @@ session."""
 from __future__ import annotations
 
 import math
-import textwrap
 import time
 from collections.abc import Callable
 
@@ -216,10 +215,11 @@ class DrawMixin:
         s = self.session
 
         rows = readout_rows(ro, s.sim.config.chain.linear_density, self.expert)
+        width = rect.w - 18  # the rows' font, measured: no line runs off the panel
         if ro.machine:
-            rows += [Row(part) for part in textwrap.wrap(ro.machine, 56)[:2]]
+            rows += [Row(part) for part in render.wrap(render.font(19), ro.machine, width)[:2]]
         if ro.note:
-            rows += [Row(part, "dim") for part in textwrap.wrap(ro.note, 56)[:2]]
+            rows += [Row(part, "dim") for part in render.wrap(render.font(19), ro.note, width)[:2]]
         y = self._draw_rows(rows, rect)
         top = y + 6
         key = (top, rect.size, id(s.sim))

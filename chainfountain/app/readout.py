@@ -198,6 +198,8 @@ def machine_line(sim: Simulation) -> str:
     cfg = sim.config
     if sim.beaker is not None:
         return beaker_line(sim)
+    if sim.apparatus is not None:
+        return selection_line(sim)
     if cfg.kind != "feed" or cfg.feed.drive == "motor":
         return ""
     ref = sim.reference
@@ -207,6 +209,21 @@ def machine_line(sim: Simulation) -> str:
     if keeps_any_speed(cfg):
         return f"paper's laws keep any v: {ends}"
     return f"paper's laws: v {ref.v:.3f} m/s, {ends}"
+
+
+def selection_line(sim: Simulation) -> str:
+    """A contact 'floor' machine: the speed its upper cart selects now by this model's
+    pick-up law and by the paper's (:meth:`~chainfountain.sim.apparatus.Apparatus.selected_speeds`),
+    to read beside the measured speed; '' for the other arrangements."""
+    app = sim.apparatus
+    if app is None or app.variant != "floor":
+        return ""
+    model, paper = app.selected_speeds()
+    if not math.isfinite(model):
+        return "the cart selects no speed: it holds the chain harder than the fall pulls it"
+    by_paper = f"{paper:.2f} m/s" if math.isfinite(paper) else "none (cart too heavy)"
+    return (f"the cart selects {model:.2f} m/s by this model's rollers, "
+            f"{by_paper} by the paper's laws")
 
 
 def beaker_line(sim: Simulation) -> str:

@@ -422,3 +422,34 @@ def test_a_run_that_stops_within_a_frame_steps_no_further(capsys) -> None:
     assert capsys.readouterr().err.count("rolls backwards") == 1
     s.tick(0.1, budget=60.0)  # paused: nothing more
     assert s.sim.time == t_stop
+
+
+def test_floor_machine_readout_says_what_its_cart_selects() -> None:
+    """The contact floor machine's readout gives, beside the measured speed, the speed its
+    upper cart selects by this model's pick-up law and by the paper's laws, and follows a
+    live cart change. The paper's figure is checked against its formula here:
+    ``v**2 = (g*H*(1 - xi2) - F_uc/lambda)/(1/2)`` (``Tbar_0 = 1/2 + Tbar_uc + xi2*k*H``
+    meeting the free-ended fountain's ``Tbar_0 = k*H``)."""
+    import math
+    from pathlib import Path
+
+    lvl = io.load(Path(__file__).resolve().parents[2] / "levels" / "apparatus_floor.toml")
+    s = Session(lvl)
+
+    def paper_speed() -> float:
+        app, cfg = s.sim.apparatus, s.sim.config
+        lam, g = cfg.chain.linear_density, cfg.gravity
+        return math.sqrt((g * app.H * (1 - cfg.apparatus.xi2) - app.upper.force / lam) / 0.5)
+
+    s.advance(0.05)
+    model, paper = s.sim.apparatus.selected_speeds()
+    assert paper == pytest.approx(paper_speed(), rel=1e-12)
+    assert model > paper  # this model's pick-up pulls less than the paper's 1/2
+    line = s.readout().machine
+    assert f"{model:.2f} m/s by this model's rollers" in line
+    assert f"{paper:.2f} m/s by the paper's laws" in line
+    assert s.set_field("carts[0].mass", 1.5 * lvl.sim.carts[0].mass).ok
+    s.advance(0.05)
+    model2, paper2 = s.sim.apparatus.selected_speeds()
+    assert model2 < model and paper2 == pytest.approx(paper_speed(), rel=1e-12)
+    assert f"{model2:.2f} m/s" in s.readout().machine
