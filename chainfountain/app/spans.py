@@ -1,4 +1,4 @@
-"""Slider spans of an ideal machine: where its carts and offsets still run a fountain.
+"""Slider spans of a machine: where its carts and offsets still run a fountain.
 
 A machine field's slider (``feed.xi2``, ``feed.cart_force``, ``feed.xi3``,
 ``feed.lower_cart_force``, ``feed.bearing_drag`` of a level with ``feed.drive`` an ideal
@@ -9,6 +9,10 @@ towards each end of the schema's range. Out there the machine would stop,
 run away or lose its fountain; a value typed beyond the span is refused with the check's
 reason. A loss-free full machine's upper cart has a single admissible value (the balance):
 its slider does not move.
+
+The contact floor machine's upper cart, bearing drag and offset span where this model's
+pick-up law leaves the chain running (:data:`FLOOR_FIELDS`; the limit is measured:
+:data:`~chainfountain.sim.apparatus.laws.FLOOR_KH_MAX`).
 """
 
 from __future__ import annotations
@@ -21,18 +25,26 @@ from chainfountain.app import budget
 from chainfountain.app.controls import FieldSpec, get_value, set_value
 from chainfountain.level import io
 from chainfountain.level.io import Level, LevelError
+from chainfountain.sim.apparatus.laws import floor_runs_on
 from chainfountain.sim.config import SimConfig
 from chainfountain.sim.machine_rules import MACHINE_FIELDS, follow
+
+FLOOR_FIELDS = ("carts[0].mass", "apparatus.bearing_drag", "apparatus.xi2")
+"""A contact 'floor' machine's fields whose sliders span where the chain runs on
+(:func:`~chainfountain.sim.apparatus.laws.floor_runs_on`, measured limits)."""
 
 BISECTIONS = 30
 """Bisection steps towards each end (the span's ends to about 1e-9 of the schema range)."""
 
 
-def _accepts(level: Level, path: str, origin: SimConfig | None) -> Callable[[float], bool]:
+def _accepts(level: Level, path: str, origin: SimConfig | None,
+             runs: Callable[[SimConfig], bool] | None = None) -> Callable[[float], bool]:
     def ok(value: float) -> bool:
         cand: SimConfig = copy.deepcopy(level.sim)
         set_value(cand, path, value)
         follow(cand, path)
+        if runs is not None and not runs(cand):
+            return False
         try:
             io.check_consistency(Level(meta=level.meta, sim=cand), "span")
         except LevelError:
@@ -58,13 +70,21 @@ def admissible(level: Level, spec: FieldSpec,
                origin: SimConfig | None = None) -> tuple[float, float] | None:
     """The span (schema units) of values around the present one that ``level``'s checks
     accept for ``spec``'s field (and, given the level as loaded, ``origin``, that the
-    window's budget runs: :mod:`chainfountain.app.budget`), or ``None`` when the field is
-    not a machine field of an ideal machine."""
+    window's budget runs: :mod:`chainfountain.app.budget`; a contact floor machine's, that
+    its chain runs on), or ``None`` when the field is neither an ideal machine's nor one of
+    :data:`FLOOR_FIELDS` of a contact floor machine, or the present value is outside
+    already (the schema's range then)."""
     sim = level.sim
-    if spec.path not in MACHINE_FIELDS or sim.kind != "feed" or sim.feed.drive == "motor":
+    if spec.path in FLOOR_FIELDS and sim.kind == "apparatus" and \
+            sim.apparatus.variant == "floor":
+        ok = _accepts(level, spec.path, origin, floor_runs_on)
+    elif spec.path in MACHINE_FIELDS and sim.kind == "feed" and sim.feed.drive != "motor":
+        ok = _accepts(level, spec.path, origin)
+    else:
         return None
-    ok = _accepts(level, spec.path, origin)
     now = float(get_value(sim, spec.path))
+    if not ok(now):  # set outside on purpose (the fountain-D presets, near-critical)
+        return None
     lo = spec.lo if spec.lo is not None else spec.slider_lo
     hi = spec.hi if spec.hi is not None else spec.slider_hi
     if not spec.hi_incl:

@@ -298,7 +298,8 @@ class App(InputMixin, DrawMixin):
         res = self.session.set_field(path, value)
         level = self.session.level
         for row in self.rows:  # a change can move other fields (a cart that follows the
-            if row.spec.path in MACHINE_FIELDS:  # balance) and the machine's spans
+            # balance) and the machine's spans
+            if row.spec.path in MACHINE_FIELDS or row.spec.path in spans.FLOOR_FIELDS:
                 row.spec = spans.narrowed(level, spec_for(level.sim, row.spec.path),
                                           self.session.origin)
             self._show_value(row)

@@ -84,3 +84,26 @@ def test_the_readout_gives_the_laws_prediction() -> None:
     s2 = Session(_loss_free_special())
     assert machine_line(s2.sim).startswith("paper's laws keep any v: Tbar_0 0.")
     assert machine_line(Session(io.load(library.resolve("classroom"))).sim) == ""
+
+
+def test_the_contact_floor_machines_sliders_span_where_its_chain_runs_on() -> None:
+    """``apparatus_floor``: the upper cart, bearing drag and offset span where this model's
+    pick-up law leaves the chain running (``floor_runs_on``; its measured limit and what
+    happens beyond: ``tests/apparatus/test_apparatus_live_cart.py``); the cart's span ends
+    just above the heavy preset's 15 g. The near-critical fountain-D presets, set beyond
+    it on purpose, keep the schema's sliders."""
+    from chainfountain.sim.apparatus.laws import floor_runs_on
+
+    lvl = io.load(library.resolve("apparatus_floor"))
+    for path in spans.FLOOR_FIELDS:
+        spec = _spec(lvl, path)
+        lo, hi = spans.admissible(lvl, spec, lvl.sim)
+        assert lo <= controls.get_value(lvl.sim, path) < hi
+        ok = spans._accepts(lvl, path, lvl.sim, floor_runs_on)
+        assert ok(hi) and not ok(hi + 0.01 * (hi - lo))
+    lo, hi = spans.admissible(lvl, _spec(lvl, "carts[0].mass"), lvl.sim)
+    assert 0.015 < hi < 0.016
+    d = io.load(library.resolve("apparatus_fountain_d"))
+    assert spans.admissible(d, _spec(d, "carts[0].mass"), d.sim) is None
+    special = io.load(library.resolve("apparatus_special"))
+    assert spans.admissible(special, _spec(special, "carts[0].mass"), special.sim) is None

@@ -24,7 +24,7 @@ from chainfountain.sim.apparatus.ends import EndPart
 from chainfountain.sim.apparatus.fold import FoldPart
 from chainfountain.sim.apparatus.fold_watch import FoldWatch
 from chainfountain.sim.apparatus.grooves import PlateGrooves
-from chainfountain.sim.apparatus.laws import CART_GAIN_2CM, selected_speed
+from chainfountain.sim.apparatus.laws import floor_speeds
 from chainfountain.sim.apparatus.open_tail import OpenTail
 from chainfountain.sim.apparatus.stall_watch import StallWatch
 from chainfountain.sim.apparatus.starter import StarterPart
@@ -410,17 +410,7 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
 
     def selected_speeds(self) -> tuple[float, float]:
         """'floor': the speed (m/s) the upper cart selects now, by this model's measured
-        pick-up law (the 2 cm rig law with its cart gain, an ideal guide;
-        :func:`~.laws.selected_speed`) and by the paper's laws (``p = 1/2``, cart gain 1;
-        ``Tbar_0 = 1/2 + Tbar_uc + xi2*k*H`` meeting the fountain's ``Tbar_0 = k*H``).
-        The floor ``floor_depth`` below the end adds its drop. ``(nan, nan)`` for the
-        other variants (a fold keeps its speed when its carts balance; 'open' runs on)."""
-        if self.variant != "floor":
-            return math.nan, math.nan
-        H = self.H + self.floor_depth
-        xi2 = float(self.cfg.xi2) * self.H / H
-        F_uc, c = self.upper.force, float(self.cfg.bearing_drag)
-        lam = float(self.sim_cfg.chain.linear_density)
-        model = selected_speed(self.g, H, xi2, F_uc, lam, gain=CART_GAIN_2CM, drag=c)
-        paper = selected_speed(self.g, H, xi2, F_uc, lam, 0.5, gain=1.0, drag=c)
-        return model, paper
+        pick-up law and by the paper's laws (:func:`~.laws.floor_speeds`); ``(nan, nan)``
+        for the other variants (a fold keeps its speed when its carts balance; 'open'
+        runs on)."""
+        return floor_speeds(self.sim_cfg)

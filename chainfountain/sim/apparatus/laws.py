@@ -9,6 +9,10 @@ Figures of the rollers alone (the rigs of ``research/pickup_study.py``,
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from chainfountain.sim.config import SimConfig
 
 PICKUP_BAR = 0.27
 """Measured pick-up force at alpha = 0 over ``lambda*v**2`` (``docs/apparatus.md``;
@@ -99,3 +103,44 @@ def selected_speed(g: float, H: float, xi2: float, F_uc: float, lam: float,
         return math.nan
     b = gain * drag / (2.0 * lam)
     return (math.sqrt(b * b + 4.0 * p * num) - b) / (2.0 * p)
+
+
+FLOOR_KH_MAX = 0.6
+"""Largest ``g*(H + floor_depth)/v**2`` at the speed :func:`floor_speeds` gives for which
+the contact floor machine runs on: near the fountain's end (1) its speed falls ever
+further below the law and the chain stops. Measured from ``apparatus_floor`` (9 g, law
+3.071 m/s, 0.52) with the upper cart changed live at 8 s, speeds 5-30 s after: 15 g
+(0.59; the shipped ``apparatus_floor_heavy``, 600 s held) steady; 20 g (0.67) wandering
+2.37-2.58 m/s; 25 g (0.77) and 28 g stopped within 8 s, 30 g within 5 s (from the laid
+start changed at 1 s, 25 g ran on 20 s at 2.33 m/s: near the end it depends on the state;
+28 and 30 g stopped). A bearing drag agrees: 0.02 N s/m (0.59) held 30 s 4-5 % below the
+law, 0.05 (0.72) and 0.1 stopped (``docs/apparatus.md``, "Declared losses";
+``tests/apparatus/test_apparatus_live_cart.py``)."""
+
+
+def floor_speeds(cfg: SimConfig) -> tuple[float, float]:
+    """A contact 'floor' machine (``kind = "apparatus"``): the speed (m/s) its upper cart
+    selects by this model's measured pick-up law (the 2 cm rig law and its cart gain, an
+    ideal guide; :func:`selected_speed`) and by the paper's laws (``p = 1/2``, cart gain
+    1: ``Tbar_0 = 1/2 + Tbar_uc + xi2*k*H`` meeting the free fountain's ``Tbar_0 = k*H``).
+    A floor ``floor_depth`` below the end adds its drop; the bearing drag counts as more
+    cart. nan where a law has no speed, and for the other variants."""
+    a = cfg.apparatus
+    if a.variant != "floor" or not cfg.carts:
+        return math.nan, math.nan
+    g, lam = float(cfg.gravity), float(cfg.chain.linear_density)
+    H = float(a.drop) + float(a.floor_depth)
+    xi2 = float(a.xi2) * float(a.drop) / H
+    cart = cfg.carts[0]
+    F_uc, c = cart.mass * g * math.sin(cart.incline), float(a.bearing_drag)
+    return (selected_speed(g, H, xi2, F_uc, lam, gain=CART_GAIN_2CM, drag=c),
+            selected_speed(g, H, xi2, F_uc, lam, 0.5, gain=1.0, drag=c))
+
+
+def floor_runs_on(cfg: SimConfig) -> bool:
+    """Whether a contact 'floor' machine's cart and drag leave it a speed by this model's
+    law with ``g*(H + floor_depth)/v**2`` at most :data:`FLOOR_KH_MAX` (so the chain
+    runs on)."""
+    v = floor_speeds(cfg)[0]
+    H = float(cfg.apparatus.drop) + float(cfg.apparatus.floor_depth)
+    return math.isfinite(v) and float(cfg.gravity) * H / (v * v) <= FLOOR_KH_MAX
