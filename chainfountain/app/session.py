@@ -393,7 +393,7 @@ class Session:
         if other is None:
             return ""
         kind = "ideal" if other.startswith("ideal") else "contact"
-        return f" (M opens {other}, the {kind} machine)"
+        return f"; M opens {other}, the {kind} machine"
 
     def _step_n(self, n: int) -> None:
         sim = self.sim

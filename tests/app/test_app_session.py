@@ -225,7 +225,7 @@ def test_collapsed_fold_pauses_and_keeps_the_reason(capsys) -> None:
     s.advance(2.0)  # no exception escapes
     assert s.paused and 0.5 < s.sim.time < 2.0
     shown = s.stopped
-    assert shown is not None and "fold collapsed" in shown and "M opens ideal_limit" in shown
+    assert shown is not None and "fold collapsed" in shown and "; M opens ideal_limit" in shown
     assert shown.count(". ") == 0 and len(shown) < 200 and "lambda" not in shown
     assert "[[carts]]" not in shown and "docs/" not in shown  # nothing a window cannot do
     err = capsys.readouterr().err
