@@ -1,0 +1,72 @@
+"""A machine tuned while it runs: one field changed as the window's slider changes it.
+
+Opens LEVEL as the window does (its own start), runs ``--at`` simulated seconds, sets
+FIELD to each VALUE (``Session.set_field``, live), runs ``--after`` seconds more and
+prints the chain speed every ``--every`` seconds, or when and why the run stopped. One run
+per value (``--jobs`` at once); a chaotic machine, so near an edge a single run says
+"this start held", not "every start holds".
+
+Usage::
+
+    python research/live_tuning.py apparatus_special 'carts[1].mass' 0.054 0.056 0.059 0.060
+    python research/live_tuning.py apparatus_floor 'carts[0].mass' 0.015 0.020 0.025 \\
+        --at 8 --after 30
+
+About 50 s of wall time per fold run of 70 simulated seconds, 15 s per floor run.
+docs/apparatus.md, "Tuning the damped folds live" and "Tuning the floor machine live".
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+from concurrent.futures import ProcessPoolExecutor
+
+
+def run(level: str, field: str, value: float, at: float, after: float, every: float) -> str:
+    """One run; a line with the speeds after the change, or where it stopped."""
+    os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
+    from chainfountain.app.session import Session
+    from chainfountain.level import io, library
+
+    s = Session(io.load(library.resolve(level)))
+    s.advance(at)
+    res = s.set_field(field, value)
+    if not res.ok:
+        return f"{field} = {value:g}: refused ({res.message})"
+    speeds = []
+    for _ in range(int(round(after / every))):
+        s.advance(every)
+        if s.stopped:
+            break
+        speeds.append(s.sim.apparatus.speed if s.sim.apparatus is not None else s.sim.feed.speed)
+    line = f"{field} = {value:g} at {at:g} s: speed every {every:g} s: " + \
+        " ".join(f"{v:.3f}" for v in speeds)
+    if s.stopped:
+        line += f"; stopped: {s.stopped}"
+    else:
+        line += f"; held {after:g} s ({min(speeds):.3f}-{max(speeds):.3f} m/s)"
+    return line
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("level")
+    ap.add_argument("field", help="a live field, e.g. 'carts[1].mass'")
+    ap.add_argument("values", type=float, nargs="+")
+    ap.add_argument("--at", type=float, default=10.0, help="simulated s before the change")
+    ap.add_argument("--after", type=float, default=60.0, help="simulated s after it")
+    ap.add_argument("--every", type=float, default=5.0, help="s between printed speeds")
+    ap.add_argument("--jobs", type=int, default=2)
+    args = ap.parse_args()
+    if args.jobs < 1:
+        ap.error(f"--jobs: {args.jobs} is not a number of processes; allowed: 1 or more")
+    with ProcessPoolExecutor(args.jobs) as pool:
+        futures = [pool.submit(run, args.level, args.field, v, args.at, args.after,
+                               args.every) for v in args.values]
+        for f in futures:
+            print(f.result(), flush=True)
+
+
+if __name__ == "__main__":
+    main()
