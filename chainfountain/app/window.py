@@ -577,8 +577,10 @@ class App(InputMixin, DrawMixin):
 
         worker = threading.Thread(target=work, name="chainfountain-physics")
         worker.start()
-        pygame.display.flip()
-        worker.join()
+        try:
+            pygame.display.flip()
+        finally:  # Ctrl-C in the flip: the model is left alone before anything else runs
+            worker.join()
         if failure:
             raise failure[0]
 
