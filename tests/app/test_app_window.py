@@ -619,3 +619,25 @@ def test_rendered_text_is_kept_and_bounded(app):
     assert len(render._TEXTS) <= render.TEXT_CACHE
     assert len(render._WRAPS) <= render.TEXT_CACHE
     assert render.wrap(f, "one two three", 10_000) == ["one two three"]
+
+
+def test_a_window_steps_its_physics_while_the_frame_goes_to_the_screen(tmp_path, monkeypatch):
+    """With a display (here SDL's dummy one) each frame's physics runs in a worker while
+    the drawn frame is copied to the screen; the next frame draws its result, and a failure
+    in the worker reaches the caller of the frame as it would without the worker."""
+    monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
+    a = App(Session(small_level()), size=(1280, 760), offscreen=False)
+    try:
+        t0 = a.session.sim.time
+        for _ in range(5):
+            a.run_frame(1.0 / 60.0)
+        assert a.session.sim.time > t0 and a.physics_time > 0.0
+
+        def broken(*args, **kwargs):
+            raise RuntimeError("broken tick")
+
+        monkeypatch.setattr(a.session, "tick", broken)
+        with pytest.raises(RuntimeError, match="broken tick"):
+            a.run_frame(1.0 / 60.0)
+    finally:
+        a.finish()
