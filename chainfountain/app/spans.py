@@ -83,6 +83,8 @@ def admissible(level: Level, spec: FieldSpec,
     else:
         return None
     now = float(get_value(sim, spec.path))
+    if not ok(now) and origin is not None:  # typed beyond the span: it stays, from the
+        now = float(get_value(origin, spec.path))  # value the level was loaded with
     if not ok(now):  # set outside on purpose (the fountain-D presets, near-critical)
         return None
     lo = spec.lo if spec.lo is not None else spec.slider_lo
