@@ -44,6 +44,8 @@ from chainfountain.sim.world import Simulation
 SLOW_FACTORS: tuple[float, ...] = (1.0, 0.5, 0.25)
 """Slow-motion cycle of the ``S`` key."""
 
+CATCH_UP = 0.1
+"""Wall seconds of physics a window may fall behind and still make up in later frames."""
 APP_SAMPLE_INTERVAL = 0.02
 """The app samples measurements at most this often (s): enough for the plots, and
 each sample costs two batch reads and a catenary fit."""
@@ -445,9 +447,11 @@ class Session:
     def tick(self, wall_dt: float, budget: float) -> int:
         """Run the physics for one frame: ``wall_dt`` s of wall time passed, spend <= ``budget``.
 
-        Returns the number of physics steps taken. When the budget runs out
-        the backlog is dropped (the fountain slows down instead of stalling)
-        and :attr:`rtf` falls below the requested factor.
+        Returns the number of physics steps taken. When the budget runs out the
+        backlog is carried to the next frames, up to :data:`CATCH_UP` s of wall time (one
+        slow frame, a collection or a busy display, is made up); beyond that it is
+        dropped (the fountain slows down instead of stalling) and :attr:`rtf` falls below
+        the requested factor.
         """
         if self.paused:
             self.rtf = 0.0
@@ -468,7 +472,7 @@ class Session:
                 break
         self._acc -= done * dt
         self.behind = done < want
-        if self.behind:
+        if self._acc > CATCH_UP * self.speed_factor:
             self._acc = 0.0
         if wall_dt > 0:
             inst = done * dt / wall_dt

@@ -104,12 +104,23 @@ def test_pause_step_reset_slow():
 
 
 def test_tick_keeps_to_its_budget():
+    """A frame stops its physics when its budget is spent; the next frames make up what it
+    left, up to CATCH_UP s; a longer backlog is dropped (the fountain slows instead)."""
+    from chainfountain.app.session import CATCH_UP
+
     s = Session(small_level())
-    done = s.tick(0.1, budget=1e-9)  # no time at all: one chunk, then it gives up
-    assert 0 < done < round(0.1 / s.sim.dt)
+    dt = s.sim.dt
+    first = s.tick(0.05, budget=1e-9)  # no time at all: one chunk, then it gives up
+    assert 0 < first < round(0.05 / dt)
     assert s.behind
-    done = s.tick(1 / 60, budget=10.0)
-    assert done == pytest.approx((1 / 60) / s.sim.dt, abs=1)
+    done = s.tick(1 / 60, budget=10.0)  # made up
+    assert done == pytest.approx((0.05 + 1 / 60) / dt - first, abs=1)
+    assert not s.behind
+    for _ in range(3):  # 0.3 s behind: more than CATCH_UP
+        s.tick(0.1, budget=1e-9)
+    assert 0.3 > CATCH_UP
+    done = s.tick(1 / 60, budget=10.0)  # dropped: one frame's worth
+    assert done <= round((1 / 60 + CATCH_UP) / dt) + 1
 
 
 def test_readout_and_history():
