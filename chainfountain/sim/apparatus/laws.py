@@ -3,7 +3,8 @@
 Figures of the rollers alone (the rigs of ``research/pickup_study.py``,
 ``docs/apparatus.md``), used to predict a run's speed and tensions (the report,
 :mod:`chainfountain.sim.apparatus_report`; the energy budget,
-:mod:`chainfountain.sim.budget`); the simulation itself does not read them.
+:mod:`chainfountain.sim.budget`; the window's readout and the floor machine's slider
+spans, :func:`floor_speeds`, :func:`floor_runs_on`); the physics does not read them.
 """
 
 from __future__ import annotations
