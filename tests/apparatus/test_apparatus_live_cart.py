@@ -64,7 +64,7 @@ def test_the_running_limit_is_where_the_law_says() -> None:
 def test_the_heaviest_running_cart_keeps_the_chain_running() -> None:
     cfg = load_on_path(LEVEL).sim
     m = heaviest_running_cart(cfg)
-    sim, speeds = run_with_cart(m, 12.0)  # no ChainStalled
+    sim, speeds = run_with_cart(m, 8.0)  # no ChainStalled
     cfg.carts[0].mass = m
     law = floor_speeds(cfg)[0]
     last = float(np.mean(speeds[-80:]))
@@ -73,6 +73,6 @@ def test_the_heaviest_running_cart_keeps_the_chain_running() -> None:
 
 def test_a_cart_beyond_it_stops_the_chain_saying_so() -> None:
     with pytest.raises(ChainStalled, match="make the upper cart lighter") as info:
-        run_with_cart(0.030, 12.0)
+        run_with_cart(0.030, 8.0)
     assert isinstance(info.value, RunEnded)
     assert not math.isnan(floor_speeds(load_on_path(LEVEL).sim)[0])
