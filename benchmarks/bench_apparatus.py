@@ -80,7 +80,8 @@ def overhead(only: str = "", steps: int = 4000, warmup: int = 500) -> None:
     for path in sorted((ROOT / "levels").glob("apparatus_*.toml")):
         if only not in path.stem:
             continue
-        sim = Simulation(laid_on_path(io.load(path)).sim)
+        lvl = io.load(path)
+        sim = Simulation(laid_on_path(lvl).sim)
         sim.advance(warmup * sim.dt)
         inner = [0.0]
         space_step = sim.space.step
@@ -91,7 +92,7 @@ def overhead(only: str = "", steps: int = 4000, warmup: int = 500) -> None:
             _acc[0] += time.perf_counter() - t
 
         sim.space.step = timed  # type: ignore[method-assign]
-        n = min(steps, int(round(default_duration(io.load(path)) / sim.dt)) - warmup)
+        n = min(steps, int(round(default_duration(lvl) / sim.dt)) - warmup)
         t0 = time.perf_counter()
         done, note = 0, ""
         try:

@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from chainfountain.sim.apparatus.laws import floor_speeds
 from chainfountain.sim.machine_rules import keeps_any_speed
 from chainfountain.sim.measure import steady_time
 from chainfountain.sim.recorder import Recorder
@@ -213,12 +214,11 @@ def machine_line(sim: Simulation) -> str:
 
 def selection_line(sim: Simulation) -> str:
     """A contact 'floor' machine: the speed its upper cart selects now by this model's
-    pick-up law and by the paper's (:meth:`~chainfountain.sim.apparatus.Apparatus.selected_speeds`),
+    pick-up law and by the paper's (:func:`~chainfountain.sim.apparatus.laws.floor_speeds`),
     to read beside the measured speed; '' for the other arrangements."""
-    app = sim.apparatus
-    if app is None or app.variant != "floor":
+    if sim.apparatus is None or sim.config.apparatus.variant != "floor":
         return ""
-    model, paper = app.selected_speeds()
+    model, paper = floor_speeds(sim.config)
     if not math.isfinite(model):
         return "the cart selects no speed: it holds the chain harder than the fall pulls it"
     by_paper = f"{paper:.2f} m/s" if math.isfinite(paper) else "none (cart too heavy)"

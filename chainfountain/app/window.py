@@ -297,8 +297,8 @@ class App(InputMixin, DrawMixin):
         """Set a schema field from the GUI (clamped, live or rebuilt) and refresh its row."""
         res = self.session.set_field(path, value)
         level = self.session.level
-        for row in self.rows:  # a change can move other fields (a cart that follows the
-            # balance) and the machine's spans
+        # a change can move other fields (a cart that follows the balance) and the spans
+        for row in self.rows:
             if row.spec.path in MACHINE_FIELDS or row.spec.path in spans.FLOOR_FIELDS:
                 row.spec = spans.narrowed(level, spec_for(level.sim, row.spec.path),
                                           self.session.origin)

@@ -24,7 +24,6 @@ from chainfountain.sim.apparatus.ends import EndPart
 from chainfountain.sim.apparatus.fold import FoldPart
 from chainfountain.sim.apparatus.fold_watch import FoldWatch
 from chainfountain.sim.apparatus.grooves import PlateGrooves
-from chainfountain.sim.apparatus.laws import floor_speeds
 from chainfountain.sim.apparatus.open_tail import OpenTail
 from chainfountain.sim.apparatus.stall_watch import StallWatch
 from chainfountain.sim.apparatus.starter import StarterPart
@@ -407,10 +406,3 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
         d = 0.5 * self.cfg.bearing_drag * v
         lo = self.lower.force - d if self.lower is not None else 0.0
         return (self.upper.force + d) / s, lo / s
-
-    def selected_speeds(self) -> tuple[float, float]:
-        """'floor': the speed (m/s) the upper cart selects now, by this model's measured
-        pick-up law and by the paper's laws (:func:`~.laws.floor_speeds`); ``(nan, nan)``
-        for the other variants (a fold keeps its speed when its carts balance; 'open'
-        runs on)."""
-        return floor_speeds(self.sim_cfg)
