@@ -21,14 +21,24 @@ def timestamp() -> str:
     return time.strftime("%Y%m%d-%H%M%S")
 
 
+_CLAIMED: set[Path] = set()
+_CLAIM_LOCK = threading.Lock()
+
+
 def unique_path(folder: Path, stem: str, suffix: str) -> Path:
-    """``folder/stem.suffix``, or with ``-2``, ``-3``... when that exists."""
-    p = folder / f"{stem}{suffix}"
-    i = 2
-    while p.exists():
-        p = folder / f"{stem}-{i}{suffix}"
-        i += 1
-    return p
+    """``folder/stem.suffix``, or with ``-2``, ``-3``... when that exists or was
+    already handed out in this process (two captures in one second get two names
+    even while the first is still being written in the background)."""
+    with _CLAIM_LOCK:
+        p = folder / f"{stem}{suffix}"
+        i = 2
+        while p.exists() or p in _CLAIMED:
+            p = folder / f"{stem}-{i}{suffix}"
+            i += 1
+        if len(_CLAIMED) > 4096:  # bounded: old names exist on disk by now
+            _CLAIMED.clear()
+        _CLAIMED.add(p)
+        return p
 
 
 def save_png(surface: pygame.Surface, path: Path) -> Path:

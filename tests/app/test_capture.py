@@ -10,7 +10,7 @@ os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
 import pygame  # noqa: E402
 import pytest  # noqa: E402
 
-from chainfountain.app.capture import GIF_FRAME_BUDGET, ClipRecorder  # noqa: E402
+from chainfountain.app.capture import GIF_FRAME_BUDGET, ClipRecorder, unique_path  # noqa: E402
 
 
 @pytest.fixture
@@ -65,3 +65,13 @@ def test_a_gif_clip_stops_itself_within_its_memory_budget(surface, tmp_path):
     assert big.max_frames / 20.0 > 15  # still a useful clip: over 15 s
     for c in (clip, big):
         c.stop()
+
+
+def test_two_captures_in_one_second_get_two_names_before_either_is_written(tmp_path):
+    # the PNG is written in a background thread: the second F12 of a second must not
+    # take the first one's name while that file does not exist yet
+    a = unique_path(tmp_path, "shot", ".png")
+    b = unique_path(tmp_path, "shot", ".png")
+    assert a != b and not a.exists() and not b.exists()
+    (tmp_path / "other.png").write_bytes(b"x")
+    assert unique_path(tmp_path, "other", ".png").name == "other-2.png"
