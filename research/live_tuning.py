@@ -3,14 +3,18 @@
 Opens LEVEL as the window does (its own start), runs ``--at`` simulated seconds, sets
 FIELD to each VALUE (``Session.set_field``, live), runs ``--after`` seconds more and
 prints the chain speed every ``--every`` seconds, or when and why the run stopped. One run
-per value (``--jobs`` at once); a chaotic machine, so near an edge a single run says
-"this start held", not "every start holds".
+per value and change time (``--starts N`` changes at ``--at``, ``--at + 0.7``, ... s:
+different phases of the fold's 2.1-s landing swing); a chaotic machine, so near an edge a
+single run says "this start held", not "every start holds". With ``--starts`` above 1
+a last line per value says how many held.
 
 Usage::
 
     python research/live_tuning.py apparatus_special 'carts[1].mass' 0.054 0.056 0.059 0.060
     python research/live_tuning.py apparatus_floor 'carts[0].mass' 0.015 0.020 0.025 \\
         --at 8 --after 30
+    python research/live_tuning.py apparatus_fold 'carts[1].mass' 0.039 0.043 \\
+        --starts 3 --after 40 --every 10
 
 About 50 s of wall time per fold run of 70 simulated seconds, 15 s per floor run.
 docs/apparatus.md, "Tuning the damped folds live" and "Tuning the floor machine live".
@@ -57,15 +61,25 @@ def main() -> None:
     ap.add_argument("--at", type=float, default=10.0, help="simulated s before the change")
     ap.add_argument("--after", type=float, default=60.0, help="simulated s after it")
     ap.add_argument("--every", type=float, default=5.0, help="s between printed speeds")
+    ap.add_argument("--starts", type=int, default=1,
+                    help="runs per value, changed 0.7 s apart (default 1)")
     ap.add_argument("--jobs", type=int, default=2)
     args = ap.parse_args()
     if args.jobs < 1:
         ap.error(f"--jobs: {args.jobs} is not a number of processes; allowed: 1 or more")
+    if args.starts < 1:
+        ap.error(f"--starts: {args.starts} is not a number of runs; allowed: 1 or more")
     with ProcessPoolExecutor(args.jobs) as pool:
-        futures = [pool.submit(run, args.level, args.field, v, args.at, args.after,
-                               args.every) for v in args.values]
-        for f in futures:
-            print(f.result(), flush=True)
+        futures = {v: [pool.submit(run, args.level, args.field, v, args.at + 0.7 * i,
+                                   args.after, args.every) for i in range(args.starts)]
+                   for v in args.values}
+        for v, fs in futures.items():
+            lines = [f.result() for f in fs]
+            for line in lines:
+                print(line, flush=True)
+            if args.starts > 1:
+                held = sum("; held" in line for line in lines)
+                print(f"{args.field} = {v:g}: held {held} of {args.starts}", flush=True)
 
 
 if __name__ == "__main__":
