@@ -12,7 +12,9 @@ its slider does not move.
 
 The contact floor machine's upper cart, bearing drag and offset span where this model's
 pick-up law leaves the chain running (:data:`FLOOR_FIELDS`; the limit is measured:
-:data:`~chainfountain.sim.apparatus.laws.FLOOR_KH_MAX`).
+:data:`~chainfountain.sim.apparatus.laws.FLOOR_KH_MAX`). A contact 'fold' machine's carts
+span the measured band around the balance the level was built with
+(:data:`FOLD_FIELDS`, :data:`~chainfountain.sim.apparatus.laws.FOLD_CART_BAND`).
 """
 
 from __future__ import annotations
@@ -25,13 +27,17 @@ from chainfountain.app import budget
 from chainfountain.app.controls import FieldSpec, get_value, set_value
 from chainfountain.level import io
 from chainfountain.level.io import Level, LevelError
-from chainfountain.sim.apparatus.laws import floor_runs_on
+from chainfountain.sim.apparatus.laws import floor_runs_on, fold_runs_on
 from chainfountain.sim.config import SimConfig
 from chainfountain.sim.machine_rules import MACHINE_FIELDS, follow
 
 FLOOR_FIELDS = ("carts[0].mass", "apparatus.bearing_drag", "apparatus.xi2")
 """A contact 'floor' machine's fields whose sliders span where the chain runs on
 (:func:`~chainfountain.sim.apparatus.laws.floor_runs_on`, measured limits)."""
+
+FOLD_FIELDS = ("carts[0].mass", "carts[1].mass")
+"""A contact 'fold' machine's fields whose sliders span the measured band around the
+level's own balance (:func:`~chainfountain.sim.apparatus.laws.fold_runs_on`)."""
 
 BISECTIONS = 30
 """Bisection steps towards each end (the span's ends to about 1e-9 of the schema range)."""
@@ -71,13 +77,17 @@ def admissible(level: Level, spec: FieldSpec,
     """The span (schema units) of values around the present one that ``level``'s checks
     accept for ``spec``'s field (and, given the level as loaded, ``origin``, that the
     window's budget runs: :mod:`chainfountain.app.budget`; a contact floor machine's, that
-    its chain runs on), or ``None`` when the field is neither an ideal machine's nor one of
-    :data:`FLOOR_FIELDS` of a contact floor machine, or the present value is outside
-    already (the schema's range then)."""
+    its chain runs on; a contact fold machine's carts, within their measured band of
+    ``origin``'s), or ``None`` when the field is none of an ideal machine's,
+    :data:`FLOOR_FIELDS` of a contact floor machine or :data:`FOLD_FIELDS` of a contact
+    fold machine, or the present value is outside already (the schema's range then)."""
     sim = level.sim
     if spec.path in FLOOR_FIELDS and sim.kind == "apparatus" and \
             sim.apparatus.variant == "floor":
         ok = _accepts(level, spec.path, origin, floor_runs_on)
+    elif spec.path in FOLD_FIELDS and sim.kind == "apparatus" and origin is not None and \
+            sim.apparatus.variant == "fold" and len(sim.carts) >= 2:
+        ok = _accepts(level, spec.path, origin, lambda c: fold_runs_on(c, origin))
     elif spec.path in MACHINE_FIELDS and sim.kind == "feed" and sim.feed.drive != "motor":
         ok = _accepts(level, spec.path, origin)
     else:

@@ -108,5 +108,28 @@ def test_the_contact_floor_machines_sliders_span_where_its_chain_runs_on() -> No
     assert spans.admissible(typed, _spec(typed, "carts[0].mass"), lvl.sim) == (lo, hi)
     d = io.load(library.resolve("apparatus_fountain_d"))
     assert spans.admissible(d, _spec(d, "carts[0].mass"), d.sim) is None
-    special = io.load(library.resolve("apparatus_special"))
-    assert spans.admissible(special, _spec(special, "carts[0].mass"), special.sim) is None
+
+
+def test_the_contact_fold_machines_carts_span_their_measured_band() -> None:
+    """``apparatus_special`` and ``apparatus_fold``: each cart spans the part of its
+    balance that held every time it was changed live (``laws.FOLD_CART_BAND``: upper
+    17-19 g, lower 56-59 g and 39-42 g); after the other cart moves, the span is still
+    the band around the level as built; the limit case (no lower cart) keeps the
+    schema's slider (the bisection finds an end to 1e-9 of the 0-1000 kg range)."""
+    for name, lower in (("apparatus_special", (0.056, 0.059)),
+                        ("apparatus_fold", (0.039, 0.042))):
+        lvl = io.load(library.resolve(name))
+        for path, want in (("carts[0].mass", (0.017, 0.019)), ("carts[1].mass", lower)):
+            lo, hi = spans.admissible(lvl, _spec(lvl, path), lvl.sim)
+            assert lo == pytest.approx(want[0], abs=2e-6)
+            assert hi == pytest.approx(want[1], abs=2e-6)
+        moved = io.load(library.resolve(name))
+        moved.sim.carts[0].mass = 0.0185
+        assert spans.admissible(moved, _spec(moved, "carts[1].mass"), lvl.sim) == \
+            pytest.approx(lower, abs=2e-6)
+        moved.sim.carts[1].mass = 0.07  # typed beyond: the span stays
+        assert spans.admissible(moved, _spec(moved, "carts[1].mass"), lvl.sim) == \
+            pytest.approx(lower, abs=2e-6)
+        assert spans.admissible(lvl, _spec(lvl, "carts[0].mass"), None) is None
+    limit = io.load(library.resolve("apparatus_limit"))
+    assert spans.admissible(limit, _spec(limit, "carts[0].mass"), limit.sim) is None
