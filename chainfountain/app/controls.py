@@ -166,6 +166,9 @@ class FieldSpec:
     """Logarithmic slider (position 0 is ``slider_lo``, then log-spaced up to ``slider_hi``)."""
     log_floor: float = 0.0
     """Smallest positive value on a log slider."""
+    narrowed: bool = False
+    """The slider spans only where the machine keeps running
+    (:func:`chainfountain.app.spans.narrowed`), inside what the schema allows."""
 
     # ---------------------------------------------------------------- range
     def allowed(self) -> str:

@@ -111,4 +111,4 @@ def narrowed(level: Level, spec: FieldSpec, origin: SimConfig | None = None) -> 
         return spec
     lo, hi = span
     return dataclasses.replace(spec, slider_lo=lo * spec.scale, slider_hi=hi * spec.scale,
-                               log=False, log_floor=0.0)
+                               log=False, log_floor=0.0, narrowed=True)

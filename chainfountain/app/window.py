@@ -105,7 +105,13 @@ fits on a line, so the wrap never breaks a word (pygame_gui hyphenates one that 
 
 def _tooltip(spec: FieldSpec) -> str:
     how = "applies live" if spec.live else "rebuilds the scene"
-    return html.escape(f"{spec.path}: {spec.doc}. Allowed: {spec.allowed()}. Changing it {how}.")
+    span = ""
+    if spec.narrowed:
+        lo, hi = spec.slider_lo, spec.slider_hi
+        span = (f" The slider spans {lo:.4g}-{hi:.4g}{spec.shown_unit}, where this machine "
+                "keeps running; a value typed beyond runs as a real machine would.")
+    return html.escape(f"{spec.path}: {spec.doc}. Allowed: {spec.allowed()}. Changing it "
+                       f"{how}.{span}")
 
 
 class App(InputMixin, DrawMixin):
@@ -299,9 +305,12 @@ class App(InputMixin, DrawMixin):
         level = self.session.level
         # a change can move other fields (a cart that follows the balance) and the spans
         for row in self.rows:
-            if row.spec.path in MACHINE_FIELDS or row.spec.path in spans.FLOOR_FIELDS:
+            if row.spec.path in MACHINE_FIELDS or row.spec.path in spans.FLOOR_FIELDS or \
+                    row.spec.path in spans.FOLD_FIELDS:
                 row.spec = spans.narrowed(level, spec_for(level.sim, row.spec.path),
                                           self.session.origin)
+                for el in (row.label, row.entry):
+                    el.set_tooltip(_tooltip(row.spec), wrap_width=TOOLTIP_WIDTH)
             self._show_value(row)
         if res.ok and not res.live:
             self.fit_view_if_lost()

@@ -9,6 +9,7 @@ import pytest
 from chainfountain.app import controls, spans
 from chainfountain.app.readout import machine_line
 from chainfountain.app.session import Session
+from chainfountain.app.window import _tooltip
 from chainfountain.level import io, library
 from chainfountain.theory import apparatus as ap
 
@@ -131,5 +132,7 @@ def test_the_contact_fold_machines_carts_span_their_measured_band() -> None:
         assert spans.admissible(moved, _spec(moved, "carts[1].mass"), lvl.sim) == \
             pytest.approx(lower, abs=2e-6)
         assert spans.admissible(lvl, _spec(lvl, "carts[0].mass"), None) is None
+        tip = _tooltip(spans.narrowed(lvl, _spec(lvl, "carts[1].mass"), lvl.sim))
+        assert f"spans {lower[0]:g}-{lower[1]:g} kg, where this machine keeps running" in tip
     limit = io.load(library.resolve("apparatus_limit"))
     assert spans.admissible(limit, _spec(limit, "carts[0].mass"), limit.sim) is None
