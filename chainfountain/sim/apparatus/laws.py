@@ -3,8 +3,9 @@
 Figures of the rollers alone (the rigs of ``research/pickup_study.py``,
 ``docs/apparatus.md``), used to predict a run's speed and tensions (the report,
 :mod:`chainfountain.sim.apparatus_report`; the energy budget,
-:mod:`chainfountain.sim.budget`; the window's readout and the floor machine's slider
-spans, :func:`floor_speeds`, :func:`floor_runs_on`); the physics does not read them.
+:mod:`chainfountain.sim.budget`; the window's readout and the machines' slider spans,
+:func:`floor_speeds`, :func:`floor_runs_on`, :func:`fold_runs_on`); the physics does not
+read them.
 """
 
 from __future__ import annotations
@@ -121,18 +122,18 @@ law, 0.05 (0.72) and 0.1 stopped (``docs/apparatus.md``, "Declared losses";
 
 _GRAM_AT_30 = 0.001 * 9.81 * 0.5
 FOLD_CART_BAND = ((-0.5 * _GRAM_AT_30, 1.5 * _GRAM_AT_30), (-2.0 * _GRAM_AT_30, _GRAM_AT_30))
-"""How far (N of cart force ``m*g*sin(beta)``; 1 g at the presets' 30-deg tracks is
-0.0049 N) the upper and the lower cart of a contact
-'fold' machine can move from the balance the level was built with, one at a time, and the
-machine keep running: measured, not from a law (the paper's loss-free machine has a single
-balance; this model's fold holds within a few grams of its own). ``python
-research/live_tuning.py LEVEL 'carts[i].mass' VALUES --starts 3 --after 40``, each value
-set at 10, 10.7 and 11.4 s (three phases of the landing swing), 40 s after:
-``apparatus_special`` (17.5 / 58 g) upper 17-19 g and lower 56-59 g held 3 of 3, upper 16.5
-g and lower 59.5 g 1 of 3, lower 55 and 60 g none; ``apparatus_fold`` (17.5 / 41 g) upper 17-19 g and
-lower 38-42 g held 3 of 3, upper 16.5 g 2 of 3, upper 16 g and lower 43 g none. The band is
-the part that held every time in both (``docs/apparatus.md``, "Tuning the damped folds
-live"); both carts moved at once were not measured."""
+"""How far the upper and the lower cart of a contact 'fold' machine can move from the
+balance the level was built with, one at a time, and the machine keep running: ``(lo,
+hi)`` in N of cart force ``m*g*sin(beta)`` for each (1 g on the presets' 30-deg tracks is
+0.0049 N). Measured, not from a law (the paper's loss-free machine has a single balance;
+this model's fold holds within a few grams of its own): ``python research/live_tuning.py
+LEVEL 'carts[i].mass' VALUES --starts 3 --after 40``, each value set at 10, 10.7 and
+11.4 s (three phases of the landing swing), then 40 s. ``apparatus_special`` (17.5 / 58 g):
+upper 17-19 g and lower 56-59 g held 3 of 3, upper 16.5 g and lower 59.5 g 1 of 3, lower
+55 and 60 g none. ``apparatus_fold`` (17.5 / 41 g): upper 17-19 g and lower 38-42 g held 3
+of 3, upper 16.5 g 2 of 3, upper 16 g and lower 43 g none. The band is the part that held
+every time in both (``docs/apparatus.md``, "Tuning the damped folds live"); both carts
+moved at once were not measured."""
 
 
 def fold_runs_on(cfg: SimConfig, balance: SimConfig) -> bool:
