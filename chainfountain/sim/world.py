@@ -503,6 +503,7 @@ class Simulation:
         app = self.apparatus
         if app is None:
             return []
+        app.sync_plates()
         shapes = list(app.walls) + [app.plate_up, app.table_up]
         for extra in (app.plate_lo, getattr(app, "table_lo", None), app.floor):
             if extra is not None:

@@ -192,6 +192,11 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
         self._plate_ends = [float(self.plate_up.a.x), float(self.plate_lo.b.x)
                             if self.plate_lo is not None else 0.0]
         """x of the upper plate's start and the lower plate's end (m)."""
+        self._plates_collide = self.plate_up.space is not None or (
+            self.plate_lo is not None and self.plate_lo.space is not None)
+        """Whether a plate is a collision shape (``plate = "contact"``): its ends then
+        follow the rollers every step; with grooves the plates are only drawn, and their
+        ends follow when read (:meth:`sync_plates`)."""
         self._t = 0.0
         self._init_groove_state()
         self._init_upper_guide_state()
@@ -281,7 +286,8 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
         """Move the plate ends with the rollers; add resting links ahead of the pick-up
         roller; take resting links out of the solver behind the folding roller / on
         the floor; move links along the grooves and joint guides."""
-        self._sync_plates()
+        if self._plates_collide:
+            self._sync_plates()
         self._check_table()
         self._feed_resting_links()
         # downstream end: absorb at the floor height / drop links that lie at rest
@@ -376,6 +382,10 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
                 self.absorbed += 1
                 popped += 1
         return popped
+
+    def sync_plates(self) -> None:
+        """Put the plates' ends under the rollers now (before their shapes are read)."""
+        self._sync_plates()
 
     def _sync_plates(self) -> None:
         """Keep the plates' ends under the rollers (the moving ends are mirrored in
