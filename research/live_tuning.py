@@ -15,6 +15,8 @@ Usage::
         --at 8 --after 30
     python research/live_tuning.py apparatus_fold 'carts[1].mass' 0.039 0.043 \\
         --starts 3 --after 40 --every 10
+    python research/live_tuning.py apparatus_special 'carts[1].mass' 0.056 0.059 \\
+        --also 'carts[0].mass=0.019' --starts 3 --after 40 --every 10
 
 About 50 s of wall time per fold run of 70 simulated seconds, 15 s per floor run.
 docs/apparatus.md, "Tuning the damped folds live" and "Tuning the floor machine live".
@@ -27,14 +29,20 @@ import os
 from concurrent.futures import ProcessPoolExecutor
 
 
-def run(level: str, field: str, value: float, at: float, after: float, every: float) -> str:
-    """One run; a line with the speeds after the change, or where it stopped."""
+def run(level: str, field: str, value: float, at: float, after: float, every: float,
+        also: tuple[tuple[str, float], ...] = ()) -> str:
+    """One run; a line with the speeds after the change, or where it stopped. ``also``:
+    more fields set at the same moment, before ``field``."""
     os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
     from chainfountain.app.session import Session
     from chainfountain.level import io, library
 
     s = Session(io.load(library.resolve(level)))
     s.advance(at)
+    for other, v in also:
+        res = s.set_field(other, v)
+        if not res.ok:
+            return f"{other} = {v:g}: refused ({res.message})"
     res = s.set_field(field, value)
     if not res.ok:
         return f"{field} = {value:g}: refused ({res.message})"
@@ -44,7 +52,8 @@ def run(level: str, field: str, value: float, at: float, after: float, every: fl
         if s.stopped:
             break
         speeds.append(s.sim.apparatus.speed if s.sim.apparatus is not None else s.sim.feed.speed)
-    line = f"{field} = {value:g} at {at:g} s: speed every {every:g} s: " + \
+    head = "".join(f"{o} = {v:g}, " for o, v in also)
+    line = f"{head}{field} = {value:g} at {at:g} s: speed every {every:g} s: " + \
         " ".join(f"{v:.3f}" for v in speeds)
     if s.stopped:
         line += f"; stopped: {s.stopped}"
@@ -63,15 +72,25 @@ def main() -> None:
     ap.add_argument("--every", type=float, default=5.0, help="s between printed speeds")
     ap.add_argument("--starts", type=int, default=1,
                     help="runs per value, changed 0.7 s apart (default 1)")
+    ap.add_argument("--also", action="append", default=[], metavar="FIELD=VALUE",
+                    help="another field set at the same moment (repeatable)")
     ap.add_argument("--jobs", type=int, default=2)
     args = ap.parse_args()
+    also = []
+    for item in args.also:
+        name, _, text = item.partition("=")
+        try:
+            also.append((name, float(text)))
+        except ValueError:
+            ap.error(f"--also: {item!r} is not FIELD=NUMBER")
     if args.jobs < 1:
         ap.error(f"--jobs: {args.jobs} is not a number of processes; allowed: 1 or more")
     if args.starts < 1:
         ap.error(f"--starts: {args.starts} is not a number of runs; allowed: 1 or more")
     with ProcessPoolExecutor(args.jobs) as pool:
         futures = {v: [pool.submit(run, args.level, args.field, v, args.at + 0.7 * i,
-                                   args.after, args.every) for i in range(args.starts)]
+                                   args.after, args.every, tuple(also))
+                       for i in range(args.starts)]
                    for v in args.values}
         for v, fs in futures.items():
             lines = [f.result() for f in fs]
@@ -79,7 +98,8 @@ def main() -> None:
                 print(line, flush=True)
             if args.starts > 1:
                 held = sum("; held" in line for line in lines)
-                print(f"{args.field} = {v:g}: held {held} of {args.starts}", flush=True)
+                head = "".join(f"{o} = {x:g}, " for o, x in also)
+                print(f"{head}{args.field} = {v:g}: held {held} of {args.starts}", flush=True)
 
 
 if __name__ == "__main__":
