@@ -27,7 +27,7 @@ from chainfountain.app import budget
 from chainfountain.app.controls import FieldSpec, get_value, set_value
 from chainfountain.level import io
 from chainfountain.level.io import Level, LevelError
-from chainfountain.sim.apparatus.laws import floor_runs_on, fold_runs_on
+from chainfountain.sim.apparatus.laws import floor_runs_on, fold_cart_span
 from chainfountain.sim.config import SimConfig
 from chainfountain.sim.machine_rules import MACHINE_FIELDS, follow
 
@@ -37,7 +37,8 @@ FLOOR_FIELDS = ("carts[0].mass", "apparatus.bearing_drag", "apparatus.xi2")
 
 FOLD_FIELDS = ("carts[0].mass", "carts[1].mass")
 """A contact 'fold' machine's fields whose sliders span the measured band around the
-level's own balance (:func:`~chainfountain.sim.apparatus.laws.fold_runs_on`)."""
+level's own balance (:func:`~chainfountain.sim.apparatus.laws.fold_cart_span`; when the
+other cart is so far off that no value runs, the span of the level as built)."""
 
 BISECTIONS = 30
 """Bisection steps towards each end (the span's ends to about 1e-9 of the schema range)."""
@@ -86,8 +87,11 @@ def admissible(level: Level, spec: FieldSpec,
             sim.apparatus.variant == "floor":
         ok = _accepts(level, spec.path, origin, floor_runs_on)
     elif spec.path in FOLD_FIELDS and sim.kind == "apparatus" and origin is not None and \
-            sim.apparatus.variant == "fold" and len(sim.carts) >= 2:
-        ok = _accepts(level, spec.path, origin, lambda c: fold_runs_on(c, origin))
+            sim.apparatus.variant == "fold" and len(sim.carts) >= 2 and len(origin.carts) >= 2:
+        # linear in the carts' forces: exact, no bisection
+        span = fold_cart_span(sim, origin, FOLD_FIELDS.index(spec.path))
+        return span if span is not None else fold_cart_span(origin, origin,
+                                                           FOLD_FIELDS.index(spec.path))
     elif spec.path in MACHINE_FIELDS and sim.kind == "feed" and sim.feed.drive != "motor":
         ok = _accepts(level, spec.path, origin)
     else:

@@ -113,24 +113,33 @@ def test_the_contact_floor_machines_sliders_span_where_its_chain_runs_on() -> No
 
 def test_the_contact_fold_machines_carts_span_their_measured_band() -> None:
     """``apparatus_special`` and ``apparatus_fold``: each cart spans the part of its
-    balance that held every time it was changed live (``laws.FOLD_CART_BAND``: upper
-    17-19 g, lower 56-59 g and 39-42 g); after the other cart moves, the span is still
-    the band around the level as built; the limit case (no lower cart) keeps the
-    schema's slider (the bisection finds an end to 1e-9 of the 0-1000 kg range)."""
+    balance that held every time it was changed live, with the other cart as it is
+    (``laws.FOLD_CART_BAND`` and the net push ``FOLD_PUSH_BAND``: at the build, upper
+    17-18.83 g, lower 56-59 g and 39-42 g; the upper cart 1 g heavier moves the lower's
+    span up by 1.5 g); a span's ends are where ``fold_runs_on`` stops holding; a cart so
+    far off that the other has no span leaves it the span of the level as built; the
+    limit case (no lower cart) keeps the schema's slider."""
+    from chainfountain.sim.apparatus.laws import fold_runs_on
+
     for name, lower in (("apparatus_special", (0.056, 0.059)),
                         ("apparatus_fold", (0.039, 0.042))):
         lvl = io.load(library.resolve(name))
-        for path, want in (("carts[0].mass", (0.017, 0.019)), ("carts[1].mass", lower)):
+        for path, want in (("carts[0].mass", (0.017, 0.0175 + 1.0 / 750)),
+                           ("carts[1].mass", lower)):
             lo, hi = spans.admissible(lvl, _spec(lvl, path), lvl.sim)
-            assert lo == pytest.approx(want[0], abs=2e-6)
-            assert hi == pytest.approx(want[1], abs=2e-6)
+            assert (lo, hi) == pytest.approx(want, abs=1e-9)
+            i = spans.FOLD_FIELDS.index(path)
+            for m, runs in ((lo, True), (hi, True), (lo - 1e-5, False), (hi + 1e-5, False)):
+                cand = io.load(library.resolve(name))
+                cand.sim.carts[i].mass = m
+                assert fold_runs_on(cand.sim, lvl.sim) is runs
         moved = io.load(library.resolve(name))
         moved.sim.carts[0].mass = 0.0185
         assert spans.admissible(moved, _spec(moved, "carts[1].mass"), lvl.sim) == \
-            pytest.approx(lower, abs=2e-6)
-        moved.sim.carts[1].mass = 0.07  # typed beyond: the span stays
+            pytest.approx((lower[0] + 0.0015, lower[1]), abs=1e-9)
+        moved.sim.carts[0].mass = 0.03  # typed beyond: the lower cart keeps the built span
         assert spans.admissible(moved, _spec(moved, "carts[1].mass"), lvl.sim) == \
-            pytest.approx(lower, abs=2e-6)
+            pytest.approx(lower, abs=1e-9)
         assert spans.admissible(lvl, _spec(lvl, "carts[0].mass"), None) is None
         tip = _tooltip(spans.narrowed(lvl, _spec(lvl, "carts[1].mass"), lvl.sim))
         assert f"spans {lower[0]:g}-{lower[1]:g} kg, where this machine keeps running" in tip

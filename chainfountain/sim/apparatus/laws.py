@@ -4,8 +4,8 @@ Figures of the rollers alone (the rigs of ``research/pickup_study.py``,
 ``docs/apparatus.md``), used to predict a run's speed and tensions (the report,
 :mod:`chainfountain.sim.apparatus_report`; the energy budget,
 :mod:`chainfountain.sim.budget`; the window's readout and the machines' slider spans,
-:func:`floor_speeds`, :func:`floor_runs_on`, :func:`fold_runs_on`); the physics does not
-read them.
+:func:`floor_speeds`, :func:`floor_runs_on`, :func:`fold_cart_span`); the physics does
+not read them.
 """
 
 from __future__ import annotations
@@ -121,32 +121,72 @@ law, 0.05 (0.72) and 0.1 stopped (``docs/apparatus.md``, "Declared losses";
 
 
 _GRAM_AT_30 = 0.001 * 9.81 * 0.5
+"""The force (N) of 1 g of cart on the presets' 30-deg tracks."""
 FOLD_CART_BAND = ((-0.5 * _GRAM_AT_30, 1.5 * _GRAM_AT_30), (-2.0 * _GRAM_AT_30, _GRAM_AT_30))
-"""How far the upper and the lower cart of a contact 'fold' machine can move from the
-balance the level was built with, one at a time, and the machine keep running: ``(lo,
-hi)`` in N of cart force ``m*g*sin(beta)`` for each (1 g on the presets' 30-deg tracks is
-0.0049 N). Measured, not from a law (the paper's loss-free machine has a single balance;
-this model's fold holds within a few grams of its own): ``python research/live_tuning.py
-LEVEL 'carts[i].mass' VALUES --starts 3 --after 40``, each value set at 10, 10.7 and
-11.4 s (three phases of the landing swing), then 40 s. ``apparatus_special`` (17.5 / 58 g):
-upper 17-19 g and lower 56-59 g held 3 of 3, upper 16.5 g and lower 59.5 g 1 of 3, lower
-55 and 60 g none. ``apparatus_fold`` (17.5 / 41 g): upper 17-19 g and lower 38-42 g held 3
-of 3, upper 16.5 g 2 of 3, upper 16 g and lower 43 g none. The band is the part that held
-every time in both (``docs/apparatus.md``, "Tuning the damped folds live"); both carts
-moved at once were not measured."""
+"""How far the upper and the lower cart of a contact 'fold' machine can each move from
+the balance the level was built with and the machine keep running: ``(lo, hi)`` in N of
+cart force ``m*g*sin(beta)`` for each. Measured, not from a law (the paper's loss-free
+machine has a single balance; this model's fold holds within a few grams of its own):
+``python research/live_tuning.py LEVEL 'carts[i].mass' VALUES --starts 3 --after 40``,
+each value set at 10, 10.7 and 11.4 s (three phases of the landing swing), then 40 s.
+``apparatus_special`` (17.5 / 58 g): upper 17-19 g and lower 56-59 g held 3 of 3, upper
+16.5 g and lower 59.5 g 1 of 3, lower 55 and 60 g none. ``apparatus_fold`` (17.5 / 41 g):
+upper 17-19 g and lower 38-42 g held 3 of 3, upper 16.5 g 2 of 3, upper 16 g and lower
+43 g none. The band is the part that held every time in both (``docs/apparatus.md``,
+"Tuning the damped folds live")."""
+FOLD_UPPER_WEIGHT = 1.5
+"""A gram off the upper cart counts as this many grams onto the lower one in the fold's
+net push ``dF_lc - FOLD_UPPER_WEIGHT*dF_uc`` (:data:`FOLD_PUSH_BAND`). Measured with both
+carts moved at once (``live_tuning.py ... --also 'carts[0].mass=M'``, 3 starts each):
+``apparatus_special`` upper 17 g with lower 56 g held 3 of 3, with 59 g none; upper 19 g
+with 56 g none, with 59 g 3 of 3; ``apparatus_fold`` upper 17 g with lower 39 g 3 of 3,
+with 42 g 2 of 3; upper 19 g with 39 g none, with 42 g 3 of 3. The rig laws' gains (0.526
+and 0.618) would give 0.85; the fold's own response to its carts is not the rigs'."""
+FOLD_PUSH_BAND = (-2.0 * _GRAM_AT_30, _GRAM_AT_30)
+"""Band (N) of the fold's net push from its balance, ``dF_lc - FOLD_UPPER_WEIGHT*dF_uc``,
+within which every measured run kept going (:data:`FOLD_UPPER_WEIGHT`)."""
+
+
+def _fold_offsets(cfg: SimConfig, balance: SimConfig) -> list[float]:
+    """The two carts' forces (N) less ``balance``'s."""
+    g = float(cfg.gravity)
+    return [g * (c.mass * math.sin(c.incline) - r.mass * math.sin(r.incline))
+            for c, r in zip(cfg.carts[:2], balance.carts[:2], strict=True)]
 
 
 def fold_runs_on(cfg: SimConfig, balance: SimConfig) -> bool:
     """Whether a contact 'fold' machine's carts lie within :data:`FOLD_CART_BAND` of
-    ``balance``'s (the level as built), each within its own band."""
+    ``balance``'s (the level as built), each, and their net push within
+    :data:`FOLD_PUSH_BAND`."""
     if len(cfg.carts) < 2 or len(balance.carts) < 2:
         return True
-    g = float(cfg.gravity)
-    for (lo, hi), cart, ref in zip(FOLD_CART_BAND, cfg.carts, balance.carts, strict=False):
-        df = g * (cart.mass * math.sin(cart.incline) - ref.mass * math.sin(ref.incline))
-        if not lo - 1e-12 <= df <= hi + 1e-12:
+    df = _fold_offsets(cfg, balance)
+    for (lo, hi), d in zip(FOLD_CART_BAND, df, strict=True):
+        if not lo - 1e-12 <= d <= hi + 1e-12:
             return False
-    return True
+    push = df[1] - FOLD_UPPER_WEIGHT * df[0]
+    return FOLD_PUSH_BAND[0] - 1e-12 <= push <= FOLD_PUSH_BAND[1] + 1e-12
+
+
+def fold_cart_span(cfg: SimConfig, balance: SimConfig, i: int) -> tuple[float, float] | None:
+    """The masses (kg) of cart ``i`` (0 upper, 1 lower) of a contact 'fold' machine for
+    which, the other cart as it is, :func:`fold_runs_on` holds; ``None`` when the other
+    cart is so far off that none does."""
+    df = _fold_offsets(cfg, balance)
+    lo, hi = FOLD_CART_BAND[i]
+    a, b = FOLD_PUSH_BAND
+    w = FOLD_UPPER_WEIGHT
+    if i == 1:  # a <= d1 - w*d0 <= b
+        lo, hi = max(lo, a + w * df[0]), min(hi, b + w * df[0])
+    else:  # (d1 - b)/w <= d0 <= (d1 - a)/w
+        lo, hi = max(lo, (df[1] - b) / w), min(hi, (df[1] - a) / w)
+    if lo > hi + 1e-12:
+        return None
+    cart, ref = cfg.carts[i], balance.carts[i]
+    f_ref = ref.mass * math.sin(ref.incline)
+    to_mass = 1.0 / (float(cfg.gravity) * math.sin(cart.incline))
+    return ((float(balance.gravity) * f_ref + lo) * to_mass,
+            (float(balance.gravity) * f_ref + hi) * to_mass)
 
 
 def floor_speeds(cfg: SimConfig) -> tuple[float, float]:
