@@ -22,8 +22,11 @@ ROW_COLOURS = {"text": render.TEXT, "dim": render.DIM, "t0": render.T0_COL,
 """Colours of the readout rows' colour names (:class:`~chainfountain.app.readout_text.Row`)."""
 PLOT_EVERY = 4
 """Redraw the live plots every this many frames (15 Hz at 60 frames/s)."""
-ABOUT_ROWS = 10
-"""Rows of a level's description shown on the view (:meth:`DrawMixin._draw_about`)."""
+ABOUT_SHARE = 0.45
+"""Largest share of the view's height the level's description card takes
+(:meth:`DrawMixin._draw_about`); a longer description ends with :data:`ABOUT_MORE`."""
+ABOUT_MORE = "... the rest: the level picker (L) shows it all"
+"""Last row of a description card cut to fit the view."""
 ABOUT_SWITCH = 5
 """Link ends the level's card must hide fewer of at the other end of the view to move
 there (so that it does not flicker between the top and the bottom)."""
@@ -84,6 +87,14 @@ def _smooth(y: np.ndarray, n: int) -> np.ndarray:
     return out
 
 
+def card_rows(font: pygame.font.Font, text: str, width: int, height: int) -> list[str]:
+    """``text`` wrapped to ``width`` pixels in ``font``, as many rows as fit ``height``
+    pixels; when it does not all fit, the last row is :data:`ABOUT_MORE`."""
+    rows = render.wrap(font, text, width)
+    n = max(2, height // font.get_linesize())
+    return rows if len(rows) <= n else [*rows[:n - 1], ABOUT_MORE]
+
+
 class DrawMixin:
     """Drawing of :class:`~chainfountain.app.window.App` (reads its own state and the session)."""
 
@@ -121,6 +132,14 @@ class DrawMixin:
         return self.show_about and (self.about_pinned
                                     or self.session.sim.time < ABOUT_SECONDS)
 
+    def about_rows(self, text: str) -> list[str]:
+        """``text`` as the description card shows it in the present view
+        (:func:`card_rows`)."""
+        rect = self.scene_rect
+        width = min(rect.w - 20, render.px(640))
+        return card_rows(render.font(18), text, width - 20,
+                         int(rect.h * ABOUT_SHARE) - render.px(34))
+
     def _draw_about(self) -> None:
         """The level's description (what it shows and what to watch) on a card at the top
         of the view, under the time line, or at its bottom when that hides less of the
@@ -132,7 +151,7 @@ class DrawMixin:
         width = min(rect.w - 20, render.px(640))
         head, body = render.font(19), render.font(18)
         lh = body.get_linesize()
-        rows = render.wrap(body, text, width - 20)[:ABOUT_ROWS]
+        rows = self.about_rows(text)
         box = pygame.Rect(rect.x + 10, render.px(72), width, render.px(34) + lh * len(rows))
         low = box.move(0, rect.bottom - render.px(40) - box.bottom)
         if low.top > box.bottom:  # room for both: the one hiding less, without flicker

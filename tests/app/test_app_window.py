@@ -13,10 +13,15 @@ import pygame_gui  # noqa: E402
 import pytest  # noqa: E402
 
 from chainfountain.app import render  # noqa: E402
-from chainfountain.app.draw import ABOUT_SECONDS, STOP_ROWS, status_rows  # noqa: E402
+from chainfountain.app.draw import (  # noqa: E402
+    ABOUT_MORE,
+    ABOUT_SECONDS,
+    STOP_ROWS,
+    status_rows,
+)
 from chainfountain.app.session import Session, paused_message  # noqa: E402
 from chainfountain.app.window import App  # noqa: E402
-from chainfountain.level import io  # noqa: E402
+from chainfountain.level import io, library  # noqa: E402
 from chainfountain.sim.config import SimConfig  # noqa: E402
 
 
@@ -549,9 +554,19 @@ def test_the_level_says_what_to_watch_until_i_hides_it(app, tmp_path):
     path = tmp_path / "other.toml"
     io.save(io.make_level("other", "Watch the chain climb.", small_level().sim), path)
     assert app.load_path(path) and app.about_visible
-    app.run_frame()  # draws the card (a description of any length fits: ABOUT_ROWS)
+    app.run_frame()  # draws the card
     app.session.sim.advance(ABOUT_SECONDS)
     assert not app.about_visible  # it made room for the fountain
+
+
+def test_every_shipped_level_says_all_of_what_to_watch_at_the_default_size(app):
+    """At 1280x760 every shipped level's description fits its card whole; a longer one
+    is cut to the card's share of the view and says where the rest is."""
+    for path in sorted(library.shipped_dir().glob("*.toml")):
+        rows = app.about_rows(io.load(path).meta.description.strip())
+        assert rows[-1] != ABOUT_MORE, f"{path.stem}: {len(rows)} rows do not fit"
+    rows = app.about_rows("a long description " * 300)
+    assert rows[-1] == ABOUT_MORE and 4 < len(rows) < 30
 
 
 def test_the_picker_shows_what_each_level_shows(app):
