@@ -27,7 +27,7 @@ from chainfountain.app import budget
 from chainfountain.app.controls import FieldSpec, get_value, set_value
 from chainfountain.level import io
 from chainfountain.level.io import Level, LevelError
-from chainfountain.sim.apparatus.laws import floor_runs_on, fold_cart_span
+from chainfountain.sim.apparatus.laws import floor_runs_on, fold_cart_span, fold_runs_on
 from chainfountain.sim.config import SimConfig
 from chainfountain.sim.machine_rules import MACHINE_FIELDS, follow
 
@@ -39,6 +39,15 @@ FOLD_FIELDS = ("carts[0].mass", "carts[1].mass")
 """A contact 'fold' machine's fields whose sliders span the measured band around the
 level's own balance (:func:`~chainfountain.sim.apparatus.laws.fold_cart_span`; when the
 other cart is so far off that no value runs, the span of the level as built)."""
+
+FOLD_OTHER_FIELDS = ("apparatus.bearing_drag", "carts[0].incline", "carts[1].incline")
+"""A contact 'fold' machine's other fields that move its carts' push: their sliders span
+where :func:`~chainfountain.sim.apparatus.laws.fold_runs_on` holds (by bisection)."""
+
+NARROWED_FIELDS = frozenset(MACHINE_FIELDS) | frozenset(FLOOR_FIELDS) | \
+    frozenset(FOLD_FIELDS) | frozenset(FOLD_OTHER_FIELDS)
+"""Every field whose slider may span less than the schema's range (the window recomputes
+their spans after any change)."""
 
 BISECTIONS = 30
 """Bisection steps towards each end (the span's ends to about 1e-9 of the schema range)."""
@@ -92,6 +101,10 @@ def admissible(level: Level, spec: FieldSpec,
         span = fold_cart_span(sim, origin, FOLD_FIELDS.index(spec.path))
         return span if span is not None else fold_cart_span(origin, origin,
                                                            FOLD_FIELDS.index(spec.path))
+    elif spec.path in FOLD_OTHER_FIELDS and sim.kind == "apparatus" and origin is not None \
+            and sim.apparatus.variant == "fold" and len(sim.carts) >= 2 \
+            and len(origin.carts) >= 2:
+        ok = _accepts(level, spec.path, origin, lambda c: fold_runs_on(c, origin))
     elif spec.path in MACHINE_FIELDS and sim.kind == "feed" and sim.feed.drive != "motor":
         ok = _accepts(level, spec.path, origin)
     else:

@@ -39,7 +39,6 @@ from chainfountain.app.draw import DrawMixin
 from chainfountain.app.input import InputMixin
 from chainfountain.app.session import Session
 from chainfountain.level import library
-from chainfountain.sim.machine_rules import MACHINE_FIELDS
 
 LEFT_W = 300
 RIGHT_W = 390
@@ -305,8 +304,7 @@ class App(InputMixin, DrawMixin):
         level = self.session.level
         # a change can move other fields (a cart that follows the balance) and the spans
         for row in self.rows:
-            if row.spec.path in MACHINE_FIELDS or row.spec.path in spans.FLOOR_FIELDS or \
-                    row.spec.path in spans.FOLD_FIELDS:
+            if row.spec.path in spans.NARROWED_FIELDS:
                 row.spec = spans.narrowed(level, spec_for(level.sim, row.spec.path),
                                           self.session.origin)
                 for el in (row.label, row.entry):

@@ -116,7 +116,8 @@ def test_the_contact_fold_machines_carts_span_their_measured_band() -> None:
     balance that held every time it was changed live, with the other cart as it is
     (``laws.FOLD_CART_BAND`` and the net push ``FOLD_PUSH_BAND``: at the build, upper
     17-18.83 g, lower 56-59 g and 39-42 g; the upper cart 1 g heavier moves the lower's
-    span up by 1.5 g); a span's ends are where ``fold_runs_on`` stops holding; a cart so
+    span up by 1.5 g); the bearing drag and the inclines span where the carts' push stays
+    in its band; a span's ends are where ``fold_runs_on`` stops holding; a cart so
     far off that the other has no span leaves it the span of the level as built; the
     limit case (no lower cart) keeps the schema's slider."""
     from chainfountain.sim.apparatus.laws import fold_runs_on
@@ -141,6 +142,12 @@ def test_the_contact_fold_machines_carts_span_their_measured_band() -> None:
         assert spans.admissible(moved, _spec(moved, "carts[1].mass"), lvl.sim) == \
             pytest.approx(lower, abs=1e-9)
         assert spans.admissible(lvl, _spec(lvl, "carts[0].mass"), None) is None
+        # a bearing drag counts as c*v/2 on each cart: at most 0.0026 N s/m (0.005 stopped
+        # every measured run); an incline moves a cart's force like its mass does
+        lo, hi = spans.admissible(lvl, _spec(lvl, "apparatus.bearing_drag"), lvl.sim)
+        assert lo == 0.0 and 0.0025 < hi < 0.0027
+        lo, hi = spans.admissible(lvl, _spec(lvl, "carts[1].incline"), lvl.sim)
+        assert lo < lvl.sim.carts[1].incline < hi and hi - lo < 0.05
         tip = _tooltip(spans.narrowed(lvl, _spec(lvl, "carts[1].mass"), lvl.sim))
         assert f"spans {lower[0]:g}-{lower[1]:g} kg, where this machine keeps running" in tip
     limit = io.load(library.resolve("apparatus_limit"))

@@ -144,14 +144,22 @@ with 42 g 2 of 3; upper 19 g with 39 g none, with 42 g 3 of 3. The rig laws' gai
 and 0.618) would give 0.85; the fold's own response to its carts is not the rigs'."""
 FOLD_PUSH_BAND = (-2.0 * _GRAM_AT_30, _GRAM_AT_30)
 """Band (N) of the fold's net push from its balance, ``dF_lc - FOLD_UPPER_WEIGHT*dF_uc``,
-within which every measured run kept going (:data:`FOLD_UPPER_WEIGHT`)."""
+within which every measured run kept going (:data:`FOLD_UPPER_WEIGHT`). A bearing drag
+``c`` counts as ``c*v/2`` on each cart, and then allows ``c`` up to 0.0026 N s/m from the
+build: measured, ``apparatus_special`` with 0.005, 0.01 and 0.02 N s/m held none of 3 runs
+(``live_tuning.py apparatus_special apparatus.bearing_drag 0.005 0.01 0.02 --starts 3``)."""
 
 
 def _fold_offsets(cfg: SimConfig, balance: SimConfig) -> list[float]:
-    """The two carts' forces (N) less ``balance``'s."""
+    """The two carts' forces (N) less ``balance``'s, a bearing drag ``c`` beyond
+    ``balance``'s counted in as the carts (``c*v/2`` more holding the pick-up back, less
+    pushing the fold on, at the level's start speed ``v``)."""
     g = float(cfg.gravity)
-    return [g * (c.mass * math.sin(c.incline) - r.mass * math.sin(r.incline))
-            for c, r in zip(cfg.carts[:2], balance.carts[:2], strict=True)]
+    drag = 0.5 * float(balance.apparatus.speed) * (
+        float(cfg.apparatus.bearing_drag) - float(balance.apparatus.bearing_drag))
+    up, lo = (g * (c.mass * math.sin(c.incline) - r.mass * math.sin(r.incline))
+              for c, r in zip(cfg.carts[:2], balance.carts[:2], strict=True))
+    return [up + drag, lo - drag]
 
 
 def fold_runs_on(cfg: SimConfig, balance: SimConfig) -> bool:
@@ -182,11 +190,10 @@ def fold_cart_span(cfg: SimConfig, balance: SimConfig, i: int) -> tuple[float, f
         lo, hi = max(lo, (df[1] - b) / w), min(hi, (df[1] - a) / w)
     if lo > hi + 1e-12:
         return None
-    cart, ref = cfg.carts[i], balance.carts[i]
-    f_ref = ref.mass * math.sin(ref.incline)
+    cart = cfg.carts[i]
+    f_now = float(cfg.gravity) * cart.mass * math.sin(cart.incline)
     to_mass = 1.0 / (float(cfg.gravity) * math.sin(cart.incline))
-    return ((float(balance.gravity) * f_ref + lo) * to_mass,
-            (float(balance.gravity) * f_ref + hi) * to_mass)
+    return ((f_now + lo - df[i]) * to_mass, (f_now + hi - df[i]) * to_mass)
 
 
 def floor_speeds(cfg: SimConfig) -> tuple[float, float]:
