@@ -44,8 +44,15 @@ FOLD_OTHER_FIELDS = ("apparatus.bearing_drag", "carts[0].incline", "carts[1].inc
 """A contact 'fold' machine's other fields that move its carts' push: their sliders span
 where :func:`~chainfountain.sim.apparatus.laws.fold_runs_on` holds (by bisection)."""
 
+FOLD_OFFSETS = ("apparatus.xi2", "apparatus.xi3")
+"""A contact 'fold' machine's offsets: its carts are balanced for the offsets it was built
+with, and the slider keeps to them. Measured on ``apparatus_special`` (``xi3 = 0.5``),
+rebuilt with ``xi3`` 0.48: stopped at 5.6 s; 0.52: held 40 s; 0.4 and 0.6 with the lower
+cart moved by the paper's law (63 g and 53 g): stopped at 3.7 and 2.6 s
+(``docs/apparatus.md``, "Tuning the damped folds live")."""
+
 NARROWED_FIELDS = frozenset(MACHINE_FIELDS) | frozenset(FLOOR_FIELDS) | \
-    frozenset(FOLD_FIELDS) | frozenset(FOLD_OTHER_FIELDS)
+    frozenset(FOLD_FIELDS) | frozenset(FOLD_OTHER_FIELDS) | frozenset(FOLD_OFFSETS)
 """Every field whose slider may span less than the schema's range (the window recomputes
 their spans after any change)."""
 
@@ -101,6 +108,10 @@ def admissible(level: Level, spec: FieldSpec,
         span = fold_cart_span(sim, origin, FOLD_FIELDS.index(spec.path))
         return span if span is not None else fold_cart_span(origin, origin,
                                                            FOLD_FIELDS.index(spec.path))
+    elif spec.path in FOLD_OFFSETS and sim.kind == "apparatus" and origin is not None \
+            and sim.apparatus.variant == "fold" and len(origin.carts) >= 2:
+        built = float(get_value(origin, spec.path))  # balanced for this offset only
+        return built, built
     elif spec.path in FOLD_OTHER_FIELDS and sim.kind == "apparatus" and origin is not None \
             and sim.apparatus.variant == "fold" and len(sim.carts) >= 2 \
             and len(origin.carts) >= 2:

@@ -148,6 +148,9 @@ def test_the_contact_fold_machines_carts_span_their_measured_band() -> None:
         assert lo == 0.0 and 0.0025 < hi < 0.0027
         lo, hi = spans.admissible(lvl, _spec(lvl, "carts[1].incline"), lvl.sim)
         assert lo < lvl.sim.carts[1].incline < hi and hi - lo < 0.05
+        for path in spans.FOLD_OFFSETS:  # balanced for its own offsets only
+            built = controls.get_value(lvl.sim, path)
+            assert spans.admissible(moved, _spec(moved, path), lvl.sim) == (built, built)
         tip = _tooltip(spans.narrowed(lvl, _spec(lvl, "carts[1].mass"), lvl.sim))
         assert f"spans {lower[0]:g}-{lower[1]:g} kg, where this machine keeps running" in tip
     limit = io.load(library.resolve("apparatus_limit"))
