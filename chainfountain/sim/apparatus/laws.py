@@ -147,7 +147,8 @@ FOLD_PUSH_BAND = (-2.0 * _GRAM_AT_30, _GRAM_AT_30)
 within which every measured run kept going (:data:`FOLD_UPPER_WEIGHT`). A bearing drag
 ``c`` counts as ``c*v/2`` on each cart, and then allows ``c`` up to 0.0026 N s/m from the
 build: measured, ``apparatus_special`` with 0.005, 0.01 and 0.02 N s/m held none of 3 runs
-(``live_tuning.py apparatus_special apparatus.bearing_drag 0.005 0.01 0.02 --starts 3``)."""
+(``live_tuning.py apparatus_special apparatus.bearing_drag 0.005 0.01 0.02 --starts 3``),
+``apparatus_fold`` 1 of 3 at 0.005 and none at 0.01 and 0.02."""
 
 
 def _fold_offsets(cfg: SimConfig, balance: SimConfig) -> list[float]:
