@@ -31,7 +31,7 @@ from chainfountain.sim.apparatus.laws import floor_runs_on, fold_cart_span, fold
 from chainfountain.sim.config import SimConfig
 from chainfountain.sim.machine_rules import MACHINE_FIELDS, follow
 
-FLOOR_FIELDS = ("carts[0].mass", "apparatus.bearing_drag", "apparatus.xi2")
+FLOOR_FIELDS = ("carts[0].mass", "carts[0].incline", "apparatus.bearing_drag", "apparatus.xi2")
 """A contact 'floor' machine's fields whose sliders span where the chain runs on
 (:func:`~chainfountain.sim.apparatus.laws.floor_runs_on`, measured limits)."""
 
