@@ -94,28 +94,24 @@ def admissible(level: Level, spec: FieldSpec,
     """The span (schema units) of values around the present one that ``level``'s checks
     accept for ``spec``'s field (and, given the level as loaded, ``origin``, that the
     window's budget runs: :mod:`chainfountain.app.budget`; a contact floor machine's, that
-    its chain runs on; a contact fold machine's carts, within their measured band of
-    ``origin``'s), or ``None`` when the field is none of an ideal machine's,
-    :data:`FLOOR_FIELDS` of a contact floor machine or :data:`FOLD_FIELDS` of a contact
+    its chain runs on; a contact fold machine's, that its carts stay within their measured
+    band of ``origin``'s), or ``None`` when the field is none of an ideal machine's,
+    :data:`FLOOR_FIELDS` of a contact floor machine or the ``FOLD_*`` fields of a contact
     fold machine, or the present value is outside already (the schema's range then)."""
     sim = level.sim
-    if spec.path in FLOOR_FIELDS and sim.kind == "apparatus" and \
-            sim.apparatus.variant == "floor":
-        ok = _accepts(level, spec.path, origin, floor_runs_on)
-    elif spec.path in FOLD_FIELDS and sim.kind == "apparatus" and origin is not None and \
-            sim.apparatus.variant == "fold" and len(sim.carts) >= 2 and len(origin.carts) >= 2:
-        # linear in the carts' forces: exact, no bisection
-        span = fold_cart_span(sim, origin, FOLD_FIELDS.index(spec.path))
-        return span if span is not None else fold_cart_span(origin, origin,
-                                                           FOLD_FIELDS.index(spec.path))
-    elif spec.path in FOLD_OFFSETS and sim.kind == "apparatus" and origin is not None \
-            and sim.apparatus.variant == "fold" and len(origin.carts) >= 2:
-        built = float(get_value(origin, spec.path))  # balanced for this offset only
+    variant = sim.apparatus.variant if sim.kind == "apparatus" else None
+    fold = (variant == "fold" and origin is not None and len(sim.carts) >= 2
+            and len(origin.carts) >= 2)
+    if fold and spec.path in FOLD_FIELDS:  # linear in the carts' forces: exact
+        i = FOLD_FIELDS.index(spec.path)
+        return fold_cart_span(sim, origin, i) or fold_cart_span(origin, origin, i)
+    if fold and spec.path in FOLD_OFFSETS:  # the carts are balanced for these only
+        built = float(get_value(origin, spec.path))
         return built, built
-    elif spec.path in FOLD_OTHER_FIELDS and sim.kind == "apparatus" and origin is not None \
-            and sim.apparatus.variant == "fold" and len(sim.carts) >= 2 \
-            and len(origin.carts) >= 2:
+    if fold and spec.path in FOLD_OTHER_FIELDS:
         ok = _accepts(level, spec.path, origin, lambda c: fold_runs_on(c, origin))
+    elif variant == "floor" and spec.path in FLOOR_FIELDS:
+        ok = _accepts(level, spec.path, origin, floor_runs_on)
     elif spec.path in MACHINE_FIELDS and sim.kind == "feed" and sim.feed.drive != "motor":
         ok = _accepts(level, spec.path, origin)
     else:

@@ -180,7 +180,8 @@ def fold_runs_on(cfg: SimConfig, balance: SimConfig) -> bool:
 def fold_cart_span(cfg: SimConfig, balance: SimConfig, i: int) -> tuple[float, float] | None:
     """The masses (kg) of cart ``i`` (0 upper, 1 lower) of a contact 'fold' machine for
     which, the other cart as it is, :func:`fold_runs_on` holds; ``None`` when the other
-    cart is so far off that none does."""
+    cart is so far off that none does, or the cart's track is level (its mass pushes
+    nothing) or tilted the other way (only a negative mass would run)."""
     df = _fold_offsets(cfg, balance)
     lo, hi = FOLD_CART_BAND[i]
     a, b = FOLD_PUSH_BAND
@@ -189,12 +190,15 @@ def fold_cart_span(cfg: SimConfig, balance: SimConfig, i: int) -> tuple[float, f
         lo, hi = max(lo, a + w * df[0]), min(hi, b + w * df[0])
     else:  # (d1 - b)/w <= d0 <= (d1 - a)/w
         lo, hi = max(lo, (df[1] - b) / w), min(hi, (df[1] - a) / w)
-    if lo > hi + 1e-12:
-        return None
     cart = cfg.carts[i]
-    f_now = float(cfg.gravity) * cart.mass * math.sin(cart.incline)
-    to_mass = 1.0 / (float(cfg.gravity) * math.sin(cart.incline))
-    return ((f_now + lo - df[i]) * to_mass, (f_now + hi - df[i]) * to_mass)
+    per_kg = float(cfg.gravity) * math.sin(cart.incline)  # N of cart force per kg
+    if lo > hi + 1e-12 or abs(per_kg) < 1e-9:  # none runs, or the mass moves no force
+        return None
+    f_now = per_kg * cart.mass
+    m_lo, m_hi = sorted(((f_now + lo - df[i]) / per_kg, (f_now + hi - df[i]) / per_kg))
+    if m_hi <= 1e-6:  # only a negative mass would run
+        return None
+    return max(m_lo, 1e-6), m_hi
 
 
 def floor_speeds(cfg: SimConfig) -> tuple[float, float]:
