@@ -150,6 +150,10 @@ def test_the_contact_fold_machines_carts_span_their_measured_band() -> None:
         assert lo == 0.0 and 0.0025 < hi < 0.0027
         lo, hi = spans.admissible(lvl, _spec(lvl, "carts[1].incline"), lvl.sim)
         assert lo < lvl.sim.carts[1].incline < hi and hi - lo < 0.05
+        for incline in (0.0, -0.5):  # typed: a level or reversed track moves no span
+            moved.sim.carts[1].incline = incline
+            assert spans.admissible(moved, _spec(moved, "carts[1].mass"), lvl.sim) == \
+                pytest.approx(lower, abs=1e-9)
         for path in spans.FOLD_OFFSETS:  # balanced for its own offsets only
             built = controls.get_value(lvl.sim, path)
             assert spans.admissible(moved, _spec(moved, path), lvl.sim) == (built, built)
