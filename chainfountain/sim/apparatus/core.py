@@ -77,7 +77,7 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
         path += self._build_end()
         self._lay_along(path)
         self._init_state()
-        self._sync_plates()
+        self.sync_plates()
         self._take_in_held_links()
 
     # ------------------------------------------------------------------ build steps
@@ -287,7 +287,7 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
         roller; take resting links out of the solver behind the folding roller / on
         the floor; move links along the grooves and joint guides."""
         if self._plates_collide:
-            self._sync_plates()
+            self.sync_plates()
         self._check_table()
         self._feed_resting_links()
         # downstream end: absorb at the floor height / drop links that lie at rest
@@ -384,12 +384,9 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
         return popped
 
     def sync_plates(self) -> None:
-        """Put the plates' ends under the rollers now (before their shapes are read)."""
-        self._sync_plates()
-
-    def _sync_plates(self) -> None:
-        """Keep the plates' ends under the rollers (the moving ends are mirrored in
-        :attr:`_plate_ends`, so that the usual step reads only the rollers)."""
+        """Put the plates' ends under the rollers (every step for a plate that collides,
+        else before the plates' shapes are read; the moving ends are mirrored in
+        :attr:`_plate_ends`, so that this reads only the rollers)."""
         L = self.L
         x = self.upper.x + 0.5 * L
         if abs(self._plate_ends[0] - x) > 1e-4:
