@@ -132,13 +132,15 @@ class DrawMixin:
         return self.show_about and (self.about_pinned
                                     or self.session.sim.time < ABOUT_SECONDS)
 
+    def _about_width(self) -> int:
+        """Width (px) of the description card in the present view."""
+        return min(self.scene_rect.w - 20, render.px(640))
+
     def about_rows(self, text: str) -> list[str]:
         """``text`` as the description card shows it in the present view
         (:func:`card_rows`)."""
-        rect = self.scene_rect
-        width = min(rect.w - 20, render.px(640))
-        return card_rows(render.font(18), text, width - 20,
-                         int(rect.h * ABOUT_SHARE) - render.px(34))
+        return card_rows(render.font(18), text, self._about_width() - 20,
+                         int(self.scene_rect.h * ABOUT_SHARE) - render.px(34))
 
     def _draw_about(self) -> None:
         """The level's description (what it shows and what to watch) on a card at the top
@@ -148,7 +150,7 @@ class DrawMixin:
         if not text:
             return
         rect = self.scene_rect
-        width = min(rect.w - 20, render.px(640))
+        width = self._about_width()
         head, body = render.font(19), render.font(18)
         lh = body.get_linesize()
         rows = self.about_rows(text)
