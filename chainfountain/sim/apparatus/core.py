@@ -19,12 +19,12 @@ import numpy as np
 import pymunk
 
 from chainfountain.errors import RunEnded
-from chainfountain.sim import fastbody
 from chainfountain.sim.apparatus.ends import EndPart
 from chainfountain.sim.apparatus.fold import FoldPart
 from chainfountain.sim.apparatus.fold_watch import FoldWatch
 from chainfountain.sim.apparatus.grooves import PlateGrooves
 from chainfountain.sim.apparatus.open_tail import OpenTail
+from chainfountain.sim.apparatus.parts import DRIVE_REACH
 from chainfountain.sim.apparatus.stall_watch import StallWatch
 from chainfountain.sim.apparatus.starter import StarterPart
 from chainfountain.sim.apparatus.treadmill import Treadmills
@@ -77,6 +77,7 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
         path += self._build_end()
         self._lay_along(path)
         self._init_state()
+        self._add_swing_damper()
         self.sync_plates()
         self._take_in_held_links()
 
@@ -88,6 +89,9 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
         self.sim_cfg = cfg
         a = self.cfg = cfg.apparatus
         self.g = float(cfg.gravity)
+        self.h = float(cfg.solver.dt) / int(cfg.solver.substeps)
+        """pymunk's step (s): ``solver.dt / solver.substeps``. The bookkeeping
+        (:meth:`after_step`) runs once per ``solver.dt``; forces apply in every pymunk step."""
         self.L = chain.L
         self.rho = float(cfg.chain.link_radius)
         self.r = float(a.roller_radius)
@@ -253,19 +257,9 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
 
     # ------------------------------------------------------------------ stepping
     def before_step(self) -> None:
-        """Apply the cart forces (constant, along the track, on the carriage) and the
-        end pull ('open')."""
-        c = self.cfg.bearing_drag
-        for unit in (self.upper, self.lower):
-            if unit is None or not (unit.force or c):
-                continue
-            h = fastbody.handle(unit.carriage)
-            f = unit.direction * unit.force
-            if c:
-                f -= c * fastbody.get_velocity(h).x
-            fastbody.apply_force_at_local_point(h, (f, 0.0), (0.0, 0.0))
-        if self.cfg.swing_damper and self.lower is not None:
-            self._damp_swing(self.cfg.swing_damper)
+        """Before each pymunk step: the end pull ('open'), the treadmill's fading joint
+        preloads and the starter. (The cart forces, the bearing drag and the swing damper
+        are pymunk springs, :meth:`set_losses`.)"""
         if self.end_pull:
             self.chain.links[0].body.apply_force_at_world_point(
                 (self.end_pull, 0.0), self.chain.links[0].body.position)
@@ -274,13 +268,28 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
         if self.starting:
             self._drive_starter()
 
-    def _damp_swing(self, c: float) -> None:
-        """The swing damper (``apparatus.swing_damper``): ``-c*(u_up - u_lo)`` on the
-        upper carriage and its opposite on the lower; zero when both roll at one speed."""
-        hu, hl = fastbody.handle(self.upper.carriage), fastbody.handle(self.lower.carriage)
-        f = -c * (fastbody.get_velocity(hu).x - fastbody.get_velocity(hl).x)
-        fastbody.apply_force_at_local_point(hu, (f, 0.0), (0.0, 0.0))
-        fastbody.apply_force_at_local_point(hl, (-f, 0.0), (0.0, 0.0))
+    def _add_swing_damper(self) -> None:
+        """The swing damper (``apparatus.swing_damper`` c, 'fold'): ``-c*(u_up - u_lo)`` on
+        the upper carriage and its opposite on the lower, zero while both roll at one
+        speed; a pymunk damped spring without stiffness between the carriages, its axis
+        horizontal (the lower carriage's anchor :data:`~.parts.DRIVE_REACH` behind it)."""
+        self.swing_spring: pymunk.DampedSpring | None = None
+        if self.lower is None:
+            return
+        s = pymunk.DampedSpring(self.upper.carriage, self.lower.carriage, (0.0, 0.0),
+                                (-DRIVE_REACH, 0.0), DRIVE_REACH, 0.0,
+                                float(self.cfg.swing_damper))
+        self.space.add(s)
+        self.swing_spring = s
+
+    def set_losses(self) -> None:
+        """Apply the level's cart forces, ``apparatus.bearing_drag`` and
+        ``apparatus.swing_damper`` (after a live change of any of them)."""
+        for unit in (self.upper, self.lower):
+            if unit is not None:
+                unit.set_drive(self.cfg.bearing_drag)
+        if self.swing_spring is not None:
+            self.swing_spring.damping = float(self.cfg.swing_damper)
 
     def after_step(self, dt: float) -> None:
         """Move the plate ends with the rollers; add resting links ahead of the pick-up

@@ -21,6 +21,13 @@ ONLY_CHAIN = pymunk.ShapeFilter(categories=SCENERY_CATEGORY, mask=CHAIN_CATEGORY
 SCENERY = pymunk.ShapeFilter(categories=SCENERY_CATEGORY)
 """Filter of the tables and the floor (the rollers roll on the chain lying on them)."""
 
+DRIVE_REACH = 1.0e3
+"""Distance (m) from a carriage to the static anchor of its drive spring
+(:meth:`RollerUnit.set_drive`), on the carriage's own line."""
+DRIVE_STIFFNESS = 1.0e-6
+"""Stiffness (N/m) of a drive spring: so soft that its force changes by 1e-6 N per metre
+the carriage rolls (a cart's force is 0.04-0.3 N), i.e. a constant force."""
+
 
 @dataclass(eq=False)
 class RollerUnit:
@@ -35,6 +42,9 @@ class RollerUnit:
     g: float
     yc: float
     """Height of the roller centre at rest on the chain (m)."""
+    drive: pymunk.DampedSpring
+    """The cart's force and the bearing drag on the carriage, applied by pymunk in every
+    step (:meth:`set_drive`)."""
 
     @property
     def force(self) -> float:
@@ -43,10 +53,23 @@ class RollerUnit:
         return 0.0 if c is None else c.mass * self.g * math.sin(c.incline)
 
     def set_cart_mass(self, m: float, base: float) -> None:
-        """Change the cart mass live (the carriage carries it)."""
+        """Change the cart mass live (the carriage carries it, and it pulls harder)."""
         if self.cart is not None:
             self.cart.mass = float(m)
         self.carriage.mass = base + (0.0 if self.cart is None else self.cart.mass)
+        self.set_drive(self.drive.damping)
+
+    def set_drive(self, drag: float) -> None:
+        """The carriage's drive: the cart force :attr:`force` along :attr:`direction` and a
+        bearing drag ``-drag*u`` (N s/m) on its velocity ``u``, as one pymunk damped spring
+        from a static anchor :data:`DRIVE_REACH` behind the carriage on its line. The
+        spring's stiffness is :data:`DRIVE_STIFFNESS`, so its force is constant to 1e-6 N
+        per metre of travel; its damper is the drag (pymunk integrates it exactly over
+        the step). Native, the drive costs no Python in the step."""
+        s = self.drive
+        s.stiffness = DRIVE_STIFFNESS
+        s.rest_length = DRIVE_REACH + self.force / DRIVE_STIFFNESS
+        s.damping = float(drag)
 
     @property
     def x(self) -> float:
@@ -60,7 +83,11 @@ class RollerUnit:
 
 def add_roller(space: pymunk.Space, x: float, y_table: float, rho: float, r: float,
                 m_roller: float, m_carriage: float, cart: CartConfig | None, direction: float,
-                g: float, error_bias: float, vx: float, omega: float) -> RollerUnit:
+                g: float, error_bias: float, vx: float, omega: float,
+                drag: float = 0.0) -> RollerUnit:
+    """A roller on its carriage at ``x`` on a table at ``y_table``, moving at ``vx`` and
+    turning at ``omega``, its carriage driven by ``cart`` along ``direction`` with a
+    bearing drag ``drag`` (N s/m; :meth:`RollerUnit.set_drive`)."""
     yc = y_table + 2.0 * rho + r
     m_c = m_carriage + (cart.mass if cart is not None else 0.0)
     carriage = pymunk.Body(m_c, float("inf"))
@@ -78,9 +105,14 @@ def add_roller(space: pymunk.Space, x: float, y_table: float, rho: float, r: flo
     carriage.velocity = (vx, 0.0)
     roller.velocity = (vx, 0.0)
     roller.angular_velocity = omega
-    space.add(carriage, groove, roller, slot, circ)
-    return RollerUnit(roller=roller, carriage=carriage, shape=circ, direction=direction,
-                      cart=cart, g=g, yc=yc)
+    # the drive pushes away from its anchor: behind the carriage for its direction
+    drive = pymunk.DampedSpring(space.static_body, carriage, (x - direction * DRIVE_REACH, yc),
+                                (0.0, 0.0), DRIVE_REACH, 0.0, 0.0)
+    space.add(carriage, groove, roller, slot, circ, drive)
+    unit = RollerUnit(roller=roller, carriage=carriage, shape=circ, direction=direction,
+                      cart=cart, g=g, yc=yc, drive=drive)
+    unit.set_drive(drag)
+    return unit
 
 
 def static_segment(space: pymunk.Space, a: tuple[float, float], b: tuple[float, float],

@@ -67,7 +67,8 @@ class UpperPart:
         R = r + rho
         self.upper = add_roller(space, x_R, y_tab, rho, r, a.roller_mass, a.carriage_mass,
                                 carts[0] if carts else None, -1.0, self.g,
-                                self.sim_cfg.solver.joint_error_bias, vR, -vR / R)
+                                self.sim_cfg.solver.joint_error_bias, vR, -vR / R,
+                                drag=a.bearing_drag)
         self.table_up = static_segment(space, (x_R - 1.0, y_tab - 0.01),
                                        (self.x_plate_up_end, y_tab - 0.01), 0.01,
                                        a.table_friction, SCENERY)
