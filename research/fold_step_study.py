@@ -73,7 +73,8 @@ def _clamp_force(sim: Simulation, seconds: float) -> float:
 def fold_config(level: str, dt: float, clearance: float | None = None,
                 lower_cart: float | None = None, speed: float | None = None,
                 damper: float = 0.0) -> SimConfig:
-    """A 'fold' level (a name in ``levels/`` or a ``.toml`` path) at solver step ``dt`` (s),
+    """A 'fold' level (a name in ``levels/`` or a ``.toml`` path) at pymunk step ``dt`` (s, the
+    bookkeeping every step: ``substeps = 1``),
     with the study's changes (``None``: as in the level) and the swing damper ``damper``
     (N s/m; 0 by default: these studies read the fold's own behaviour, not the shipped
     presets' damped one). A missing, bad or non-fold level stops the script with one line."""
@@ -93,7 +94,7 @@ def fold_config(level: str, dt: float, clearance: float | None = None,
     carts = list(cfg.carts)
     if lower_cart is not None:
         carts[1] = dataclasses.replace(carts[1], mass=lower_cart)
-    return dataclasses.replace(cfg, solver=dataclasses.replace(cfg.solver, dt=dt),
+    return dataclasses.replace(cfg, solver=dataclasses.replace(cfg.solver, dt=dt, substeps=1),
                                apparatus=a, carts=carts)
 
 

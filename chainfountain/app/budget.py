@@ -44,8 +44,9 @@ def beaker_links(sim: SimConfig) -> int:
 APPARATUS_LINK_STEP = 1.9e-6
 """Wall seconds per link and pymunk step of an apparatus (the machine's bookkeeping makes
 it nearly independent of the iterations: ``apparatus_special`` 1.8e-6 with about 200
-links at 15 iterations, ``apparatus_floor`` 1.9e-6 with about 125 at 10;
-``benchmarks/bench_apparatus.py`` times them)."""
+links at 15 iterations, ``apparatus_floor`` 1.9e-6 with about 125 at 10, both with the
+bookkeeping in every pymunk step; ``benchmarks/bench_apparatus.py`` times them). With
+``solver.substeps`` above 1 the bookkeeping runs less often and this overestimates."""
 
 
 def apparatus_links(sim: SimConfig) -> int | None:
@@ -82,7 +83,7 @@ def cost(sim: SimConfig) -> tuple[int, float] | None:
         n = apparatus_links(sim)
         if n is None:
             return None
-        return n, n * APPARATUS_LINK_STEP / sim.solver.dt
+        return n, n * APPARATUS_LINK_STEP * sim.solver.substeps / sim.solver.dt
     if sim.kind == "beaker":
         n = beaker_links(sim)
         s = sim.solver

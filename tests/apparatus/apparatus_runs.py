@@ -56,17 +56,24 @@ def load_on_path(path: Path) -> Level:
     return laid_on_path(io.load(path))
 
 
+STUDY_STEP = {"solver.dt": 0.0005, "solver.substeps": 1}
+"""The fold studies' step: pymunk's 0.5 ms with the bookkeeping in every step, where the
+fold's own behaviour was measured (the shipped presets do their bookkeeping every second
+step, ``substeps = 2``; docs/apparatus.md, "Step and bookkeeping")."""
+
+
 def load_undamped(path: Path) -> Level:
-    """The fold level at ``path`` without its swing damper (``apparatus.swing_damper = 0``):
-    the contact fold's own behaviour, whose landing swing grows until the fold fails
-    (``apparatus_special`` at about 18 s; docs/apparatus.md, "The landing swing"), which
-    the tests of the fold's laws read."""
-    return with_changes(io.load(path), {"apparatus.swing_damper": 0.0})
+    """The fold level at ``path`` without its swing damper (``apparatus.swing_damper = 0``)
+    at :data:`STUDY_STEP`: the contact fold's own behaviour, whose landing swing grows until
+    the fold fails (``apparatus_special`` at about 18 s; docs/apparatus.md, "The landing
+    swing"), which the tests of the fold's laws read."""
+    return with_changes(io.load(path), {"apparatus.swing_damper": 0.0, **STUDY_STEP})
 
 
 def load_real_geometry(path: Path) -> Level:
     """The fold level at ``path`` in the real geometry without its swing damper: tables
     sized by ``apparatus.duration`` (no treadmills), the rollers travelling at ``v/2``
-    (``apparatus_fold`` as the tests of the full arrangement read it)."""
+    (``apparatus_fold`` as the tests of the full arrangement read it), at
+    :data:`STUDY_STEP`."""
     return with_changes(io.load(path), {"apparatus.plate_links": 0,
-                                        "apparatus.swing_damper": 0.0})
+                                        "apparatus.swing_damper": 0.0, **STUDY_STEP})

@@ -60,7 +60,7 @@ class FoldWatch:
         self._back_t += dt
         if self._back_t < COLLAPSE_TIME:
             return
-        clamped = dt < FOLD_DT_MIN and not self.cfg.fold_clearance
+        clamped = self.h < FOLD_DT_MIN and not self.cfg.fold_clearance
         t = self._t
         if self._held_t >= LATE_COLLAPSE and not clamped:
             cure = ("this contact fold holds only close to the speed it was built for"
@@ -81,12 +81,13 @@ class FoldWatch:
             raise FoldCollapsed(
                 plain=f"At {t:.1f} s the fold locked: at a time step below "
                 f"{FOLD_DT_MIN * 1e3:g} ms the folding roller jams against its table; set "
-                "the solver's dt back to 0.5 ms",
-                message=head + f"solver.dt = {dt:g} s is below {FOLD_DT_MIN:g} s, where the "
-                "folding roller locks between the lower plate's grooves and the table (with "
-                "apparatus.fold_clearance = 0 the fold only holds at dt 0.35-0.5 ms; "
-                "docs/apparatus.md): set apparatus.fold_clearance = "
-                "0.002 (with a lighter lower cart) or solver.dt = 0.0005")
+                "the pymunk step (solver.dt / solver.substeps) back to 0.5 ms",
+                message=head + f"the pymunk step solver.dt / solver.substeps = {self.h:g} s is "
+                f"below {FOLD_DT_MIN:g} s, where the folding roller locks between the lower "
+                "plate's grooves and the table (with apparatus.fold_clearance = 0 the fold only "
+                "holds at a pymunk step of 0.35-0.5 ms; docs/apparatus.md): set "
+                "apparatus.fold_clearance = 0.002 (with a lighter lower cart) or a pymunk step "
+                "of 0.0005 s")
         cure = ("make the lower cart heavier" if push else
                 "this model's fold needs a lower cart to push it, which the paper's does not")
         raise FoldCollapsed(

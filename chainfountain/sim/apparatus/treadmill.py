@@ -75,7 +75,7 @@ class Treadmills:
         self.shifted += dx
         pb = pymunk.Vec2d(pb.x - dx, pb.y)
         ab = a_link.body
-        F = a_link.up_joint.impulse / self.sim_cfg.solver.dt if a_link.up_joint else 0.0
+        F = a_link.up_joint.impulse / self.h if a_link.up_joint else 0.0
         vel = 0.5 * (ab.velocity + b_link.body.velocity)
         new = chain.make_body((0.5 * (pa.x + pb.x), 0.5 * (pa.y + pb.y)),
                               math.atan2(pa.y - pb.y, pa.x - pb.x), velocity=tuple(vel))
@@ -123,7 +123,7 @@ class Treadmills:
             return
         _, m, i, dx = best
         c = links[i + 1]
-        F = c.up_joint.impulse / self.sim_cfg.solver.dt if c.up_joint else 0.0
+        F = c.up_joint.impulse / self.h if c.up_joint else 0.0
         self._shift_back([lk.body for lk in links[:i]] + [lo.roller, lo.carriage], dx)
         self.shifted_lo += dx
         for k in (m + 1, m):
