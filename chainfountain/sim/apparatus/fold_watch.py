@@ -141,12 +141,12 @@ class FoldWatch:
         if self.cfg.swing_damper:
             return (f"the swing damper ({self.cfg.swing_damper:g} N*s/m) held the landing swing "
                     "(period 2-3 s) down, yet the fold failed; apparatus_special with 0.5 "
-                    "holds 10 minutes at solver.dt 0.5 ms from starts within 1 % of 3.0 m/s, "
-                    "and fails within seconds at other steps or from slower starts "
+                    "holds 10 minutes at a pymunk step of 0.5 ms from starts within 1 % of "
+                    "3.0 m/s, and fails within seconds at other steps or from slower starts "
                     "(docs/apparatus.md).")
         return ("in this model the landing swing (period 2-3 s) grows until the fold fails. "
                 "A lower cart a few grams lighter or heavier, a start 2 % faster or slower, a "
                 "stiffer catch or longer strands only move the failure (5.5-18.3 s for "
-                "apparatus_special at solver.dt 0.5 ms, 6.7-22.5 s with the upper channel's "
-                "walls); a swing damper between the carriages (apparatus.swing_damper = 0.5) "
-                "holds it down (docs/apparatus.md).")
+                "apparatus_special at a pymunk step of 0.5 ms, 6.7-22.5 s with the upper "
+                "channel's walls); a swing damper between the carriages "
+                "(apparatus.swing_damper = 0.5) holds it down (docs/apparatus.md).")
