@@ -376,10 +376,10 @@ class Simulation:
             if unit is None or unit.cart is None:
                 raise KeyError(f"{path}: no such cart in this apparatus")
             unit.set_cart_mass(v, self.config.apparatus.carriage_mass)
-        elif path in ("apparatus.bearing_drag", "apparatus.swing_damper") and \
-                self.apparatus is not None:
+        elif path in ("apparatus.bearing_drag", "apparatus.swing_damper"):
             setattr(self.config.apparatus, path.split(".")[1], v)
-            self.apparatus.set_losses()
+            if self.apparatus is not None:
+                self.apparatus.set_losses()  # the carriages' springs
         elif path.startswith("rollers[") and path.endswith("].angular_speed"):
             i = int(path[len("rollers["):path.index("]")])
             self.set_roller_speed(i, v)
