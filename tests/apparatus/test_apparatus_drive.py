@@ -17,12 +17,15 @@ LEVELS = Path(__file__).resolve().parents[2] / "levels"
 
 
 def _drive_force(unit: RollerUnit) -> float:
-    """The force (N) the drive spring puts on the carriage along the unit's direction."""
+    """The force (N) the drive spring puts on the carriage along the unit's direction (the
+    pick-up's held back in ``-x``, the fold's pushed on in ``+x``): a spring pushing the
+    wrong way reads negative."""
     s = unit.drive
     a = s.a.local_to_world(s.anchor_a)
     b = unit.carriage.local_to_world(s.anchor_b)
     dist = math.hypot(b.x - a.x, b.y - a.y)
-    return s.stiffness * (s.rest_length - dist)
+    push = s.stiffness * (s.rest_length - dist)  # > 0 pushes the carriage away from a
+    return push * (b.x - a.x) / dist * unit.direction
 
 
 def test_a_cart_spring_pushes_with_the_cart_force_wherever_the_carriage_rolls() -> None:
