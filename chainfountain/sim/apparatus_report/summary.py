@@ -7,7 +7,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.stats import theilslopes
 
 from chainfountain.sim.apparatus import (
     CART_GAIN_2CM,
@@ -289,6 +288,10 @@ def _open_run(app: Apparatus, w: _Window) -> dict:
     T_rig = rig_exit_tension(v, lam, app.upper.force + 0.5 * c * v)
     R = np.array([s.tail_reaction for s in w.S], dtype=float)
     ok = np.isfinite(R)
+    # imported here: scipy.stats takes 0.5-1.3 s to import, and the module is loaded at
+    # a running simulation's first sample (the window would stall on it)
+    from scipy.stats import theilslopes
+
     return {
         "tail_reaction_N": [float(R[ok][0]), float(R[ok][-1])] if ok.any() else None,
         # median of the pairwise slopes (Theil-Sen): a landing that strikes the
