@@ -69,7 +69,8 @@ class BudgetResult:
     v: float
     """Mean speed of the 40 links nearest the free end (m/s)."""
     seconds: float
-    """Simulated time the averages cover (sampled steps times ``dt``)."""
+    """Simulated time the averages cover (sampled pymunk steps times their step ``h``,
+    times ``every``)."""
     steps: int
     pivots: dict[str, float] = field(default_factory=dict)
     """Loss in the pivots whose downstream link is in the region (``lambda v**3``)."""
@@ -234,7 +235,7 @@ class EnergyBudget:
         kinds, v0, w0, m_end, I_end = self._pending
         self._pending = None
         sim, app = self.sim, self.app
-        dt, g = sim.dt, sim.g
+        dt, g = sim.h, sim.g  # one pymunk step (``solver.dt / solver.substeps``)
         h = 0.5 * app.L
         n = len(kinds)
         m = np.full(n, app.chain.mass)
@@ -272,7 +273,7 @@ class EnergyBudget:
         if not self._steps:
             return BudgetResult(v=float("nan"), seconds=0.0, steps=0)
         v = self._vsum / self._steps
-        secs = self._steps * self.sim.dt
+        secs = self._steps * self.sim.h  # sampled pymunk steps
         scale = -1.0 / (secs * self.sim.config.chain.linear_density * v ** 3)
         return BudgetResult(
             v=v, seconds=secs * self.every, steps=self._steps,

@@ -74,7 +74,7 @@ def run(cfg: SimConfig, mass: float | None, t_switch: float, window: float,
     F0 = app.upper.force
     if mass is not None:
         sim.set_param("carts[0].mass", mass)
-    dt, links = sim.dt, sim.chain.links
+    dt, h, links = sim.dt, sim.h, sim.chain.links  # joint impulses are per pymunk step h
     t, v, T_exit, T_launch, M_up = [], [], [], [], []
     for k in range(int(round(window / dt))):
         sim.step()
@@ -85,9 +85,9 @@ def run(cfg: SimConfig, mass: float | None, t_switch: float, window: float,
         M_up.append(m_up)
         t.append(sim.time - t_switch)
         v.append(app.strand_speed)
-        T_exit.append(np.mean([abs(g[-i][0].up_joint.impulse) for i in range(3, 7)]) / dt)
+        T_exit.append(np.mean([abs(g[-i][0].up_joint.impulse) for i in range(3, 7)]) / h)
         T_launch.append(np.mean([abs(links[i].up_joint.impulse)
-                                 for i in range(i0 - 3, i0 + 1)]) / dt)
+                                 for i in range(i0 - 3, i0 + 1)]) / h)
     return CartStepRun(t=np.array(t), v=np.array(v), T_exit=np.array(T_exit),
                        T_launch=np.array(T_launch), M_up=np.array(M_up),
                        dF=app.upper.force - F0,
