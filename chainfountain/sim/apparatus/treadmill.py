@@ -12,6 +12,9 @@ import pymunk
 from chainfountain.sim import fastbody
 from chainfountain.sim.apparatus.tuning import PRELOAD_STEPS
 
+MAX_INSERTS = 8
+"""Most links the upper treadmill puts in per bookkeeping step (1-mm links at 3 m/s and
+a 1-ms step need 3)."""
 
 class Treadmills:
     """The plate treadmills (a mixin of :class:`~chainfountain.sim.apparatus.Apparatus`)."""
@@ -48,16 +51,24 @@ class Treadmills:
         """Keep the upper plate strand from shrinking: once the pick-up roller has moved
         half a link length past its start, insert a link into the middle of the grooved
         strand and move everything upstream of it (strand, wrap, resting chain, roller
-        and carriage) back by one link length. The strand is straight, horizontal and
+        and carriage) back by one link length; as many links as the roller has rolled
+        since the last bookkeeping step (more than one only for links shorter than
+        twice the roll per step, ``v dt``). The strand is straight, horizontal and
         frictionless and all its links move at the chain speed, so the new link (the
         mean velocity of its neighbours, laid exactly into the gap) changes nothing but
         the strand's length; the pick-up (roller on the resting chain) is moved rigidly
         and is untouched."""
+        for _ in range(MAX_INSERTS):
+            if not self._insert_upper():
+                return
+
+    def _insert_upper(self) -> bool:
+        """One link into the upper strand (:meth:`_treadmill_upper`); whether it went in."""
         up = self.upper
         L = self.L
         g = self._grooves
         if up.x - self.start_x[0] < 0.5 * L or len(g) < 4:
-            return
+            return False
         chain = self.chain
         links = chain.links
         m = len(g) // 2
@@ -65,7 +76,7 @@ class Treadmills:
         i = chain.ids.index(a_link.id)
         b_link = links[i + 1]
         if g[m + 1][0] is not b_link:
-            return  # not a contiguous strand (should not happen): skip this step
+            return False  # not a contiguous strand (should not happen): skip this step
         h = 0.5 * L
         pa = a_link.body.local_to_world((-h, 0.0))
         pb = b_link.body.local_to_world((h, 0.0))
@@ -85,6 +96,7 @@ class Treadmills:
         self._g_next += 1
         self.added += 1
         self.moved_back += 1
+        return True
 
     def _treadmill_lower(self) -> None:
         """'fold': keep the lower plate strand from growing, the mirror of
