@@ -234,6 +234,22 @@ def _shade(size: tuple[int, int], colour: tuple[int, int, int], alpha: int) -> p
     return surf
 
 
+def _pile_hatch(size: tuple[int, int]) -> pygame.Surface:
+    """The shaded, hatched box of a pot's pile below its plate (cached by size: a few
+    hundred dashes a frame cost about 0.5 ms)."""
+    key = ("pile", size)
+    img = _SHADES.get(key)
+    if img is None:
+        if len(_SHADES) > 64:
+            _SHADES.clear()
+        img = _shade(size, CHAIN, 45).copy()
+        w, h = size
+        for y in range(3, h, 6):
+            _dashed(img, (120, 90, 50), (2, y), (w - 2, y), 5.0)
+        _SHADES[key] = img
+    return img
+
+
 def _dashed(surf: pygame.Surface, col, a, b, dash: float = 8.0, width: int = 1) -> None:
     ax, ay = a
     bx, by = b
@@ -335,9 +351,7 @@ def _draw_pot(surf: pygame.Surface, cam: Camera, outline: np.ndarray,
     hidden = pygame.Rect(a[0], a[1], max(1, b[0] - a[0]), max(1, b[1] - a[1]))
     hidden = hidden.clip(cam.rect)
     if hidden.w > 0 and hidden.h > 0:
-        surf.blit(_shade(hidden.size, CHAIN, 45), hidden.topleft)
-        for y in range(hidden.top + 3, hidden.bottom, 6):
-            _dashed(surf, (120, 90, 50), (hidden.left + 2, y), (hidden.right - 2, y), 5.0)
+        surf.blit(_pile_hatch(hidden.size), hidden.topleft)
     pygame.draw.line(surf, GUIDE, cam.point(*plate[0]), cam.point(*plate[1]), 2)
     pygame.draw.lines(surf, GLASS, False, cam.to_screen(outline).tolist(), 3)
 
