@@ -92,6 +92,9 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
         self.h = float(cfg.solver.dt) / int(cfg.solver.substeps)
         """pymunk's step (s): ``solver.dt / solver.substeps``. The bookkeeping
         (:meth:`after_step`) runs once per ``solver.dt``; forces apply in every pymunk step."""
+        self._release_every_step = int(cfg.solver.substeps) > 1 and a.upper_guide == "joints"
+        """Whether the upper joint guide lets links go in every pymunk step as well
+        (:meth:`~.upper_guide.UpperJointGuide._release_upper`)."""
         self.L = chain.L
         self.rho = float(cfg.chain.link_radius)
         self.r = float(a.roller_radius)
@@ -267,6 +270,8 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
             self._apply_preload()
         if self.starting:
             self._drive_starter()
+        if self._release_every_step:
+            self._release_upper()
 
     def _add_swing_damper(self) -> None:
         """The swing damper (``apparatus.swing_damper`` c, 'fold'): ``-c*(u_up - u_lo)`` on

@@ -61,21 +61,34 @@ class UpperJointGuide:
         the broadphase in 'fold' (nothing to touch in flight,
         :meth:`~.fold.FoldPart._update_flight`) and gets its shape back otherwise (the floor
         variants need it)."""
-        space = self.space
         els, qs = self.up_guide, self._uq
         last = len(els) - 1
-        for k in range(last, -1, -1):
+        self._release_upper()
+        for k in range(last - 1, -1, -1):
             q, el = qs[k], els[k]
-            before = UP_RELEASE * self.L if k == last else 0.0
             while q:
                 p = pos(q[0][0].body)
-                if not el.passed(p.x, p.y, before):
+                if not el.passed(p.x, p.y):
                     break
                 link, j = q.popleft()
-                space.remove(j)
-                if k < last:
-                    self._hold_up(k + 1, link)
-                elif not self.fold_guided and link.shape is not None \
-                        and link.shape.space is None:
-                    space.add(link.shape)
+                self.space.remove(j)
+                self._hold_up(k + 1, link)
         keep_on_arcs(els, qs, self.fold_close_rate * self.sim_cfg.solver.dt)
+
+    def _release_upper(self) -> None:
+        """Release into flight the links whose front joint has left the upper guide (its
+        centre :data:`~.tuning.UP_RELEASE` link lengths short of the start). Run in every
+        pymunk step (:meth:`~.core.Apparatus.before_step` with ``substeps > 1``), not only
+        with the bookkeeping: the fountain is sensitive to where its links leave the
+        guide, so it does not move with the bookkeeping's cadence."""
+        el, q = self.up_guide[-1], self._uq[-1]
+        before = UP_RELEASE * self.L
+        space = self.space
+        while q:
+            p = pos(q[0][0].body)
+            if not el.passed(p.x, p.y, before):
+                break
+            link, j = q.popleft()
+            space.remove(j)
+            if not self.fold_guided and link.shape is not None and link.shape.space is None:
+                space.add(link.shape)
