@@ -13,8 +13,9 @@ from chainfountain.sim import fastbody
 from chainfountain.sim.apparatus.tuning import PRELOAD_STEPS
 
 MAX_INSERTS = 8
-"""Most links the upper treadmill puts in per bookkeeping step (1-mm links at 3 m/s and
-a 1-ms step need 3)."""
+"""Most links the upper treadmill puts in per bookkeeping step (1-mm links at 3 m/s with
+the bookkeeping every 1 ms need 2: the roller rolls 1.5 mm a step)."""
+
 
 class Treadmills:
     """The plate treadmills (a mixin of :class:`~chainfountain.sim.apparatus.Apparatus`)."""
@@ -52,8 +53,8 @@ class Treadmills:
         half a link length past its start, insert a link into the middle of the grooved
         strand and move everything upstream of it (strand, wrap, resting chain, roller
         and carriage) back by one link length; as many links as the roller has rolled
-        since the last bookkeeping step (more than one only for links shorter than
-        twice the roll per step, ``v dt``). The strand is straight, horizontal and
+        since the last bookkeeping step (more than one only for links shorter than the
+        roller's roll per step, ``v dt / 2``). The strand is straight, horizontal and
         frictionless and all its links move at the chain speed, so the new link (the
         mean velocity of its neighbours, laid exactly into the gap) changes nothing but
         the strand's length; the pick-up (roller on the resting chain) is moved rigidly
