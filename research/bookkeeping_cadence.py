@@ -17,13 +17,12 @@ About 20 s for three seeds on one core.
 from __future__ import annotations
 
 import argparse
-import dataclasses
 from pathlib import Path
 
 from chainfountain.level import io
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import report
-from chainfountain.study.changes import laid_on_path
+from chainfountain.study.changes import laid_on_path, with_changes
 
 LEVELS = Path(__file__).resolve().parents[1] / "levels"
 
@@ -31,12 +30,10 @@ LEVELS = Path(__file__).resolve().parents[1] / "levels"
 def one(name: str, substeps: int, seed: int) -> dict:
     """Report of one laid, nudged run with the bookkeeping every ``substeps`` pymunk
     steps (pymunk's step kept at the level's)."""
-    lvl = laid_on_path(io.load(LEVELS / f"{name}.toml"))
-    cfg = lvl.sim
-    h = cfg.solver.dt / cfg.solver.substeps
-    cfg = dataclasses.replace(cfg, solver=dataclasses.replace(
-        cfg.solver, dt=h * substeps, substeps=substeps))
-    sim = Simulation(cfg)
+    lvl = io.load(LEVELS / f"{name}.toml")
+    h = lvl.sim.solver.dt / lvl.sim.solver.substeps
+    lvl = with_changes(lvl, {"solver.dt": h * substeps, "solver.substeps": substeps})
+    sim = Simulation(laid_on_path(lvl).sim)
     sim.nudge(seed)
     rec = Recorder(sim, profiles=False)
     sim.advance(6.0)

@@ -16,7 +16,6 @@ gives."""
 
 from __future__ import annotations
 
-import dataclasses
 from pathlib import Path
 
 import numpy as np
@@ -27,6 +26,7 @@ from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import report
 from chainfountain.sim.budget import EnergyBudget
 from chainfountain.sim.cart_step import run as cart_step_run
+from chainfountain.study.changes import with_changes
 
 LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_floor.toml"
 
@@ -34,10 +34,9 @@ pytestmark = pytest.mark.xdist_group("apparatus_substeps")
 
 
 def _config(substeps: int):
-    cfg = load_on_path(LEVEL).sim
-    assert cfg.solver.substeps == 1 and cfg.solver.dt == pytest.approx(5e-4)
-    return dataclasses.replace(cfg, solver=dataclasses.replace(
-        cfg.solver, dt=cfg.solver.dt * substeps, substeps=substeps))
+    lvl = load_on_path(LEVEL)
+    assert lvl.sim.solver.substeps == 1 and lvl.sim.solver.dt == pytest.approx(5e-4)
+    return with_changes(lvl, {"solver.dt": 5e-4 * substeps, "solver.substeps": substeps}).sim
 
 
 @pytest.fixture(scope="module")
