@@ -10,7 +10,7 @@ class UserError(Exception):
 
 
 class RunEnded(UserError):
-    """The simulated machine cannot go on (an apparatus table used up, the fold
+    """The simulated machine cannot go on (a machine's table used up, the fold
     collapsed). Not bad input: ``chainfountain run`` writes its outputs for the part
     that was simulated, marks ``summary.json`` ``ended_early`` and exits with status 3;
     the window pauses and shows the message.

@@ -272,6 +272,9 @@ def _floor_label(sim: Simulation) -> str:
                 "lower half (paper's law)")
     if cfg.kind == "feed" and cfg.feed.drive == "ideal_floor":
         return "real floor: takes the chain without pull (Tbar_E = 0)"
+    if cfg.kind == "feed" and cfg.feed.drive == "ideal_open" and sim.slide_away is not None:
+        return (f"turn {cfg.feed.turn_drop:g} m down onto a frictionless plate: the chain "
+                f"slides away ({sim.slide_away.mass:.2f} kg moving), pulling Tbar_E = k d")
     return "absorbing floor"
 
 

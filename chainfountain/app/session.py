@@ -518,7 +518,8 @@ class Session:
             te = math.nan
             if i < len(profiles) and len(profiles[i].tension_bar):
                 te = float(profiles[i].tension_bar[-1])
-            v_in = v_out = reaction = math.nan
+            v_in = v_out = math.nan
+            reaction = s.plate_reaction  # the ideal open arrangement's (nan otherwise)
             if i < len(ap):
                 v_in = 2.0 * ap[i].v_roller_up
                 if self.sim.apparatus.lower is not None:

@@ -482,7 +482,7 @@ class App(InputMixin, DrawMixin):
         other = library.twin(self.session.level.meta.name)
         if other is None:
             self.session.say("M: this level has no twin (the machine presets apparatus_floor, "
-                             "_fold, _special and _limit each have an ideal one)")
+                             "_fold, _special, _limit and _open each have an ideal one)")
             return False
         return self.load_path(library.resolve(other))
 

@@ -10,7 +10,7 @@ from chainfountain.commands.args import integer, number, path_arg
 from chainfountain.errors import UserError
 
 EXIT_HELP = ("Exit status: 0 a complete run; 2 bad input (one line naming it; nothing "
-             "run); 3 the run ended early (an apparatus table used up, the fold collapsed, "
+             "run); 3 the run ended early (a machine's table used up, the fold collapsed, "
              "the simulation diverged); 4 an output could not be written (a full disk); 130 "
              "or 143 interrupted by Ctrl-C or SIGTERM. Whenever a run has started, its outputs "
              "cover the part simulated and summary.json says why it ended (ended_early).")

@@ -6,6 +6,7 @@ import csv
 import dataclasses
 import io as _io
 import json
+import math
 from pathlib import Path
 from typing import Any
 
@@ -61,11 +62,19 @@ def write_tensions(path: Path, rec: Recorder, lam: float) -> None:
     atomic.write_text(path, buf.getvalue())
 
 
+ONLY_WHEN_MEASURED = ("plate_reaction",)
+"""Sample fields that only some levels measure (the open arrangement's plate reaction):
+their column is left out when no sample has a value."""
+
+
 def write_samples(path: Path, samples: list) -> None:
-    """One row per recorded sample (a dataclass), one column per field."""
+    """One row per recorded sample (a dataclass), one column per field (but see
+    :data:`ONLY_WHEN_MEASURED`)."""
     buf = _io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
     cols = [f.name for f in dataclasses.fields(samples[0])] if samples else ["t"]
+    cols = [c for c in cols if c not in ONLY_WHEN_MEASURED
+            or any(math.isfinite(getattr(smp, c)) for smp in samples)]
     w.writerow(cols)
     for smp in samples:
         w.writerow([f"{getattr(smp, c):.6g}" for c in cols])
@@ -74,18 +83,31 @@ def write_samples(path: Path, samples: list) -> None:
 
 def write_reaction_figure(path: Path, rec: Recorder, summary: dict[str, Any],
                           lam: float, g: float, title: str) -> None:
-    """'open' arrangement: the lower plate's reaction force against time, with the
-    paper's rate ``lambda g v`` integrated over the measured speed from the first sample
-    (the paper: "the reaction force change is exactly known over time")."""
+    """The open arrangement (an apparatus's 'open' variant, or ``feed.drive =
+    "ideal_open"``): the lower plate's reaction force against time, with the paper's rate
+    ``lambda g v`` integrated over the measured speed from the first sample (the paper:
+    "the reaction force change is exactly known over time")."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    S = rec.apparatus_samples
-    t = np.array([x.t for x in S], dtype=float)
-    R = np.array([x.tail_reaction for x in S], dtype=float)
-    v = np.array([x.v for x in S], dtype=float)
+    if summary.get("open"):  # the ideal machine: counted on the plate, from the hand-over
+        o = summary["open"]
+        w0, w1 = o["window"]
+        S = [x for x in rec.samples if x.t >= w0 - 1e-9]
+        t = np.array([x.t for x in S], dtype=float)
+        R = np.array([x.plate_reaction for x in S], dtype=float)
+        v = np.array([x.speed_mean for x in S], dtype=float)
+        fit = "least squares"
+    else:
+        o = (summary.get("apparatus") or {}).get("open") or {}
+        w0, w1 = (summary.get("apparatus") or {}).get("window") or (math.nan, math.nan)
+        S = rec.apparatus_samples
+        t = np.array([x.t for x in S], dtype=float)
+        R = np.array([x.tail_reaction for x in S], dtype=float)
+        v = np.array([x.v for x in S], dtype=float)
+        fit = "Theil-Sen"
     ok = np.isfinite(R) & np.isfinite(v)
     t, R, v = t[ok], R[ok], v[ok]
     fig, ax = plt.subplots(figsize=(6.4, 4.2), dpi=100)
@@ -93,12 +115,10 @@ def write_reaction_figure(path: Path, rec: Recorder, summary: dict[str, Any],
     if len(t) > 1:
         ax.plot(t, plate_reaction(t, v, float(R[0]), lam, g), "--", color="#d62728", lw=1.4,
                 label="lambda g v (paper), from the first sample")
-    o = (summary.get("apparatus") or {}).get("open") or {}
     rate, pred = o.get("tail_reaction_rate_N_per_s"), o.get("tail_reaction_rate_predicted")
     if rate is not None and pred is not None:
-        w0, w1 = summary["apparatus"]["window"]
         ax.text(0.02, 0.97, f"rate over {w0:.2g}-{w1:.2g} s: {rate:.3f} N/s measured "
-                f"(Theil-Sen), {pred:.3f} N/s = lambda g v ({100 * (rate / pred - 1):+.1f} %)",
+                f"({fit}), {pred:.3f} N/s = lambda g v ({100 * (rate / pred - 1):+.1f} %)",
                 transform=ax.transAxes, va="top", fontsize=8)
     ax.set_xlabel("t (s)")
     ax.set_ylabel("lower plate reaction (N)")

@@ -180,7 +180,8 @@ def _write_outputs(level: Level, out_dir: Path, duration: float, sim: Simulation
              + ("" if ended is None else " - ended early"))
     if snapshot and "vertex" in summary:
         put("snapshot.png", files.write_snapshot, sim, summary, title)
-    if app is not None and app.variant == "open" and "apparatus" in summary:
+    if (app is not None and app.variant == "open" and "apparatus" in summary) or \
+            summary.get("open"):
         put("reaction.png", files.write_reaction_figure, rec, summary, lam, level.sim.gravity,
             title)
     summary["analysis_failed"].update(analysis_failed)
@@ -205,7 +206,7 @@ def describe_outputs(summary_path: Path) -> str:
 
     steady = (f"steady since {s['steady_since_s']:.2f} s" if s.get("steady")
               else "never steady (compare with care)")
-    o = (s.get("apparatus") or {}).get("open")
+    o = (s.get("apparatus") or {}).get("open") or s.get("open")
     if o:
         # the paper's non-stationary arrangement: its measurement is the reaction's rate
         rate, pred = o.get("tail_reaction_rate_N_per_s"), o.get("tail_reaction_rate_predicted")

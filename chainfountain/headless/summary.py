@@ -95,6 +95,15 @@ def summarize(level: Level, sim: Simulation, rec: Recorder, duration: float,
     if level.sim.kind == "feed" and level.sim.feed.drive != "motor":
         # what sets the speed: the machine's laws select it, or (loss-free) keep any
         out["machine"] = "keeps any speed" if neutral else "selects"
+    if sim.slide_away is not None:
+        # the paper's non-stationary arrangement: its measurement is the reaction's rate
+        from chainfountain.sim.slide_away_report import report as open_report
+
+        rep = _attempt(failed, "open report", open_report, rec.samples,
+                       sim.piston.hand_over, level.sim.chain.linear_density, sim.g,
+                       ref.v if ref is not None else math.nan)
+        if rep is not None:
+            out["open"] = json_safe(rep)
     if sim.beaker is not None:
         from chainfountain.sim.beaker_report import report as beaker_report
 

@@ -228,10 +228,13 @@ def _check_apparatus_start(sim: SimConfig, where: str) -> None:
               "(seconds the starter runs on after the chain lands, e.g. 3)")
 
 
-DRIVE_FIELDS = {"xi2": ("ideal_floor", "ideal_fold"), "cart_force": ("ideal_floor", "ideal_fold"),
-                "machine_mass": ("ideal_floor", "ideal_fold"), "xi3": ("ideal_fold",),
-                "lower_cart_force": ("ideal_fold",), "bearing_drag": ("ideal_fold",),
-                "starter": ("ideal_floor", "ideal_fold")}
+IDEAL_DRIVES = ("ideal_floor", "ideal_fold", "ideal_open")
+"""The ideal machines' drives (the paper's laws move the chain)."""
+
+DRIVE_FIELDS = {"xi2": IDEAL_DRIVES, "cart_force": IDEAL_DRIVES, "machine_mass": IDEAL_DRIVES,
+                "xi3": ("ideal_fold",), "lower_cart_force": ("ideal_fold",),
+                "bearing_drag": ("ideal_fold",), "turn_drop": ("ideal_open",),
+                "starter": IDEAL_DRIVES}
 """Feed fields only the ideal machines use, with the drives that use them."""
 
 
@@ -260,14 +263,17 @@ def _check_drive(level: Level, where: str) -> float:
               "starts with its fountain); allowed: 0, or initial.mode = 'stub'")
     if feed.floor != "absorbing" or feed.end_tension != 0.0:
         field = "feed.floor" if feed.floor != "absorbing" else "feed.end_tension"
-        why = ("the paper's real floor takes the chain without pull"
-               if feed.drive == "ideal_floor" else "the machine's lower half sets the pull")
+        why = {"ideal_floor": "the paper's real floor takes the chain without pull",
+               "ideal_open": "the turn onto the plate sets the pull (feed.turn_drop)"}.get(
+                   feed.drive, "the machine's lower half sets the pull")
         _fail(where, field,
               f"{getattr(feed, field.split('.')[1])!r} with feed.drive = {feed.drive!r} ({why}); "
               "allowed: feed.floor = 'absorbing' with feed.end_tension = 0")
     if feed.drive == "ideal_floor":
         _check_ideal_floor(level, where)
         return 0.0
+    if feed.drive == "ideal_open":
+        return _check_ideal_open(level, where)
     return _check_ideal_fold(level, where)
 
 
@@ -287,6 +293,26 @@ def _check_ideal_floor(level: Level, where: str) -> None:
               f"too slow for a fountain over feed.drop = {H:g} m (xi2 + F_uc/(lambda*g*H) = "
               f"{share:.4g}; k*H < 1 needs < 0.5); allowed: xi2 < "
               f"{max(0.0, 0.5 - feed.cart_force / (lam * g * H)):.4g} with this cart")
+
+
+def _check_ideal_open(level: Level, where: str) -> float:
+    """The open arrangement with ideal rollers must select a speed fast enough for a
+    fountain: ``Tbar_0 = k (H + d) < 1``. Returns the ``Tbar_E = k d`` it selects."""
+    from chainfountain.theory.apparatus import ideal_open_speed
+
+    sim = level.sim
+    feed = sim.feed
+    lam, g, H, d = sim.chain.linear_density, sim.gravity, feed.drop, feed.turn_drop
+    v = ideal_open_speed(H, feed.xi2, feed.cart_force, d, lam, g)
+    if not (math.isfinite(v) and v * v > g * (H + d)):
+        shown = f"{v:.4g} m/s" if math.isfinite(v) else "no speed"
+        room = 0.5 * (H + d) - feed.cart_force / (lam * g)
+        _fail(where, "feed.xi2",
+              f"{feed.xi2!r} with feed.cart_force = {feed.cart_force:g} N and feed.turn_drop "
+              f"= {d:g} m selects {shown}, too slow for a fountain over feed.drop = {H:g} m "
+              f"(Tbar_0 = k*(H + turn_drop) must be < 1); allowed: xi2 < "
+              f"{max(0.0, room / H):.4g} with this cart and turn")
+    return g * d / (v * v)
 
 
 BALANCE_TOLERANCE = 1e-6

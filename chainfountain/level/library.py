@@ -69,6 +69,7 @@ TWINS: dict[str, str] = {
     "apparatus_fold": "ideal_fold",
     "apparatus_special": "ideal_special",
     "apparatus_limit": "ideal_limit",
+    "apparatus_open": "ideal_open",
 }
 """Each contact-machine preset and the ideal machine that shows the same arrangement by the
 paper's laws (both ways round: :func:`twin`)."""

@@ -137,7 +137,10 @@ class FeedConfig:
         min_inclusive=False,
     )
     chain_length: float = param(
-        0.0, unit="m", doc="Total chain length to feed; 0 = infinite feed", min=0.0, max=1e4,
+        0.0, unit="m", doc="Total chain length to feed; 0 = infinite feed. With an ideal "
+        "machine (feed.drive other than 'motor') the chain on its upper table: the run ends "
+        "when it is all picked up",
+        min=0.0, max=1e4,
     )
     end_tension: float = param(
         0.0, unit="1", doc="Scaled pull Tbar_E = T_E/(lambda*v^2) of the absorbing floor on the "
@@ -166,17 +169,21 @@ class FeedConfig:
         "'ideal_fold', the paper's full machine with ideal rollers: the same pick-up, and "
         "after landing the chain is lifted feed.xi3*H and put down at the loss-free rate "
         "with a lower cart (feed.lower_cart_force), so the floor pulls "
-        "lambda*v^2/2 + F_lc - lambda*g*xi3*H; balanced carts keep any speed. With both "
-        "machines feed.speed is the start speed",
-        choices=("motor", "ideal_floor", "ideal_fold"),
+        "lambda*v^2/2 + F_lc - lambda*g*xi3*H; balanced carts keep any speed; "
+        "'ideal_open', the paper's open arrangement with ideal rollers: the same pick-up, "
+        "and the landed chain runs down a loss-free turn feed.turn_drop onto a frictionless "
+        "plate and slides away, so more and more chain moves and the plate's reaction grows "
+        "at lambda*g*v; it selects v^2 = 2g(H(1 - xi2) + turn_drop) - 2F_uc/lambda. With "
+        "the ideal machines feed.speed is the start speed",
+        choices=("motor", "ideal_floor", "ideal_fold", "ideal_open"),
     )
     xi2: float = param(
-        0.0, unit="1", doc="Drives 'ideal_floor' and 'ideal_fold': height the chain is lifted "
+        0.0, unit="1", doc="The ideal machines: height the chain is lifted "
         "before the start, as a fraction xi2 of H (the paper's lowered beaker)", min=0.0,
         max=1.0, min_inclusive=True, max_inclusive=False, live=True,
     )
     cart_force: float = param(
-        0.0, unit="N", doc="Drives 'ideal_floor' and 'ideal_fold': force F_uc of the upper "
+        0.0, unit="N", doc="The ideal machines: force F_uc of the upper "
         "cart holding the chain back", min=0.0, max=100.0, live=True,
     )
     xi3: float = param(
@@ -195,13 +202,20 @@ class FeedConfig:
         "speed; above 0 the machine selects v = (F_lc + lambda*g*H*(1 - xi2 - xi3) - F_uc)/c "
         "and returns to it after a push", min=0.0, max=100.0, live=True,
     )
+    turn_drop: float = param(
+        0.0, unit="m", doc="Drive 'ideal_open': height d of the loss-free turn from the "
+        "fountain's end down to the plate the chain slides away on; the chain in the turn "
+        "pulls the end with its weight lambda*g*d (Tbar_E = k*d)", min=0.0, max=20.0,
+        live=True,
+    )
     machine_mass: float = param(
-        0.05, unit="kg", doc="Drives 'ideal_floor' and 'ideal_fold': inertia of the carts "
-        "and the guided strands (sets how fast the speed changes, not where it goes)",
+        0.05, unit="kg", doc="The ideal machines: inertia of the carts "
+        "and the guided strands (sets how fast the speed changes, not where it goes; "
+        "'ideal_open' adds the chain sliding on its plate)",
         min=0.001, max=100.0,
     )
     starter: float = param(
-        0.0, unit="s", doc="Drives 'ideal_floor' and 'ideal_fold' from a stub "
+        0.0, unit="s", doc="The ideal machines from a stub "
         "(initial.mode = 'stub'): the guide runs as a motor at feed.speed until the chain has "
         "landed and this long after, then the machine's laws take over (a real machine is "
         "started by hand: its laws need a fountain to drive them). 0: no starter, the level "

@@ -14,7 +14,7 @@ from chainfountain.sim.config import SimConfig
 from chainfountain.theory.apparatus import balanced_cart_force
 
 MACHINE_FIELDS = ("feed.xi2", "feed.cart_force", "feed.xi3", "feed.lower_cart_force",
-                  "feed.bearing_drag")
+                  "feed.bearing_drag", "feed.turn_drop")
 """The ideal machines' own fields: live (:meth:`~chainfountain.sim.world.Simulation.set_machine`),
 their sliders spanning only what runs (:mod:`chainfountain.app.spans`)."""
 

@@ -287,6 +287,9 @@ class Sample:
     stretch: float
     n_free: int
     T0_bar: float
+    plate_reaction: float = math.nan
+    """The open arrangement with ideal rollers (``feed.drive = "ideal_open"``): the lower
+    plate's reaction force (N), the weight of the chain landed on it; nan otherwise."""
 
 
 @dataclass

@@ -17,6 +17,7 @@ passes the launch point is released into the fountain; a new one joins at the ba
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import pymunk
@@ -50,6 +51,12 @@ class Piston:
         self._off_t = 0.0
         self.starting = float(feed.cfg.starter) > 0.0
         """True while the starter runs the guide as a motor (``feed.starter``)."""
+        self.carried = 0.0
+        """Mass (kg) the piston moves besides the machine's own (``feed.machine_mass``):
+        the open arrangement's chain sliding on its plate (:meth:`carry`)."""
+        self.tail: Any = None
+        """The open arrangement's :class:`~chainfountain.sim.slide_away.SlideAway`, told
+        after each step how many links the floor has taken."""
         self._hand_over: float | None = None
         n = len(chain.links)
         for i in range(n - feed.n_guide, n):
@@ -66,7 +73,7 @@ class Piston:
         if link.body.body_type != pymunk.Body.DYNAMIC:
             chain.make_dynamic(link)
         b = link.body
-        b.mass = chain.mass + cfg.feed.machine_mass / self.n_nominal
+        b.mass = self._link_mass()
         b.moment = float("inf")
         b.angular_velocity = 0.0
         ux, uy = self.u
@@ -76,6 +83,34 @@ class Piston:
         groove.error_bias = cfg.solver.joint_error_bias
         self.sim.space.add(groove)
         self.grooves[link.id] = groove
+
+    @property
+    def hand_over(self) -> float:
+        """Time (s) from which the machine's laws drive the chain: 0 without a starter,
+        ``inf`` while the starter still runs."""
+        if not float(self.sim.config.feed.starter) > 0.0:
+            return 0.0
+        if self.starting or self._hand_over is None:
+            return math.inf
+        return self._hand_over
+
+    def _link_mass(self) -> float:
+        """A piston link's mass: its own and its share of the machine's inertia."""
+        m = self.sim.config.feed.machine_mass + self.carried
+        return self.sim.chain.mass + m / self.n_nominal
+
+    def carry(self, mass: float) -> None:
+        """Move ``mass`` (kg) more with the chain from now on, at its present speed (the
+        piston links' velocities stay, so the speed and the energy the mass had stay)."""
+        self.carried += float(mass)
+        m = self._link_mass()
+        for link in self.held_links():
+            link.body.mass = m
+
+    def held_links(self) -> list[Link]:
+        """The piston's links (those held on the launch line)."""
+        chain = self.sim.chain
+        return chain.links[len(chain.links) - self.sim.feed.n_guide:]
 
     @property
     def speed(self) -> float:
@@ -147,11 +182,23 @@ class Piston:
             feed.fed_links += 1
         if feed.cfg.floor == "absorbing":
             feed._absorb()
+        if self.tail is not None:
+            self.tail.landed(feed.absorbed)
+        self._table(feed)
         if self.starting:
             self._start_up()
             return
         self.sim.follow_speed(v)
         self._watch(v, dt)
+
+    def _table(self, feed: Any) -> None:
+        """End the run once the upper table's chain (``feed.chain_length``, 0: endless)
+        has all been picked up."""
+        length = float(feed.cfg.chain_length)
+        if length > 0.0 and feed.fed_links * self.sim.chain.L >= length:
+            raise RunEnded(f"t = {self.sim.time:.2f} s: the upper table is empty: all "
+                           f"{length:g} m of chain (feed.chain_length) has been picked up, "
+                           "so the machine stops here")
 
     def _start_up(self) -> None:
         """Hand the chain to the machine's laws ``feed.starter`` seconds after it landed."""

@@ -145,8 +145,10 @@ class Recorder:
             if contacts is None:
                 contacts = np.zeros((len(post.angle), 2))
             contacts[0] += np.asarray(end_force) * sim.dt
+        tail = sim.slide_away
+        reaction = tail.plate_reaction if tail is not None else float("nan")
         self._raw.append((sim.time, n, sim.feed.speed, sim.feed.floor_y, pre.velocity, post,
-                          contacts))
+                          contacts, reaction))
 
     @property
     def samples(self) -> list[Sample]:
@@ -205,7 +207,7 @@ class Recorder:
                                        y=prof["y"], speed=sp, t=t))
 
     def _analyse(self, t: float, n: int, v_feed: float, floor_y: float, pre_vel: np.ndarray,
-                 post: ChainState, contacts: np.ndarray | None) -> None:
+                 post: ChainState, contacts: np.ndarray | None, reaction: float) -> None:
         sim = self.sim
         chain = sim.chain
         L = chain.L
@@ -231,7 +233,7 @@ class Recorder:
             t=t, vertex_x=xv, vertex_y=yv,
             landing_x=landing_x(post, L, floor_y),
             speed_mean=sm, speed_min=float(speed.min()), speed_max=float(speed.max()),
-            stretch=stretch, n_free=n, T0_bar=float(tbar[n - 1]),
+            stretch=stretch, n_free=n, T0_bar=float(tbar[n - 1]), plate_reaction=reaction,
         ))
         if self._want_profile():
             self._add_profile(Profiles(

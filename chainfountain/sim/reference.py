@@ -67,12 +67,14 @@ class LaunchReference:
         the idealized beaker with a real floor (``feed.drive = "ideal_floor"``) at the speed
         it selects, whatever ``v``; the ideal full machine (``"ideal_fold"``) at the speed it
         selects when its bearings drag, and at ``v`` when it is loss-free (it keeps any
-        speed), with the end tension its lower half supplies there. ``ValueError`` when
-        there is no fountain."""
+        speed), with the end tension its lower half supplies there; the open arrangement
+        (``"ideal_open"``) at the speed it selects, pulled by its turn's weight.
+        ``ValueError`` when there is no fountain."""
         from chainfountain.theory.apparatus import (
             ideal_floor_speed,
             ideal_fold_speed,
             ideal_fold_TE_bar,
+            ideal_open_speed,
         )
 
         f = config.feed
@@ -81,6 +83,9 @@ class LaunchReference:
         TE_bar = f.end_tension
         if f.drive == "ideal_floor":
             v = ideal_floor_speed(f.drop, f.xi2, f.cart_force, lam, g)
+        elif f.drive == "ideal_open":
+            v = ideal_open_speed(f.drop, f.xi2, f.cart_force, f.turn_drop, lam, g)
+            TE_bar = g * f.turn_drop / (v * v) if math.isfinite(v) else 0.0
         elif f.drive == "ideal_fold":
             if f.bearing_drag > 0.0:
                 v = ideal_fold_speed(f.cart_force, f.lower_cart_force, f.xi2, f.xi3,

@@ -27,6 +27,7 @@ from chainfountain.sim.part_labels import PartLabel, part_labels
 from chainfountain.sim.piston import Piston
 from chainfountain.sim.put_down import PutDown
 from chainfountain.sim.reference import LaunchReference
+from chainfountain.sim.slide_away import SlideAway
 from chainfountain.sim.watchdog import CHECK_INTERVAL, Limits, Watchdog, limits_for
 
 FOLLOW_TOLERANCE = 1e-3
@@ -114,6 +115,8 @@ class Simulation:
         """Stops the run when it diverges (:mod:`chainfountain.sim.watchdog`)."""
         self.apparatus: Apparatus | None = None
         self.piston: Piston | None = None
+        self.slide_away: SlideAway | None = None
+        """The open arrangement's lower half (``feed.drive = "ideal_open"``), else ``None``."""
         self.beaker: Beaker | None = None
         self.floor: Floor | None = None
         self.rollers: list[Roller] = []
@@ -141,10 +144,12 @@ class Simulation:
         self.feed = Feed(self.chain, cfg.feed)
         self.feed.initialise(cfg.initial, self.reference)
         self.feed.set_reference(self.reference)
-        if cfg.feed.drive in ("ideal_floor", "ideal_fold"):
+        if cfg.feed.drive != "motor":
             self.piston = Piston(self)
         if cfg.feed.drive == "ideal_fold":
             PutDown(self)
+        if cfg.feed.drive == "ideal_open":
+            self.slide_away = SlideAway(self)
         self._start()
 
     def _start(self) -> None:

@@ -55,6 +55,20 @@ def ideal_floor_speed(H: float, xi2: float, F_uc: float, lam: float, g: float = 
     return math.sqrt(v2) if v2 > 0.0 else math.nan
 
 
+def ideal_open_speed(H: float, xi2: float, F_uc: float, d: float, lam: float,
+                     g: float = G0) -> float:
+    """Speed the open arrangement with ideal rollers selects (paper, Fig.
+    "pulley_experiment_equiv_ground", right: no deceleration after landing). The landed
+    chain runs down a loss-free turn ``d`` below the fountain's end onto a frictionless
+    plate and slides away, so the end is pulled by the weight in the turn, ``T_E = lambda
+    g d`` (``Tbar_E = k d``) once the speed no longer changes. With the upper half's
+    ``Tbar_0 = 1/2 + Tbar_uc + xi2 k H`` and the fountain's ``Tbar_0 = Tbar_E + k H``:
+    ``v^2 = 2 g (H (1 - xi2) + d) - 2 F_uc/lambda``. ``nan`` when the cart holds the
+    chain (no positive ``v^2``)."""
+    v2 = 2.0 * g * (H * (1.0 - xi2) + d) - 2.0 * F_uc / lam
+    return math.sqrt(v2) if v2 > 0.0 else math.nan
+
+
 def ideal_fold_TE_bar(v: float, xi3: float, F_lc: float, lam: float, H: float,
                       g: float = G0, drag: float = 0.0) -> float:
     """End tension the ideal full machine's lower half supplies at speed ``v``:

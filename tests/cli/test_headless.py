@@ -120,12 +120,15 @@ def test_ideal_machines_from_a_stub_run_long_enough_to_settle() -> None:
     from chainfountain.level import io as level_io
 
     levels = Path(__file__).resolve().parents[2] / "levels"
-    for name in ("ideal_floor", "ideal_fold", "ideal_special", "ideal_limit"):
+    for name in ("ideal_floor", "ideal_fold", "ideal_special", "ideal_limit", "ideal_open"):
         lvl = level_io.load(levels / f"{name}.toml")
         assert lvl.sim.initial.mode == "stub" and lvl.sim.feed.starter > 0, name
         assert default_duration(lvl) == MACHINE_FORMING_DURATION
         assert MACHINE_FORMING_DURATION >= 2 + lvl.sim.feed.starter + 15 + \
             2 * lvl.sim.recording.window
+        # the open arrangement's table lasts longer than the run (it ends the run when empty)
+        f = lvl.sim.feed
+        assert f.chain_length == 0.0 or f.chain_length / f.speed > 1.1 * MACHINE_FORMING_DURATION
 
 
 def test_run_that_ends_early_writes_its_part_and_exits_3(tmp_path):

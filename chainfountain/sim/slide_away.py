@@ -1,0 +1,64 @@
+"""The open arrangement's lower half with ideal parts: the landed chain slides away.
+
+With ``feed.drive = "ideal_open"`` (paper, Fig. "pulley_experiment_equiv_ground", right:
+"without subsequent deceleration of chain elements as more and more chain elements are in
+motion over time") the chain that lands on the absorbing floor runs down a loss-free turn
+of height ``d = feed.turn_drop`` onto a long frictionless plate and slides away at the
+chain's speed. Three things follow:
+
+- the chain hanging in the turn pulls the end with its weight, ``T_E = lambda g d``
+  (``Tbar_E = k d``); the tail on the frictionless plate pulls nothing while the speed
+  holds;
+- each landed link joins the chain in motion: its mass is added to the machine's inertia
+  (:meth:`~chainfountain.sim.piston.Piston.carry`), which keeps the speed and the kinetic
+  energy. The chain is inextensible and all of it moves at one speed, so lumping the tail
+  at the piston changes only where its inertia is taken up: while the speed changes at
+  ``a`` the fountain's tensions sit ``M_tail a`` below those of a tail pulling at the end
+  (the headless summary states the largest such offset of a run);
+- the plate carries the chain laid on it: its reaction grows by ``lambda g`` per metre
+  landed, at ``lambda g v`` (paper: "the reaction force change is exactly known over
+  time"). It is counted from the links the floor takes, not simulated as contacts.
+
+The upper half is the :class:`~chainfountain.sim.piston.Piston` of the idealized beaker.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+
+class SlideAway:
+    """Sets the fed level's floor pull of ``sim`` to the turn's weight and hands the landed
+    chain's mass to its piston."""
+
+    def __init__(self, sim: Any) -> None:
+        """``sim``: the :class:`~chainfountain.sim.world.Simulation` being built, its
+        :class:`~chainfountain.sim.piston.Piston` in place."""
+        self.sim = sim
+        self.links = 0
+        """Links landed on the plate so far (they slide away with the chain)."""
+        sim.feed.end_pull = self.pull
+        sim.piston.tail = self
+
+    @property
+    def mass(self) -> float:
+        """Mass (kg) of the chain sliding on the plate: it moves with the chain."""
+        return self.links * self.sim.chain.mass
+
+    @property
+    def plate_reaction(self) -> float:
+        """The plate's reaction force (N): the weight of the chain lying on it."""
+        return self.mass * self.sim.g
+
+    def pull(self, v: float) -> float:
+        """The pull ``T_E = lambda g d`` (N) of the turn on the chain end (whatever ``v``)."""
+        lam = self.sim.chain.cfg.linear_density
+        return lam * self.sim.g * self.sim.config.feed.turn_drop
+
+    def landed(self, absorbed: int) -> None:
+        """The floor has now taken ``absorbed`` links in all: the new ones join the
+        chain in motion."""
+        new = absorbed - self.links
+        if new > 0:
+            self.links = absorbed
+            self.sim.piston.carry(new * self.sim.chain.mass)
