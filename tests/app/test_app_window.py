@@ -331,6 +331,36 @@ def test_open_arrangement_plots_the_plate_reaction(tmp_path, monkeypatch):
     assert len(s.history.t) > 0 and not np.isfinite(s.history.arrays()["reaction"]).any()
 
 
+def test_ideal_open_plots_the_plate_reaction_and_switches_to_its_contact_twin(tmp_path,
+                                                                          monkeypatch):
+    """The open arrangement with ideal rollers: the third plot is the plate's reaction
+    with the paper's rate, the turn's height has a slider, and M opens apparatus_open."""
+    import numpy as np
+
+    from chainfountain.level import library
+
+    monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
+    lvl = io.load(library.resolve("ideal_open"))
+    lvl.sim.initial.mode, lvl.sim.feed.starter = "catenary", 0.0  # landed from the start
+    app = App(Session(lvl), offscreen=True)
+    try:
+        for _ in range(30):
+            app.run_frame()
+        hist = app.session.history.arrays()
+        r = hist["reaction"][np.isfinite(hist["reaction"])]
+        assert len(r) > 10 and r[-5:].mean() > 2.0 * r[:5].mean() > 0.0
+        surf = app._render_plots(app.session.readout(), pygame.Rect(0, 0, 380, 600))
+        arr = pygame.surfarray.array3d(surf).astype(int)
+        third = arr[:, 2 * 600 // 3:, :]
+        for colour in (render.CHAIN, render.THEORY):
+            assert (abs(third - colour).sum(axis=2) < 30).sum() > 40, colour
+        assert any(row.spec.path == "feed.turn_drop" for row in app.rows)
+        key(app, pygame.K_m)
+        assert app.session.level.meta.name == "apparatus_open"
+    finally:
+        app.finish()
+
+
 def _type_into(app: App, row, text: str, end: int) -> None:
     """Click a field, replace its text by ``text`` as a person types, end with ``end``."""
     click(app, row.entry.rect.center)
