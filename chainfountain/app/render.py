@@ -278,6 +278,41 @@ def _floor_label(sim: Simulation) -> str:
     return "absorbing floor"
 
 
+SLIDE_MARK = 0.1
+"""Spacing (m) of the marks on the chain that slides away on the open arrangement's plate:
+they move with it, so the eye sees the chain that no longer decelerates."""
+
+
+def _draw_slide(surf: pygame.Surface, cam: Camera, sim: Simulation) -> None:
+    """The open arrangement with ideal rollers: the turn and the plate the landed chain
+    slides away on, drawn from the model's path, the chain on them marked every
+    :data:`SLIDE_MARK` as far as it has slid."""
+    geo = sim.slide_geometry()
+    if geo is None:
+        return
+    path, slid = geo
+    seg = np.hypot(*np.diff(path, axis=0).T)
+    s = np.concatenate([[0.0], np.cumsum(seg)])
+    width = max(3, min(8, int(round(2 * sim.config.chain.link_radius * cam.scale))))
+    pts = cam.to_screen(path)
+    pygame.draw.lines(surf, FLOOR, False, (pts + [0, width]).tolist(), 2)  # the plate
+    # the chain reaches as far as it has slid; drawn to the view's right edge (the path's
+    # x only grows: a quarter turn, then the plate)
+    x_right = cam.to_world(cam.rect.right, cam.rect.centery)[0]
+    end = min(slid, float(np.interp(x_right, path[:, 0], s)) + SLIDE_MARK)
+    n = int(np.searchsorted(s, end))
+    shown = np.vstack([path[:n], [np.interp(end, s, path[:, 0]), np.interp(end, s, path[:, 1])]])
+    if len(shown) > 1:
+        pygame.draw.lines(surf, CHAIN, False, cam.to_screen(shown).tolist(), width)
+    marks = (slid % SLIDE_MARK) + SLIDE_MARK * np.arange(int(end / SLIDE_MARK) + 1)
+    marks = marks[marks <= end]
+    mx, my = np.interp(marks, s, path[:, 0]), np.interp(marks, s, path[:, 1])
+    half = width
+    for px, py in cam.to_screen(np.column_stack([mx, my])).tolist():
+        if cam.rect.left <= px <= cam.rect.right:
+            pygame.draw.line(surf, SCENE_BG, (px, py - half), (px, py + half), 2)
+
+
 def draw_scene(surf: pygame.Surface, cam: Camera, sim: Simulation, readout: Readout | None,
                show_theory: bool = True) -> None:
     """The apparatus, the chain, the theory curve and the scale bar, clipped to the camera rect."""
@@ -300,7 +335,11 @@ def draw_scene(surf: pygame.Surface, cam: Camera, sim: Simulation, readout: Read
             surf.blit(_shade(band.size, ABSORB, 60), band.topleft)
         pygame.draw.line(surf, ABSORB, (rect.x, y), (rect.right, y), 2)
         label = text(font(16), _floor_label(sim), True, ABSORB)
+        slide = sim.slide_geometry()
+        if slide is not None:  # below the plate the chain slides on, clear of the turn
+            y = cam.point(0.0, float(slide[0][-1, 1]))[1] + 8
         surf.blit(label, (rect.x + 8, y + 4))
+    _draw_slide(surf, cam, sim)
     vessel = sim.vessel_geometry()
     if vessel is not None:
         _draw_pot(surf, cam, *vessel)

@@ -145,8 +145,8 @@ class Recorder:
             if contacts is None:
                 contacts = np.zeros((len(post.angle), 2))
             contacts[0] += np.asarray(end_force) * sim.dt
-        tail = sim.slide_away
-        reaction = tail.plate_reaction if tail is not None else float("nan")
+        tail = sim.slide_away  # its reaction is recorded from the first landed link on
+        reaction = tail.plate_reaction if tail is not None and tail.links else float("nan")
         self._raw.append((sim.time, n, sim.feed.speed, sim.feed.floor_y, pre.velocity, post,
                           contacts, reaction))
 

@@ -24,7 +24,13 @@ The upper half is the :class:`~chainfountain.sim.piston.Piston` of the idealized
 
 from __future__ import annotations
 
+import math
 from typing import Any
+
+import numpy as np
+
+PLATE_REACH = 50.0
+"""Length (m) of the plate drawn beyond the turn: far past any view."""
 
 
 class SlideAway:
@@ -62,3 +68,19 @@ class SlideAway:
         if new > 0:
             self.links = absorbed
             self.sim.piston.carry(new * self.sim.chain.mass)
+
+    @property
+    def slid(self) -> float:
+        """Length (m) of chain that has landed and slid onto the plate."""
+        return self.links * self.sim.chain.L
+
+    def path(self, x_end: float, y_end: float) -> np.ndarray:
+        """The landed chain's path ``(n, 2)`` (m, world): from the fountain's end
+        ``(x_end, y_end)`` down a quarter turn of radius ``turn_drop`` onto the plate,
+        then along the plate for :data:`PLATE_REACH` (a picture of the parts the model
+        replaces by their laws; the view draws it)."""
+        d = float(self.sim.config.feed.turn_drop)
+        th = np.linspace(math.pi, 1.5 * math.pi, 13) if d > 0.0 else np.array([math.pi])
+        turn = np.column_stack([x_end + d + d * np.cos(th), y_end + d * np.sin(th)])
+        plate = np.array([[x_end + d + PLATE_REACH, y_end - d]])
+        return np.vstack([turn, plate])

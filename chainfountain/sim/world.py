@@ -502,6 +502,23 @@ class Simulation:
         span = 0.5 * f.floor_width
         return -f.drop, -span, span, "absorbing"
 
+    def slide_geometry(self) -> tuple[np.ndarray, float] | None:
+        """The open arrangement with ideal rollers (``feed.drive = "ideal_open"``): the
+        landed chain's path through the turn and along the plate (``(n, 2)``, m) and the
+        length that has slid onto it (m); ``None`` for any other level. The path starts
+        at the chain's end once it has landed, else where the paper's fountain lands."""
+        tail = self.slide_away
+        if tail is None:
+            return None
+        y = self.feed.floor_y
+        if self.feed.absorbed > 0 and self.chain.links:
+            x = float(self.chain.links[0].body.position.x)
+        elif self.reference is not None:
+            x = float(self.reference.landing_x)
+        else:
+            return None
+        return tail.path(x, y), tail.slid
+
     def guide_geometry_segments(self) -> list[tuple[tuple[float, float], tuple[float, float]]]:
         """Static walls, plates, tables and floor of an apparatus as segments ``((x0, y0),
         (x1, y1))`` (empty for a feed level)."""

@@ -355,6 +355,13 @@ def test_ideal_open_plots_the_plate_reaction_and_switches_to_its_contact_twin(tm
         for colour in (render.CHAIN, render.THEORY):
             assert (abs(third - colour).sum(axis=2) < 30).sum() > 40, colour
         assert any(row.spec.path == "feed.turn_drop" for row in app.rows)
+        # the chain sliding away is drawn on the plate below the floor line
+        path, slid = app.session.sim.slide_geometry()
+        scr = pygame.Surface(app.screen.get_size())
+        render.draw_scene(scr, app.camera, app.session.sim, app.session.readout())
+        x0, y_plate = app.camera.point(float(path[-2, 0]) + 0.02, float(path[-1, 1]))
+        row = pygame.surfarray.array3d(scr)[x0:x0 + 40, y_plate - 3:y_plate + 4].astype(int)
+        assert (abs(row - render.CHAIN).sum(axis=2) < 30).sum() > 20
         key(app, pygame.K_m)
         assert app.session.level.meta.name == "apparatus_open"
     finally:

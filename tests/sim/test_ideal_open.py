@@ -65,6 +65,12 @@ def test_the_plate_reaction_grows_at_lambda_g_v_while_the_speed_holds() -> None:
     for link in sim.piston.held_links():
         assert link.body.mass == pytest.approx(sim.chain.mass + share)
     assert o["moving_mass_kg"] == pytest.approx(tail.mass, rel=0.01)
+    # the picture of the parts the laws stand for: from the chain's end down the turn
+    path, slid = sim.slide_geometry()
+    assert path[0, 0] == pytest.approx(sim.chain.links[0].body.position.x)
+    assert path[0, 1] == pytest.approx(sim.feed.floor_y)
+    assert path[-1, 1] == pytest.approx(sim.feed.floor_y - f.turn_drop)
+    assert slid == pytest.approx(tail.links * lvl.sim.chain.link_length)
 
 
 @pytest.mark.slow
