@@ -53,6 +53,9 @@ def run(dt_factor: float, duration: float, from_fountain: bool) -> dict:
     lam, g = cfg.chain.linear_density, cfg.gravity
     v_law = sim.reference.v
     o = report(rec.samples, sim.piston.hand_over, lam, g, v_law)
+    if o is None:
+        raise SystemExit(f"dt {sim.dt * 1e3:g} ms: the machine had not taken over by "
+                         f"{sim.time:.1f} s; run longer (--duration)")
     t, v = rec.series("t"), rec.series("speed_mean")
     tens = []
     for a in np.arange(math.floor(o["window"][0]), t[-1] - 10.0 + 1e-9, 10.0):  # whole windows

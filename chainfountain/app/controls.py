@@ -58,7 +58,7 @@ LABELS: dict[str, str] = {
     "feed.cart_force": "upper cart F_uc",
     "feed.lower_cart_force": "lower cart F_lc",
     "feed.bearing_drag": "bearing drag c",
-    "feed.turn_drop": "turn down to the plate d",
+    "feed.turn_drop": "turn drop to the plate d",
     "apparatus.speed": "start speed v0",
     "apparatus.launch_angle": "launch angle alpha0",
     "apparatus.drop": "drop H",

@@ -71,7 +71,8 @@ class History:
         self.speed_out: list[float] = []
         """Apparatus with a fold: chain speed at the folding roller (nan otherwise)."""
         self.reaction: list[float] = []
-        """Apparatus 'open': the lower plate's reaction force, N (nan otherwise)."""
+        """The open arrangement (apparatus 'open', ``feed.drive = "ideal_open"``): the
+        lower plate's reaction force, N (nan otherwise)."""
 
     def _lists(self) -> tuple[list[float], ...]:
         return (self.t, self.speed, self.T0, self.TE, self.vertex_y, self.landing_x,

@@ -1,14 +1,14 @@
 """Slider spans of a machine: where its carts and offsets still run a fountain.
 
 A machine field's slider (``feed.xi2``, ``feed.cart_force``, ``feed.xi3``,
-``feed.lower_cart_force``, ``feed.bearing_drag`` of a level with ``feed.drive`` an ideal
-machine) spans only the values the level's own checks accept with every other field as it
-is: the range in which the machine selects (or keeps) a fountain the window can run (its
-budget, :mod:`chainfountain.app.budget`), found by bisection from the present value
-towards each end of the schema's range. Out there the machine would stop,
-run away or lose its fountain; a value typed beyond the span is refused with the check's
-reason. A loss-free full machine's upper cart has a single admissible value (the balance):
-its slider does not move.
+``feed.lower_cart_force``, ``feed.bearing_drag``, ``feed.turn_drop`` of a level with
+``feed.drive`` an ideal machine) spans only the values the level's own checks accept with
+every other field as it is: the range in which the machine selects (or keeps) a
+fountain the window can run (its budget, :mod:`chainfountain.app.budget`), found by
+bisection from the present value towards each end of the schema's range. Out there the
+machine would stop, run away or lose its fountain; a value typed beyond the span is
+refused with the check's reason. A loss-free full machine's upper cart has a single
+admissible value (the balance): its slider does not move.
 
 The contact floor machine's upper cart, bearing drag and offset span where this model's
 pick-up law leaves the chain running (:data:`FLOOR_FIELDS`; the limit is measured:

@@ -269,6 +269,7 @@ def _check_drive(level: Level, where: str) -> float:
         _fail(where, field,
               f"{getattr(feed, field.split('.')[1])!r} with feed.drive = {feed.drive!r} ({why}); "
               "allowed: feed.floor = 'absorbing' with feed.end_tension = 0")
+    _check_ideal_table(level, where)
     if feed.drive == "ideal_floor":
         _check_ideal_floor(level, where)
         return 0.0
@@ -295,6 +296,34 @@ def _check_ideal_floor(level: Level, where: str) -> None:
               f"{max(0.0, 0.5 - feed.cart_force / (lam * g * H)):.4g} with this cart")
 
 
+TABLE_MARGIN = 1.0
+"""Chain (m) an ideal machine's finite table must hold beyond what the level starts with
+(the stub or the fountain, and the guide), so that the machine runs at all."""
+
+
+def _check_ideal_table(level: Level, where: str) -> None:
+    """An ideal machine's finite table (``feed.chain_length``) must hold more than the chain
+    the level starts with: the machine picks its chain up from it."""
+    sim = level.sim
+    feed = sim.feed
+    if feed.chain_length == 0.0:
+        return
+    start = sim.initial.stub_length if sim.initial.mode == "stub" else 0.0
+    if sim.initial.mode == "catenary":
+        from chainfountain.sim.reference import LaunchReference
+
+        try:
+            start = LaunchReference.of_level(sim).arc_length
+        except ValueError:
+            return  # no fountain: the drive's own check says why
+    need = start + feed.guide_links * sim.chain.link_length + TABLE_MARGIN
+    if feed.chain_length < need:
+        _fail(where, "feed.chain_length",
+              f"{feed.chain_length!r} m is the upper table of feed.drive = {feed.drive!r} and "
+              f"holds less than the chain the level starts with plus a metre ({need:.3g} m); "
+              f"allowed: 0 (an endless table) or at least {need:.3g} m")
+
+
 def _check_ideal_open(level: Level, where: str) -> float:
     """The open arrangement with ideal rollers must select a speed fast enough for a
     fountain: ``Tbar_0 = k (H + d) < 1``. Returns the ``Tbar_E = k d`` it selects."""
@@ -306,12 +335,17 @@ def _check_ideal_open(level: Level, where: str) -> float:
     v = ideal_open_speed(H, feed.xi2, feed.cart_force, d, lam, g)
     if not (math.isfinite(v) and v * v > g * (H + d)):
         shown = f"{v:.4g} m/s" if math.isfinite(v) else "no speed"
+        why = (f"selects {shown}, too slow for a fountain over feed.drop = {H:g} m (Tbar_0 = "
+               "k*(H + turn_drop) must be < 1)")
         room = 0.5 * (H + d) - feed.cart_force / (lam * g)
+        if room <= 0.0:  # no offset helps: the cart alone holds the chain too hard
+            limit = lam * g * (0.5 * (H + d) - feed.xi2 * H)
+            _fail(where, "feed.cart_force",
+                  f"{feed.cart_force!r} N with feed.xi2 = {feed.xi2:g} and feed.turn_drop = "
+                  f"{d:g} m {why}; allowed: feed.cart_force < {max(0.0, limit):.4g} N")
         _fail(where, "feed.xi2",
               f"{feed.xi2!r} with feed.cart_force = {feed.cart_force:g} N and feed.turn_drop "
-              f"= {d:g} m selects {shown}, too slow for a fountain over feed.drop = {H:g} m "
-              f"(Tbar_0 = k*(H + turn_drop) must be < 1); allowed: xi2 < "
-              f"{max(0.0, room / H):.4g} with this cart and turn")
+              f"= {d:g} m {why}; allowed: xi2 < {room / H:.4g} with this cart and turn")
     return g * d / (v * v)
 
 

@@ -192,13 +192,14 @@ class Piston:
         self._watch(v, dt)
 
     def _table(self, feed: Any) -> None:
-        """End the run once the upper table's chain (``feed.chain_length``, 0: endless)
-        has all been picked up."""
-        length = float(feed.cfg.chain_length)
-        if length > 0.0 and feed.fed_links * self.sim.chain.L >= length:
+        """End the run once the upper table's chain (``feed.chain_length``, 0: endless;
+        counted in links as the motor's feed counts it) has all been picked up."""
+        most = feed._max_links()
+        if most is not None and feed.fed_links >= most:
             raise RunEnded(f"t = {self.sim.time:.2f} s: the upper table is empty: all "
-                           f"{length:g} m of chain (feed.chain_length) has been picked up, "
-                           "so the machine stops here")
+                           f"{feed.cfg.chain_length:g} m of chain has been picked up, so the "
+                           "machine stops here; a longer run needs a larger "
+                           "feed.chain_length (0: an endless table)")
 
     def _start_up(self) -> None:
         """Hand the chain to the machine's laws ``feed.starter`` seconds after it landed."""

@@ -4,9 +4,10 @@ moving mass grows while the machine selects
 ``v^2 = 2 g (H (1 - xi2) + d) - 2 F_uc/lambda`` and the plate's reaction grows at
 ``lambda g v`` (Fig. "pulley_experiment_equiv_ground", right).
 
-Measured (``chainfountain run ideal_open``, 40 s from the stub; and the runs here, from
-the fountain): the speed sits 0.25-0.35 % below the laws' (0.2 % at half the step), the
-reaction's rate within 0.07 % of ``lambda g v`` in every 2-s window, and a 5 % push decays
+Measured (``python research/ideal_open.py``, from the stub until the table is empty): the
+speed 0.18 % below the laws' (0.15 % at half the step), the reaction's rate within 0.07 %
+of ``lambda g v`` in every 2-s window; from the fountain (the runs here) the speed stays
+within 0.05 % of the laws' for 12 s; and a 5 % push decays
 as ``M(t) dv/dt = lambda (v_eq^2 - v^2)/2`` with the moving mass ``M`` growing by the
 landed chain (without it the push is gone within a second).
 """
@@ -43,9 +44,11 @@ def test_the_selected_speed_meets_both_halves() -> None:
 
 @pytest.mark.slow
 def test_the_plate_reaction_grows_at_lambda_g_v_while_the_speed_holds() -> None:
-    """12 s from the fountain: in every 2-s window the plate's reaction grows at ``lambda g
-    v`` within 2 % (the issue's bound; measured 0.07 %), the speed stays within 0.5 % of
-    the laws' (measured -0.1 ... -0.35 %), and the landed chain moves with the machine."""
+    """12 s from the fountain: the speed stays within 0.5 % of the laws' (measured +0.03 %),
+    the landed chain moves with the machine, and the plate's reaction grows at ``lambda g
+    v`` within 0.5 % in every 2-s window (measured 0.07 %). The reaction is counted from
+    the links the floor takes, so its rate checks the bookkeeping (the chain lands at the
+    speed it runs), not the machine's physics: the speed and the push test do that."""
     lvl = _level()
     sim = Simulation(lvl.sim)
     rec = Recorder(sim, profiles=False)
@@ -55,7 +58,7 @@ def test_the_plate_reaction_grows_at_lambda_g_v_while_the_speed_holds() -> None:
     v_law = ideal_open_speed(f.drop, f.xi2, f.cart_force, f.turn_drop, lam, g)
     o = report(rec.samples, sim.piston.hand_over, lam, g, v_law)
     assert o is not None and len(o["chunks"]) == 5  # 0-10 s; the last 2 s are not whole
-    assert o["worst_chunk_rel"] < 0.02, o["chunks"]
+    assert o["worst_chunk_rel"] < 0.005, o["chunks"]
     v = rec.series("speed_mean")[rec.series("t") >= 2.0]
     assert abs(np.mean(v) / v_law - 1.0) < 0.005
     tail = sim.slide_away
@@ -116,8 +119,30 @@ def test_a_push_decays_as_slowly_as_the_moving_mass_says() -> None:
     assert left == pytest.approx(predicted, abs=0.06), (left, predicted)
 
 
+def test_the_run_ends_in_one_sentence_when_the_table_is_empty() -> None:
+    """A finite table (``feed.chain_length``) ends the run when it is all picked up: about
+    the table's extra metres over the speed after the start."""
+    from chainfountain.errors import RunEnded
+    from chainfountain.level.checks import TABLE_MARGIN
+
+    lvl = _level()
+    sim = Simulation(lvl.sim)
+    start = len(sim.chain.links) * lvl.sim.chain.link_length  # the fountain and the guide
+    lvl.sim.feed.chain_length = start + TABLE_MARGIN + 0.2
+    io.loads(io.dumps(lvl), "ideal_open (short table)")  # the check accepts it
+    sim = Simulation(lvl.sim)
+    with pytest.raises(RunEnded) as ended:
+        sim.advance(5.0)
+    assert "the upper table is empty" in str(ended.value)
+    assert "feed.chain_length" in str(ended.value)
+    assert sim.time == pytest.approx((TABLE_MARGIN + 0.2) / lvl.sim.feed.speed, abs=0.02)
+
+
 @pytest.mark.parametrize(("changes", "field", "words"), [
     ({"xi2": 0.7}, "feed.xi2", ["too slow for a fountain", "allowed: xi2 <"]),
+    ({"cart_force": 0.5}, "feed.cart_force", ["too slow for a fountain",
+                                              "allowed: feed.cart_force <"]),
+    ({"chain_length": 1.0}, "feed.chain_length", ["upper table", "allowed: 0"]),
     ({"end_tension": 0.1}, "feed.end_tension", ["the turn onto the plate sets the pull"]),
     ({"drive": "ideal_floor"}, "feed.turn_drop", ["has no effect with feed.drive"]),
 ])
