@@ -30,6 +30,9 @@ LEVELS = Path(__file__).resolve().parents[2] / "levels"
 L_D, H_D, H = 0.33, 0.28, 2.0  # the paper's fountain D: l = kappa*H, h = xi*H
 SETTLE, WINDOW = 0.5, 1.0
 
+pytestmark = pytest.mark.xdist_group("fountain_d_kmax_run")
+"""One worker runs this module (``--dist loadgroup``), so its 20-s run is made once."""
+
 
 def _fountain(k: float | None = None) -> Fountain:
     base = Fountain(l=L_D, h=H_D, H=H, k=1.0)

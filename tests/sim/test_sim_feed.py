@@ -8,6 +8,9 @@ criteria (issue 3); measured values are in ``docs/convergence.md``.
 
 from __future__ import annotations
 
+import functools
+from pathlib import Path
+
 import pytest
 
 from chainfountain.level import io, library
@@ -28,7 +31,15 @@ WINDOW = 2.0
     pytest.param(p, id=p.stem, marks=pytest.mark.xdist_group(f"feed_{p.stem}"))
     for p in FEED_LEVELS])
 def run(request) -> tuple[Simulation, Summary]:
-    cfg = io.load(request.param).sim
+    return _steady_run(request.param)
+
+
+@functools.lru_cache(maxsize=len(FEED_LEVELS))
+def _steady_run(path: Path) -> tuple[Simulation, Summary]:
+    """A level's run, made once per worker: a module-scoped fixture is made again when a
+    worker runs another module's test between two of this level's (measured: fountain D's
+    50-s run twice per suite)."""
+    cfg = io.load(path).sim
     cfg.initial.mode = "catenary"  # the demo levels form from a stub; this window studies
     sim = Simulation(cfg)         # the fountain itself (the long self-formed runs:
     # research/long_runs.py)
