@@ -36,9 +36,9 @@ def run(request) -> tuple[Simulation, Summary]:
 
 @functools.lru_cache(maxsize=len(FEED_LEVELS))
 def _steady_run(path: Path) -> tuple[Simulation, Summary]:
-    """A level's run, made once per worker: a module-scoped fixture is made again when a
-    worker runs another module's test between two of this level's (measured: fountain D's
-    50-s run twice per suite)."""
+    """A level's run, made once per worker even if its tests do not follow each other
+    there (pytest 9.2 stopped xdist's grouping, pytest-xdist issue 1386, and fountain D's
+    50-s run was made on both workers)."""
     cfg = io.load(path).sim
     cfg.initial.mode = "catenary"  # the demo levels form from a stub; this window studies
     sim = Simulation(cfg)         # the fountain itself (the long self-formed runs:
