@@ -327,7 +327,7 @@ def _check_ideal_table(level: Level, where: str) -> None:
 def _check_ideal_open(level: Level, where: str) -> float:
     """The open arrangement with ideal rollers must select a speed fast enough for a
     fountain: ``Tbar_0 = k (H + d) < 1``. Returns the ``Tbar_E = k d`` it selects."""
-    from chainfountain.theory.apparatus import ideal_open_speed
+    from chainfountain.theory.apparatus import ideal_open_speed, ideal_open_TE_bar
 
     sim = level.sim
     feed = sim.feed
@@ -346,7 +346,7 @@ def _check_ideal_open(level: Level, where: str) -> float:
         _fail(where, "feed.xi2",
               f"{feed.xi2!r} with feed.cart_force = {feed.cart_force:g} N and feed.turn_drop "
               f"= {d:g} m {why}; allowed: xi2 < {room / H:.4g} with this cart and turn")
-    return g * d / (v * v)
+    return ideal_open_TE_bar(v, d, g)
 
 
 BALANCE_TOLERANCE = 1e-6

@@ -75,6 +75,7 @@ class LaunchReference:
             ideal_fold_speed,
             ideal_fold_TE_bar,
             ideal_open_speed,
+            ideal_open_TE_bar,
         )
 
         f = config.feed
@@ -85,7 +86,7 @@ class LaunchReference:
             v = ideal_floor_speed(f.drop, f.xi2, f.cart_force, lam, g)
         elif f.drive == "ideal_open":
             v = ideal_open_speed(f.drop, f.xi2, f.cart_force, f.turn_drop, lam, g)
-            TE_bar = g * f.turn_drop / (v * v) if math.isfinite(v) else 0.0
+            TE_bar = ideal_open_TE_bar(v, f.turn_drop, g) if math.isfinite(v) else 0.0
         elif f.drive == "ideal_fold":
             if f.bearing_drag > 0.0:
                 v = ideal_fold_speed(f.cart_force, f.lower_cart_force, f.xi2, f.xi3,

@@ -69,6 +69,12 @@ def ideal_open_speed(H: float, xi2: float, F_uc: float, d: float, lam: float,
     return math.sqrt(v2) if v2 > 0.0 else math.nan
 
 
+def ideal_open_TE_bar(v: float, d: float, g: float = G0) -> float:
+    """End tension of the open arrangement's loss-free turn of height ``d`` at speed ``v``:
+    the weight of the chain in it, ``Tbar_E = k d = g d/v^2``."""
+    return g * d / (v * v)
+
+
 def ideal_fold_TE_bar(v: float, xi3: float, F_lc: float, lam: float, H: float,
                       g: float = G0, drag: float = 0.0) -> float:
     """End tension the ideal full machine's lower half supplies at speed ``v``:
