@@ -303,6 +303,20 @@ def test_status_keeps_a_long_stop_reason_from_its_head():
     assert len(rows) == 6 and rows[-1] == "b"
 
 
+def _assert_reaction_plot(app: App) -> None:
+    """The window's third plot is the lower plate's reaction, growing, drawn measured
+    (chain colour) beside the paper's rate (theory colour)."""
+    import numpy as np
+
+    hist = app.session.history.arrays()
+    r = hist["reaction"][np.isfinite(hist["reaction"])]
+    assert len(r) > 10 and r[-5:].mean() > 2.0 * r[:5].mean() > 0.0
+    surf = app._render_plots(app.session.readout(), pygame.Rect(0, 0, 380, 600))
+    third = pygame.surfarray.array3d(surf).astype(int)[:, 2 * 600 // 3:, :]
+    for colour in (render.CHAIN, render.THEORY):
+        assert (abs(third - colour).sum(axis=2) < 30).sum() > 40, colour
+
+
 def test_open_arrangement_plots_the_plate_reaction(tmp_path, monkeypatch):
     """'open' (the paper's non-stationary arrangement): the third plot is the lower
     plate's reaction force, growing, with the paper's rate drawn beside it."""
@@ -315,14 +329,7 @@ def test_open_arrangement_plots_the_plate_reaction(tmp_path, monkeypatch):
     try:
         for _ in range(20):
             app.run_frame()
-        hist = app.session.history.arrays()
-        r = hist["reaction"][np.isfinite(hist["reaction"])]
-        assert len(r) > 10 and r[-5:].mean() > 2.0 * r[:5].mean() > 0.0
-        surf = app._render_plots(app.session.readout(), pygame.Rect(0, 0, 380, 600))
-        arr = pygame.surfarray.array3d(surf).astype(int)
-        third = arr[:, 2 * 600 // 3:, :]
-        for colour in (render.CHAIN, render.THEORY):
-            assert (abs(third - colour).sum(axis=2) < 30).sum() > 40, colour
+        _assert_reaction_plot(app)
     finally:
         app.finish()
     # a level with a fold has no reaction series: its third plot stays the end tensions
@@ -335,7 +342,6 @@ def test_ideal_open_plots_the_plate_reaction_and_switches_to_its_contact_twin(tm
                                                                           monkeypatch):
     """The open arrangement with ideal rollers: the third plot is the plate's reaction
     with the paper's rate, the turn's height has a slider, and M opens apparatus_open."""
-    import numpy as np
 
     from chainfountain.level import library
 
@@ -346,14 +352,7 @@ def test_ideal_open_plots_the_plate_reaction_and_switches_to_its_contact_twin(tm
     try:
         for _ in range(30):
             app.run_frame()
-        hist = app.session.history.arrays()
-        r = hist["reaction"][np.isfinite(hist["reaction"])]
-        assert len(r) > 10 and r[-5:].mean() > 2.0 * r[:5].mean() > 0.0
-        surf = app._render_plots(app.session.readout(), pygame.Rect(0, 0, 380, 600))
-        arr = pygame.surfarray.array3d(surf).astype(int)
-        third = arr[:, 2 * 600 // 3:, :]
-        for colour in (render.CHAIN, render.THEORY):
-            assert (abs(third - colour).sum(axis=2) < 30).sum() > 40, colour
+        _assert_reaction_plot(app)
         assert any(row.spec.path == "feed.turn_drop" for row in app.rows)
         # the chain sliding away is drawn on the plate below the floor line
         path, slid = app.session.sim.slide_geometry()
