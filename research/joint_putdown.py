@@ -167,7 +167,7 @@ def run(v: float, cart: float, dt: float, seconds: float, L: float = 0.02,
     VR: list[float] = []
     for _ in range(steps):
         set_roll(roll)
-        roller.apply_force_at_local_point((-cart, 0.0))
+        roller.apply_force_at_world_point((-cart, 0.0), roller.position)  # it rolls
         space.step(dt)
         xc = roller.position.x
         # grip: a strand vertex that has passed over the roller's top
