@@ -272,7 +272,7 @@ def _floor_label(sim: Simulation) -> str:
                 "lower half (paper's law)")
     if cfg.kind == "feed" and cfg.feed.drive == "ideal_floor":
         return "real floor: takes the chain without pull (Tbar_E = 0)"
-    if cfg.kind == "feed" and cfg.feed.drive == "ideal_open" and sim.slide_away is not None:
+    if sim.slide_away is not None:  # feed.drive = "ideal_open"
         return (f"turn {cfg.feed.turn_drop:g} m down onto a frictionless plate: the chain "
                 f"slides away ({sim.slide_away.mass:.2f} kg moving), pulling Tbar_E = k d")
     return "absorbing floor"
@@ -283,14 +283,11 @@ SLIDE_MARK = 0.1
 they move with it, so the eye sees the chain that no longer decelerates."""
 
 
-def _draw_slide(surf: pygame.Surface, cam: Camera, sim: Simulation) -> None:
+def _draw_slide(surf: pygame.Surface, cam: Camera, sim: Simulation, path: np.ndarray,
+                slid: float) -> None:
     """The open arrangement with ideal rollers: the turn and the plate the landed chain
-    slides away on, drawn from the model's path, the chain on them marked every
-    :data:`SLIDE_MARK` as far as it has slid."""
-    geo = sim.slide_geometry()
-    if geo is None:
-        return
-    path, slid = geo
+    slides away on (``path``, m: :meth:`~chainfountain.sim.world.Simulation.slide_geometry`),
+    the chain on them marked every :data:`SLIDE_MARK` as far as it has slid (``slid``, m)."""
     seg = np.hypot(*np.diff(path, axis=0).T)
     s = np.concatenate([[0.0], np.cumsum(seg)])
     width = max(3, min(8, int(round(2 * sim.config.chain.link_radius * cam.scale))))
@@ -307,10 +304,9 @@ def _draw_slide(surf: pygame.Surface, cam: Camera, sim: Simulation) -> None:
     marks = (slid % SLIDE_MARK) + SLIDE_MARK * np.arange(int(end / SLIDE_MARK) + 1)
     marks = marks[marks <= end]
     mx, my = np.interp(marks, s, path[:, 0]), np.interp(marks, s, path[:, 1])
-    half = width
     for px, py in cam.to_screen(np.column_stack([mx, my])).tolist():
         if cam.rect.left <= px <= cam.rect.right:
-            pygame.draw.line(surf, SCENE_BG, (px, py - half), (px, py + half), 2)
+            pygame.draw.line(surf, SCENE_BG, (px, py - width), (px, py + width), 2)
 
 
 def draw_scene(surf: pygame.Surface, cam: Camera, sim: Simulation, readout: Readout | None,
@@ -323,6 +319,7 @@ def draw_scene(surf: pygame.Surface, cam: Camera, sim: Simulation, readout: Read
     _grid(surf, cam)
     # floor
     fy, fx0, fx1, mode = sim.floor_geometry()
+    slide = sim.slide_geometry()  # the open arrangement's turn and plate, or None
     if mode == "solid":
         a, b = cam.point(fx0, fy), cam.point(fx1, fy)
         pygame.draw.line(surf, FLOOR, a, b, 3)
@@ -335,11 +332,11 @@ def draw_scene(surf: pygame.Surface, cam: Camera, sim: Simulation, readout: Read
             surf.blit(_shade(band.size, ABSORB, 60), band.topleft)
         pygame.draw.line(surf, ABSORB, (rect.x, y), (rect.right, y), 2)
         label = text(font(16), _floor_label(sim), True, ABSORB)
-        slide = sim.slide_geometry()
         if slide is not None:  # below the plate the chain slides on, clear of the turn
             y = cam.point(0.0, float(slide[0][-1, 1]))[1] + 8
         surf.blit(label, (rect.x + 8, y + 4))
-    _draw_slide(surf, cam, sim)
+    if slide is not None:
+        _draw_slide(surf, cam, sim, *slide)
     vessel = sim.vessel_geometry()
     if vessel is not None:
         _draw_pot(surf, cam, *vessel)
