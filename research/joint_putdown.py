@@ -31,6 +31,11 @@ did not lock, but lost most of the roller's speed at each joint's landing (ten j
 turn on the 30-mm roller). A working grip needs a compliant link somewhere: a rolling
 constraint that slips beyond a force, or a roller many links round.
 
+The rig that works is ``research/joint_putdown_weld.py`` (thirty-ninth session): gripped
+links welded to the roller (pivot + gear at their own place), no rolling constraint (the
+roller is a one-freedom linkage between the laid chain and the strand), the strand's last
+link caught onto the rim chord; converged in the step on a roller of radius 5 links.
+
 Usage::
 
     python research/joint_putdown.py                      # 3 m/s, no cart, 0.5/0.25/0.125 ms
