@@ -488,6 +488,8 @@ def _check_apparatus(level: Level, where: str) -> None:
         _fail(where, "apparatus.fold_clearance",
               f"{a.fold_clearance!r} m only applies to variant = 'fold' with plate = 'groove' "
               f"(here variant {a.variant!r}, plate {a.plate!r}); allowed: 0")
+    if a.fold_roller == "gripped":
+        _check_gripped_fold(sim, where)
     if a.upper_guide == "joints" and a.plate != "groove":
         _fail(where, "apparatus.upper_guide",
               f"'joints' needs apparatus.plate = 'groove' (it is {a.plate!r}): the joint guide "
@@ -497,8 +499,33 @@ def _check_apparatus(level: Level, where: str) -> None:
     _check_end_channel(sim, where)
 
 
+def _check_gripped_fold(sim: SimConfig, where: str) -> None:
+    """The gripped folding roller takes the chain from the lower plate's grooves, lays it
+    where its circle meets the table (no clearance) and needs a circle of at least one
+    link length round the chain's centre line (:mod:`chainfountain.sim.apparatus.grip`)."""
+    a, L = sim.apparatus, sim.chain.link_length
+    if a.plate != "groove":
+        _fail(where, "apparatus.fold_roller",
+              f"'gripped' needs apparatus.plate = 'groove' (it is {a.plate!r}): the roller "
+              "takes the chain from the lower plate's grooves; allowed: 'contact'")
+    if a.fold_clearance:
+        _fail(where, "apparatus.fold_clearance",
+              f"{a.fold_clearance!r} m has no effect with apparatus.fold_roller = 'gripped' "
+              "(the gripped roller lays the chain where its circle meets the table); "
+              "allowed: 0")
+    r = a.fold_roller_radius or a.roller_radius
+    if r + sim.chain.link_radius < L:
+        _fail(where, "apparatus.fold_roller_radius",
+              f"{r!r} m is too small a gripped folding roller for {L!r}-m links (the chain's "
+              f"centre line must run at least one link length from its axle); allowed: at "
+              f"least {L - sim.chain.link_radius:.4g} m (converged in the step from about "
+              f"{5 * L:.3g} m, five link lengths; docs/apparatus.md)")
+
+
 ONLY_FOR_VARIANT: dict[str, tuple[str, ...]] = {
     "xi3": ("fold",),
+    "fold_roller": ("fold",),
+    "fold_roller_radius": ("fold",),
     "end_pull": ("open",),
     "end": ("floor",),
     "floor_width": ("floor",),

@@ -262,6 +262,15 @@ class Chain:
             self._connect(down, up)
             self.version += 1
 
+    def unjoin(self, i: int) -> None:
+        """Remove the joint (with its spring and bend limit) between link ``i`` and link
+        ``i+1``: the mirror of :meth:`join` (the gripped folding roller holds both links,
+        :mod:`chainfountain.sim.apparatus.grip`)."""
+        down = self.links[i]
+        if down.up_joint is not None:
+            self._disconnect(down)
+            self.version += 1
+
     def pop_front(self) -> Link:
         """Remove the downstream end link (with its constraints) from the space."""
         link = self.links.pop(0)

@@ -487,6 +487,22 @@ class ApparatusConfig:
         "3-4 s at 0.1 ms (docs/apparatus.md)",
         min=0.0, max=0.005,
     )
+    fold_roller: str = param(
+        "contact", unit="", doc="'fold' with plate = 'groove': how the folding roller puts "
+        "the chain down. 'contact': it rolls on the laid chain and grips it by friction (the "
+        "presets' build; not converged in the step). 'gripped': each chain joint that reaches "
+        "the roller is welded to it where it is (the strand's last link caught onto the "
+        "rim), carried round, and pinned to the table where it comes down, so the chain "
+        "is laid at rest with no friction and no contact; the axle runs at a fixed height. "
+        "Loss-free it pulls the arriving strand with lambda*v^2/4 + F_lc/2; converged in the "
+        "step with a folding roller of radius 5 link lengths or more "
+        "(apparatus.fold_roller_radius; docs/apparatus.md)",
+        choices=("contact", "gripped"),
+    )
+    fold_roller_radius: float = param(
+        0.0, unit="m", doc="'fold': radius of the folding roller; 0: apparatus.roller_radius "
+        "(both rollers alike)", min=0.0, max=0.5,
+    )
     bearing_drag: float = param(
         0.0, unit="N*s/m", doc="Declared loss of a real apparatus: viscous drag c of each "
         "roller unit (bearings and cart rolling resistance), a force -c*u on its carriage "

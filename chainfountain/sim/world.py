@@ -546,7 +546,7 @@ class Simulation:
         """``(x, y, radius, angle)`` of every roller (apparatus: pick-up, then folding)."""
         app = self.apparatus
         if app is not None:
-            return [(u.roller.position.x, u.roller.position.y, app.r, u.roller.angle)
+            return [(u.roller.position.x, u.roller.position.y, u.radius, u.roller.angle)
                     for u in (app.upper, app.lower) if u is not None]
         return [(r.body.position.x, r.body.position.y, r.cfg.radius, r.body.angle)
                 for r in self.rollers]

@@ -22,6 +22,7 @@ from chainfountain.errors import RunEnded
 from chainfountain.sim.apparatus.ends import EndPart
 from chainfountain.sim.apparatus.fold import FoldPart
 from chainfountain.sim.apparatus.fold_watch import FoldWatch
+from chainfountain.sim.apparatus.grip import GrippedFold
 from chainfountain.sim.apparatus.grooves import PlateGrooves
 from chainfountain.sim.apparatus.open_tail import OpenTail
 from chainfountain.sim.apparatus.parts import DRIVE_REACH
@@ -43,8 +44,8 @@ class TableUsedUp(RunEnded):
     CLI writes what was simulated and says so)."""
 
 
-class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, FoldWatch,
-                StallWatch, Treadmills, OpenTail, StarterPart):
+class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, GrippedFold,
+                FoldWatch, StallWatch, Treadmills, OpenTail, StarterPart):
     """Builds the apparatus into a space and keeps its bookkeeping (duck-types the
     :class:`~chainfountain.sim.feed.Feed` interface the simulation uses).
 
@@ -79,6 +80,8 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
         self._init_state()
         self._add_swing_damper()
         self.sync_plates()
+        if self.gripped:
+            self._init_grip()
         self._take_in_held_links()
 
     # ------------------------------------------------------------------ build steps
@@ -98,6 +101,10 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
         self.L = chain.L
         self.rho = float(cfg.chain.link_radius)
         self.r = float(a.roller_radius)
+        self.r_lo = float(a.fold_roller_radius) or self.r
+        """Radius (m) of the folding roller ('fold'; ``apparatus.fold_roller_radius``)."""
+        self.gripped = a.variant == "fold" and a.fold_roller == "gripped"
+        """The folding roller holds the chain by joints (:mod:`.grip`), not by contact."""
         self.H = float(a.drop)
         self.alpha0 = float(a.launch_angle)
         self.launch_u = (math.cos(self.alpha0), math.sin(self.alpha0))
@@ -151,6 +158,7 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
         v0 = self.v_lay
         vR = 0.5 * v0
         R = self.r + self.rho
+        R_lo = self.r_lo + self.rho
         s_wrap0 = self.n_ahead * L
         s_wrap1 = s_wrap0 + math.pi * R
         s_lo_wrap = math.inf
@@ -163,13 +171,14 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
                                      & np.isclose(path[:, 1], self.y_lo))[0])
             s_lo_wrap = float(s_all[idx])
         pts, s = resample(path, L)
-        self._lay(pts, s, s_wrap0, s_wrap1, s_lo_wrap, v0, vR, R)
+        self._lay(pts, s, s_wrap0, s_wrap1, s_lo_wrap, v0, vR, R, R_lo)
 
     def _lay(self, pts: np.ndarray, s: np.ndarray, s_w0: float, s_w1: float, s_lw: float,
-             v0: float, vR: float, R: float) -> None:
+             v0: float, vR: float, R: float, R_lo: float) -> None:
         """Create the links along the resampled path (``pts[i]`` to ``pts[i+1]``)."""
         up, lo = self.upper, self.lower
         om = -vR / R
+        om_lo = -vR / R_lo
         links: list[Link] = []
         for i in range(len(pts) - 1):
             (x0, y0), (x1, y1) = pts[i], pts[i + 1]
@@ -181,11 +190,11 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
             elif mid < s_w1:
                 c = up.roller.position
                 vel, w = (vR - om * (cy - c.y), om * (cx - c.x)), om
-            elif lo is not None and mid >= s_lw + math.pi * R:
+            elif lo is not None and mid >= s_lw + math.pi * R_lo:
                 vel, w = (0.0, 0.0), 0.0
             elif lo is not None and mid >= s_lw:
                 c = lo.roller.position
-                vel, w = (vR - om * (cy - c.y), om * (cx - c.x)), om
+                vel, w = (vR - om_lo * (cy - c.y), om_lo * (cx - c.x)), om_lo
             else:
                 vel, w = (v0 * math.cos(ang), v0 * math.sin(ang)), 0.0
             links.append(self.chain.make_body((cx, cy), ang, velocity=vel, angular_velocity=w))
@@ -210,6 +219,7 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
         self._init_treadmill_state()
         self._init_open_state()
         self._init_fold_state()
+        self._init_grip_state()
         self._init_watch_state()
         self._init_stall_state()
         self._init_starter_state()
@@ -318,6 +328,8 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
         if self.fold_guided:
             self._update_flight(popped)
             self._update_fold_guide(popped)
+            if self.gripped:
+                self._grip_arriving()
             if self.treadmill:
                 self._treadmill_lower()
         if self.lower is not None:
@@ -385,8 +397,10 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Fol
                 chain.pop_front()
                 self.absorbed += 1
                 popped += 1
+        elif self.gripped:
+            popped = self._land_gripped()
         elif self.lower is not None:
-            x_lim = self.lower.x - 2.0 * self.r - n_keep * L
+            x_lim = self.lower.x - 2.0 * self.r_lo - n_keep * L
             y_rest = self.y_table_lo + 2.0 * self.rho
             while len(links) > n_keep + 10:
                 p = pos(links[0].body)

@@ -64,7 +64,7 @@ class FoldPart:
         the end channel's exit ``xl`` to the roller, and with grooves the joint guide's
         elements; returns the chain's path from the plate over the roller's wrap onto the
         table."""
-        a, L, rho, r = self.cfg, self.L, self.rho, self.r
+        a, L, rho, r = self.cfg, self.L, self.rho, self.r_lo
         space = self.space
         carts = list(self.sim_cfg.carts)
         travel_lo = self._table_travel()
@@ -79,7 +79,7 @@ class FoldPart:
         self.lower = add_roller(space, x_lo, ylt, rho, r, a.roller_mass,
                                 a.carriage_mass, carts[1] if len(carts) > 1 else None,
                                 1.0, self.g, self.sim_cfg.solver.joint_error_bias, vR, -vR / R,
-                                drag=a.bearing_drag)
+                                drag=a.bearing_drag, fixed_axle=self.gripped)
         self.table_lo = static_segment(space, (xl - 0.5, ylt - 0.01),
                                        (x_lo + travel_lo + 1.0, ylt - 0.01), 0.01,
                                        a.table_friction, SCENERY)
@@ -223,7 +223,7 @@ class FoldPart:
                 while q and pos(q[0][0].body).x > x_rel:
                     link, j = q.popleft()
                     space.remove(j)
-                    if link.shape is not None:
+                    if link.shape is not None and not self.gripped:  # gripped: no contact
                         space.add(link.shape)
                     self.released += 1
                 continue

@@ -60,10 +60,12 @@ class FoldWatch:
         self._back_t += dt
         if self._back_t < COLLAPSE_TIME:
             return
-        clamped = self.h < FOLD_DT_MIN and not self.cfg.fold_clearance
+        clamped = self.h < FOLD_DT_MIN and not self.cfg.fold_clearance and not self.gripped
         t = self._t
         if self._held_t >= LATE_COLLAPSE and not clamped:
-            cure = ("this contact fold holds only close to the speed it was built for"
+            cure = (("this fold holds only close to the speed and carts it was built for"
+                     if self.gripped else
+                     "this contact fold holds only close to the speed it was built for")
                     if self.cfg.swing_damper else
                     "the swing damper holds the swing down (0.5 holds apparatus_special)")
             raise FoldCollapsed(
@@ -90,6 +92,13 @@ class FoldWatch:
                 "of 0.0005 s")
         cure = ("make the lower cart heavier" if push else
                 "this model's fold needs a lower cart to push it, which the paper's does not")
+        if self.gripped:
+            raise FoldCollapsed(
+                plain=f"At {t:.1f} s the folding roller fell behind and the fold collapsed; "
+                "make the lower cart heavier",
+                message=head + "The gripped folding roller is pulled on by the arriving strand "
+                "and its cart alone (docs/apparatus.md); raise the lower cart mass."
+                + self._catch_note())
         raise FoldCollapsed(
             plain=f"At {t:.1f} s the folding roller fell behind and the fold collapsed; {cure}",
             message=head + "This model's put-down needs a forward push of about 0.3 lambda*v^2 or "

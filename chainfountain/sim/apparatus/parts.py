@@ -45,6 +45,8 @@ class RollerUnit:
     drive: pymunk.DampedSpring
     """The cart's force and the bearing drag on the carriage, applied by pymunk in every
     step (:meth:`set_drive`)."""
+    radius: float = 0.0
+    """Roller radius r (m)."""
 
     @property
     def force(self) -> float:
@@ -84,10 +86,15 @@ class RollerUnit:
 def add_roller(space: pymunk.Space, x: float, y_table: float, rho: float, r: float,
                 m_roller: float, m_carriage: float, cart: CartConfig | None, direction: float,
                 g: float, error_bias: float, vx: float, omega: float,
-                drag: float = 0.0) -> RollerUnit:
+                drag: float = 0.0, fixed_axle: bool = False) -> RollerUnit:
     """A roller on its carriage at ``x`` on a table at ``y_table``, moving at ``vx`` and
     turning at ``omega``, its carriage driven by ``cart`` along ``direction`` with a
-    bearing drag ``drag`` (N s/m; :meth:`RollerUnit.set_drive`)."""
+    bearing drag ``drag`` (N s/m; :meth:`RollerUnit.set_drive`).
+
+    The roller turns on an axle in a vertical slot of the carriage, so it rests on the
+    chain it rolls on; with ``fixed_axle`` (the gripped folding roller,
+    :mod:`~chainfountain.sim.apparatus.grip`) the axle is pinned to the carriage and the
+    roller's circle touches nothing (the chain is held by joints, not contact)."""
     yc = y_table + 2.0 * rho + r
     m_c = m_carriage + (cart.mass if cart is not None else 0.0)
     carriage = pymunk.Body(m_c, float("inf"))
@@ -96,12 +103,18 @@ def add_roller(space: pymunk.Space, x: float, y_table: float, rho: float, r: flo
                                 (0.0, 0.0))
     roller = pymunk.Body(m_roller, 0.5 * m_roller * r * r)
     roller.position = (x, yc)
-    slot = pymunk.GrooveJoint(carriage, roller, (0.0, -0.5 * r), (0.0, 0.5 * r), (0.0, 0.0))
+    slot: pymunk.Constraint
+    if fixed_axle:
+        slot = pymunk.PivotJoint(carriage, roller, (0.0, 0.0), (0.0, 0.0))
+    else:
+        slot = pymunk.GrooveJoint(carriage, roller, (0.0, -0.5 * r), (0.0, 0.5 * r),
+                                  (0.0, 0.0))
     for j in (groove, slot):
         j.error_bias = error_bias
     circ = pymunk.Circle(roller, r)
     circ.friction = 1.0
-    circ.filter = pymunk.ShapeFilter(categories=SCENERY_CATEGORY)
+    circ.filter = pymunk.ShapeFilter(categories=SCENERY_CATEGORY,
+                                     mask=0 if fixed_axle else pymunk.ShapeFilter.ALL_MASKS())
     carriage.velocity = (vx, 0.0)
     roller.velocity = (vx, 0.0)
     roller.angular_velocity = omega
@@ -110,7 +123,7 @@ def add_roller(space: pymunk.Space, x: float, y_table: float, rho: float, r: flo
                                 (0.0, 0.0), DRIVE_REACH, 0.0, 0.0)
     space.add(carriage, groove, roller, slot, circ, drive)
     unit = RollerUnit(roller=roller, carriage=carriage, shape=circ, direction=direction,
-                      cart=cart, g=g, yc=yc, drive=drive)
+                      cart=cart, g=g, yc=yc, drive=drive, radius=float(r))
     unit.set_drive(drag)
     return unit
 

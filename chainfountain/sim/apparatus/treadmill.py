@@ -138,6 +138,8 @@ class Treadmills:
         c = links[i + 1]
         F = c.up_joint.impulse / self.h if c.up_joint else 0.0
         self._shift_back([lk.body for lk in links[:i]] + [lo.roller, lo.carriage], dx)
+        if self.gripped:
+            self._shift_pin(dx)
         self.shifted_lo += dx
         for k in (m + 1, m):
             self.space.remove(q[k][1])

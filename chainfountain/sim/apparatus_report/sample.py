@@ -75,7 +75,7 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
     pre = ChainState(position=post.position, angle=post.angle, velocity=pre_vel,
                      angular_velocity=post.angular_velocity)
     contacts, k, T_lo_fold, tail_reaction = _with_guide_impulses(
-        app, pre, pre_vel, post, contacts, dt, roller, pre_w, lower)
+        app, pre, pre_vel, post, contacts, dt, roller, pre_w, lower, pivots)
     F = joint_forces(pre, post, chain.mass, dt, app.g, n - 1, contacts)
     L = app.L
     J, gaps = _joints(post, L)
@@ -128,7 +128,8 @@ def _with_guide_impulses(app: Apparatus, pre: ChainState, pre_vel: np.ndarray, p
                          contacts: np.ndarray, dt: float,
                          roller: tuple[float, float, float, float],
                          pre_w: np.ndarray | None,
-                         lower: tuple[int, int, float, float] | None
+                         lower: tuple[int, int, float, float] | None,
+                         pivots: np.ndarray | None = None
                          ) -> tuple[np.ndarray, int, float, float]:
     """The contact impulses with the lower guides' (and the end pull's) added as
     'contact' rows for the first ``k`` links. Returns the rows, ``k`` ('fold': one past
@@ -144,11 +145,18 @@ def _with_guide_impulses(app: Apparatus, pre: ChainState, pre_vel: np.ndarray, p
         # then along the guided links' axes up to the mouth
         ip, k = app.fold_guided_range(post.position, roller[2])
         if ip >= 2 and k > ip + 1:
-            F1 = joint_forces(pre, post, chain.mass, dt, app.g, n - 1, contacts)
-            T_lo_fold = float(-np.mean(F1[ip - 2:ip + 3, 0]))
+            if app.gripped and pivots is not None:
+                # the welds' and the table pin's impulses are not among the contacts, so
+                # the sum from the end misses them; the straight strand's joint forces
+                # are its tension
+                T_lo_fold = float(np.mean(pivots[ip - 2:ip + 3]))
+                T_ip = float(pivots[ip])
+            else:
+                F1 = joint_forces(pre, post, chain.mass, dt, app.g, n - 1, contacts)
+                T_lo_fold = float(-np.mean(F1[ip - 2:ip + 3, 0]))
+                T_ip = float(-F1[ip, 0])
             contacts = contacts.copy()
-            contacts[:k] = guided_impulses(app, pre_vel, post, dt, k,
-                                           start=(ip, float(-F1[ip, 0])))
+            contacts[:k] = guided_impulses(app, pre_vel, post, dt, k, start=(ip, T_ip))
         else:
             k = 0
     elif app.end_pull or k:

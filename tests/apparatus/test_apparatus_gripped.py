@@ -1,0 +1,141 @@
+"""The gripped folding roller (``apparatus.fold_roller = "gripped"``,
+:mod:`chainfountain.sim.apparatus.grip`): chain joints welded to the roller as they reach
+it and pinned to the table where they come down, no friction and no contact.
+
+Asserted on ``apparatus_fold`` with a 100-mm gripped folding roller (five link lengths,
+where its rig is converged in the step: ``research/joint_putdown_weld.py``), carts 19 g
+and 2 g (the contact roller's 41 g lower cart pushed this loss-free one faster and
+faster), laid on its path at 3 m/s, real tables (no treadmill), 2 s:
+
+- the chain is laid at rest (the landing link's speed), the roller rolls at half the
+  chain speed and about half its circle carries welded links;
+- the arriving strand pulls as the loss-free law with gravity says,
+  ``Tbar = 1/4 + Tbar_lc/2 + k R`` (the chain descends ``2R`` through the roller), and
+  0.01-0.02 more (0.383-0.393 against 0.372 from nudged starts);
+- the joints are pinned to the table at rest: at most 0.028 m/s at 0.5 ms and 0.014 m/s
+  at 0.25 ms (a joint is pinned up to one bookkeeping step after its lowest point);
+- at half the pymunk step (0.25 ms) the machine still runs, at 3.018 m/s against 3.003
+  (+0.5 %), where the contact fold collapses within 0.65-2.1 s ("The fold depends on the
+  time step");
+- the strand's tension is not converged in the step (strict expected failure): it reads
+  0.47 at 0.25 ms against 0.38 at 0.5 ms. The contact fold's strand reads 0.49-0.52 and
+  0.56-0.74 the same way (``apparatus_special`` with ``fold_clearance = 0.002``), so the
+  step dependence is in the shared lower side, not in the roller.
+
+docs/apparatus.md, "The gripped folding roller".
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+
+from chainfountain.errors import RunEnded
+from chainfountain.level import io
+from chainfountain.level.model import LevelError
+from chainfountain.sim import Recorder, Simulation
+from chainfountain.sim.apparatus_report import report
+from chainfountain.study.changes import laid_on_path, with_changes
+
+LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_fold.toml"
+GRIPPED = {"apparatus.fold_roller": "gripped", "apparatus.fold_roller_radius": 0.1,
+           "carts[0].mass": 0.019, "carts[1].mass": 0.002, "apparatus.plate_links": 0}
+pytestmark = pytest.mark.xdist_group("apparatus_gripped")
+
+
+def _run(dt: float) -> tuple[Simulation, dict]:
+    """``apparatus_fold`` gripped, laid on its path, 2 s at ``solver.dt = dt`` (2 pymunk
+    steps each); the report over 0.5-2 s."""
+    level = laid_on_path(with_changes(io.load(LEVEL), {**GRIPPED, "solver.dt": dt}))
+    sim = Simulation(level.sim)
+    rec = Recorder(sim, profiles=False)
+    sim.advance(2.0)
+    return sim, report(sim, rec, 0.5, 2.0)
+
+
+@pytest.fixture(scope="module")
+def step() -> tuple[Simulation, dict]:
+    return _run(1e-3)
+
+
+@pytest.fixture(scope="module")
+def half_step() -> tuple[Simulation, dict]:
+    return _run(5e-4)
+
+
+def _entry_law(m: dict, app) -> float:
+    """``1/4 + Tbar_lc/2 + k R``: the gripped roller's loss-free pull with gravity."""
+    return 0.25 + 0.5 * m["Tbar_lc"] + m["k"] * (app.r_lo + app.rho)
+
+
+def test_the_gripped_roller_lays_the_chain_down_at_rest(step) -> None:
+    sim, rep = step
+    app, m = sim.apparatus, rep["measured"]
+    assert app.landing_speed < 0.02 * m["v"], "a joint was pinned moving"
+    assert m["roller_ratio_lo"] == pytest.approx(0.5, abs=0.005)
+    half_turn = math.pi * (app.r_lo + app.rho) / app.L  # links on half the circle
+    assert abs(app.n_welded - half_turn) <= 2.0
+    assert app.gripped_links > 0.9 * (m["v"] / 2.0) * 2.0 / app.L
+
+
+def test_the_arriving_strand_pulls_as_the_loss_free_law_says(step) -> None:
+    sim, rep = step
+    m = rep["measured"]
+    law = _entry_law(m, sim.apparatus)
+    # loss-free is the least it can pull; measured 0.383-0.393 against 0.372 (three
+    # nudged starts): a loss of 0.01-0.02 lambda v^2
+    assert law <= m["T_putdown_entry_bar"] <= law + 0.04
+
+
+def test_the_gripped_fold_runs_at_half_the_step(half_step) -> None:
+    sim, rep = half_step
+    m = rep["measured"]
+    assert sim.time == pytest.approx(2.0)
+    assert m["roller_ratio_lo"] == pytest.approx(0.5, abs=0.005)
+    assert sim.apparatus.landing_speed < 0.02 * m["v"]
+
+
+def test_the_speed_is_the_same_at_half_the_step(step, half_step) -> None:
+    """The issue's convergence target, within 1 % (measured +0.5 %)."""
+    a, b = step[1]["measured"], half_step[1]["measured"]
+    assert b["v"] == pytest.approx(a["v"], rel=0.01)
+
+
+@pytest.mark.xfail(strict=True, reason="the lower strand's tension depends on the pymunk "
+                   "step: 0.47 lambda v^2 at 0.25 ms against 0.38 at 0.5 ms (the contact fold's "
+                   "the same way: 0.56-0.74 against 0.49-0.52), so the step dependence is in "
+                   "the shared lower side; docs/apparatus.md, 'The gripped folding roller'")
+def test_the_put_down_entry_is_converged_in_the_step(step, half_step) -> None:
+    a, b = step[1]["measured"], half_step[1]["measured"]
+    assert b["T_putdown_entry_bar"] == pytest.approx(a["T_putdown_entry_bar"], abs=0.03)
+
+
+@pytest.mark.parametrize(("changes", "field"), [
+    ({"apparatus.fold_roller": "gripped", "apparatus.fold_roller_radius": 0.005},
+     "apparatus.fold_roller_radius"),
+    ({"apparatus.fold_roller": "gripped", "apparatus.fold_clearance": 0.002},
+     "apparatus.fold_clearance"),
+    ({"apparatus.fold_roller": "gripped", "apparatus.plate": "contact",
+      "apparatus.upper_guide": "walls", "apparatus.plate_links": 0},
+     "apparatus.fold_roller"),
+])
+def test_a_gripped_roller_that_cannot_work_is_refused_in_one_line(changes, field) -> None:
+    with pytest.raises(LevelError) as err:
+        with_changes(io.load(LEVEL), changes)
+    msg = str(err.value)
+    assert field in msg and "allowed" in msg and "\n" not in msg
+
+
+def test_the_contact_roller_is_unchanged_by_the_new_fields() -> None:
+    """The gripped roller's fields are off by default: the preset reads as it did."""
+    level = io.load(LEVEL)
+    assert level.sim.apparatus.fold_roller == "contact"
+    assert level.sim.apparatus.fold_roller_radius == 0.0
+    sim = Simulation(laid_on_path(level).sim)
+    try:
+        sim.advance(0.2)
+    except RunEnded:  # pragma: no cover - the preset holds far longer
+        pytest.fail("the contact preset stopped")
+    assert sim.apparatus.n_welded == 0 and sim.apparatus.lower.radius == 0.03
