@@ -25,7 +25,7 @@ module so that a pymunk change breaks one place and ``tests/sim/test_fastbody.py
 from __future__ import annotations
 
 import pymunk
-from pymunk._chipmunk_cffi import lib
+from pymunk._chipmunk_cffi import ffi, lib
 
 get_position = lib.cpBodyGetPosition
 """``get_position(h)``: the position (struct with ``.x``, ``.y``) of handle ``h``."""
@@ -54,3 +54,24 @@ def pos(body: pymunk.Body):  # noqa: ANN201 (a chipmunk struct)
     """``body``'s position as a chipmunk struct (``.x``, ``.y``): the same numbers as
     :attr:`pymunk.Body.position` without building a :class:`pymunk.Vec2d`."""
     return get_position(body._body)
+
+
+PIVOT_JACC = 25
+"""Where chipmunk's ``cpPivotJoint`` keeps its accumulated impulse ``jAcc``: at this many
+doubles from the start of the struct (the ``cpConstraint`` header of 13 words, the two
+anchors, ``r1``, ``r2`` and the 2x2 mass matrix ``k`` come first). pymunk 7 exposes only
+its length (:attr:`pymunk.Constraint.impulse`); ``tests/sim/test_fastbody.py`` checks
+that the two agree and that the vector points the right way."""
+
+
+def pivot_impulse(joint: pymunk.PivotJoint) -> tuple[float, float]:
+    """The impulse (N s) ``joint`` applied to its second body in the last pymunk step, as
+    a vector (its opposite went to the first body). A chain joint ``PivotJoint(down, up)``
+    under tension pulls ``up`` towards ``down``: the vector points downstream.
+
+    The size alone (:attr:`pymunk.Constraint.impulse`) is no tension reading where the
+    joint force rings: at the folding roller it rings at the laying rate ``v/(2L)`` and its
+    harmonics, more at smaller steps and more solver iterations, and the ringing's size
+    outgrows the mean (docs/apparatus.md, "The gripped folding roller")."""
+    p = ffi.cast("double *", joint._constraint)
+    return float(p[PIVOT_JACC]), float(p[PIVOT_JACC + 1])

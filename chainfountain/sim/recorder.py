@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from chainfountain.sim import fastbody
 from chainfountain.sim.config import RecordingConfig
 from chainfountain.sim.measure import (
     ChainState,
@@ -133,12 +134,19 @@ class Recorder:
                 # joint force sizes: the lower guide's correction (no contact involved)
                 pivots = np.array([abs(lk.up_joint.impulse) if lk.up_joint is not None
                                    else np.nan for lk in sim.chain.links]) / sim.h
+            pivot_x = None
+            if app.gripped:
+                # the joint forces' components along x: the gripped fold's plate strand
+                # (its size rings, fastbody.pivot_impulse)
+                pivot_x = np.array([fastbody.pivot_impulse(lk.up_joint)[0]
+                                    if lk.up_joint is not None else np.nan
+                                    for lk in sim.chain.links]) / sim.h
             lower = None
             if app.guided:  # 'open': which links the tail's grooves and the turn hold
                 end = sim.chain.links[0].body
                 lower = (app.tail_grooved, len(app.turn_held), end.mass, end.moment)
             self._raw.append(("apparatus", sim.time, pre.velocity, post, contacts, roller,
-                              pivots, pre.angular_velocity, lower))
+                              pivots, pre.angular_velocity, lower, pivot_x))
             return
         end_force = sim.feed.end_force
         if end_force is not None:  # the floor's pull is an external force on link 0
@@ -190,12 +198,13 @@ class Recorder:
     def _analyse_apparatus(self, t: float, pre_vel: np.ndarray, post: ChainState,
                            contacts: np.ndarray, roller: tuple,
                            pivots: np.ndarray | None, pre_w: np.ndarray,
-                           lower: tuple | None) -> None:
+                           lower: tuple | None, pivot_x: np.ndarray | None) -> None:
         from chainfountain.sim.apparatus_report import analyse
 
         sim = self.sim
         s, prof = analyse(sim.apparatus, t, pre_vel, post, contacts, sim.dt,
-                          sim.chain.cfg.linear_density, roller, pivots, pre_w, lower)
+                          sim.chain.cfg.linear_density, roller, pivots, pre_w, lower,
+                          pivot_x)
         self._ap_samples.append(s)
         sp = prof["speed"]
         self._samples.append(Sample(

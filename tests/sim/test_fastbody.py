@@ -51,3 +51,37 @@ def test_forces_match_pymunk(body: pymunk.Body) -> None:
     body.apply_force_at_local_point((0.05, 0.0))
     assert f == pytest.approx(tuple(body.force), abs=1e-15)
     assert math.isclose(t, body.torque, abs_tol=1e-15)
+
+
+def test_pivot_impulse_is_the_joint_impulse_as_a_vector() -> None:
+    """A weight swinging on a rod from a static pivot: the joint's impulse vector is the
+    weight's momentum change less its weight's impulse, and its size is pymunk's
+    ``impulse``; a chain joint ``PivotJoint(down, up)`` under tension pulls ``up``
+    downstream."""
+    space = pymunk.Space()
+    space.gravity = (0.0, -9.81)
+    ball = pymunk.Body(0.2, 1e-3)
+    a, h = math.radians(40.0), 1e-3
+    ball.position = (0.5 * math.sin(a), -0.5 * math.cos(a))
+    ball.velocity = (1.0 * math.cos(a), 1.0 * math.sin(a))
+    pin = pymunk.PivotJoint(space.static_body, ball, (0.0, 0.0),
+                            tuple(ball.world_to_local((0.0, 0.0))))
+    space.add(ball, pin)
+    for _ in range(3):
+        v0 = ball.velocity
+        space.step(h)
+        jx, jy = fastbody.pivot_impulse(pin)
+        assert math.hypot(jx, jy) == pytest.approx(pin.impulse, rel=1e-12)
+        dv = ball.velocity - v0
+        assert jx == pytest.approx(0.2 * dv.x, rel=1e-9)
+        assert jy == pytest.approx(0.2 * (dv.y + 9.81 * h), rel=1e-9)
+    down, up = pymunk.Body(0.001, 1e-7), pymunk.Body(0.001, 1e-7)
+    down.position, up.position = (0.0, 0.0), (-0.02, 0.0)
+    joint = pymunk.PivotJoint(down, up, (-0.01, 0.0), (0.01, 0.0))
+    space.gravity = (0.0, 0.0)
+    space.add(down, up, joint)
+    down.velocity = (1.0, 0.0)  # the front link runs away: the joint pulls the back one on
+    space.step(h)
+    jx, jy = fastbody.pivot_impulse(joint)
+    assert jx > 0.0 and abs(jy) < 1e-9 * jx
+    assert math.hypot(jx, jy) == pytest.approx(joint.impulse, rel=1e-12)

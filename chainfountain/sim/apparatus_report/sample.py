@@ -58,7 +58,8 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
             dt: float, lam: float,
             roller: tuple[float, float, float, float],
             pivots: np.ndarray | None = None, pre_w: np.ndarray | None = None,
-            lower: tuple[int, int, float, float] | None = None
+            lower: tuple[int, int, float, float] | None = None,
+            pivot_x: np.ndarray | None = None
             ) -> tuple[ApparatusSample, dict]:
     """Measure one sampled step: signed tension from the exact momentum balance summed
     from the downstream end (:func:`chainfountain.sim.measure.joint_forces`, all contact
@@ -69,13 +70,14 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
     solver's pivot impulses (N). They correct the lower guide's reconstruction by
     :func:`~.impulses.pivot_offset`. ``pre_w`` and ``lower`` ('open' with the joint
     turn): the links' angular velocities before the step and the lower guide's state
-    (:func:`~.impulses.open_guide_impulses`)."""
+    (:func:`~.impulses.open_guide_impulses`). ``pivot_x`` (the gripped fold): every
+    chain joint's force along ``x`` (N), the lower plate strand's tension."""
     chain = app.chain
     n = len(post.angle)
     pre = ChainState(position=post.position, angle=post.angle, velocity=pre_vel,
                      angular_velocity=post.angular_velocity)
     contacts, k, T_lo_fold, tail_reaction = _with_guide_impulses(
-        app, pre, pre_vel, post, contacts, dt, roller, pre_w, lower, pivots)
+        app, pre, pre_vel, post, contacts, dt, roller, pre_w, lower, pivot_x)
     F = joint_forces(pre, post, chain.mass, dt, app.g, n - 1, contacts)
     L = app.L
     J, gaps = _joints(post, L)
@@ -129,7 +131,7 @@ def _with_guide_impulses(app: Apparatus, pre: ChainState, pre_vel: np.ndarray, p
                          roller: tuple[float, float, float, float],
                          pre_w: np.ndarray | None,
                          lower: tuple[int, int, float, float] | None,
-                         pivots: np.ndarray | None = None
+                         pivot_x: np.ndarray | None = None
                          ) -> tuple[np.ndarray, int, float, float]:
     """The contact impulses with the lower guides' (and the end pull's) added as
     'contact' rows for the first ``k`` links. Returns the rows, ``k`` ('fold': one past
@@ -145,12 +147,12 @@ def _with_guide_impulses(app: Apparatus, pre: ChainState, pre_vel: np.ndarray, p
         # then along the guided links' axes up to the mouth
         ip, k = app.fold_guided_range(post.position, roller[2])
         if ip >= 2 and k > ip + 1:
-            if app.gripped and pivots is not None:
+            if app.gripped and pivot_x is not None:
                 # the welds' and the table pin's impulses are not among the contacts, so
-                # the sum from the end misses them; the straight strand's joint forces
-                # are its tension
-                T_lo_fold = float(np.mean(pivots[ip - 2:ip + 3]))
-                T_ip = float(pivots[ip])
+                # the sum from the end misses them; the horizontal strand's joint forces
+                # along x are its tension (their size rings, fastbody.pivot_impulse)
+                T_lo_fold = float(np.mean(pivot_x[ip - 2:ip + 3]))
+                T_ip = float(pivot_x[ip])
             else:
                 F1 = joint_forces(pre, post, chain.mass, dt, app.g, n - 1, contacts)
                 T_lo_fold = float(-np.mean(F1[ip - 2:ip + 3, 0]))
