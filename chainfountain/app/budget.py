@@ -67,11 +67,12 @@ def apparatus_links(sim: SimConfig) -> int | None:
     except ValueError:
         return None
     wrap = math.pi * (a.roller_radius + sim.chain.link_radius) / L
+    wrap_lo = math.pi * ((a.fold_roller_radius or a.roller_radius) + sim.chain.link_radius) / L
     plate = a.plate_links or (0.5 * a.speed * a.duration + 0.15) / L
     n = flight / L + (a.xi2 * a.drop + 0.4) / L + (a.pickup_rest_links or a.rest_links)
     n += wrap + plate
     if a.variant == "fold":
-        n += (a.xi3 * a.drop + 0.4) / L + wrap + a.plate_links + a.rest_links
+        n += (a.xi3 * a.drop + 0.4) / L + wrap_lo + a.plate_links + a.rest_links
     return int(n)
 
 

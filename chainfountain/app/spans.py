@@ -100,8 +100,8 @@ def admissible(level: Level, spec: FieldSpec,
     fold machine, or the present value is outside already (the schema's range then)."""
     sim = level.sim
     variant = sim.apparatus.variant if sim.kind == "apparatus" else None
-    fold = (variant == "fold" and origin is not None and len(sim.carts) >= 2
-            and len(origin.carts) >= 2)
+    fold = (variant == "fold" and sim.apparatus.fold_roller == "contact"
+            and origin is not None and len(sim.carts) >= 2 and len(origin.carts) >= 2)
     if fold and spec.path in FOLD_FIELDS:  # linear in the carts' forces: exact
         i = FOLD_FIELDS.index(spec.path)
         return fold_cart_span(sim, origin, i) or fold_cart_span(origin, origin, i)

@@ -488,6 +488,10 @@ def _check_apparatus(level: Level, where: str) -> None:
         _fail(where, "apparatus.fold_clearance",
               f"{a.fold_clearance!r} m only applies to variant = 'fold' with plate = 'groove' "
               f"(here variant {a.variant!r}, plate {a.plate!r}); allowed: 0")
+    if 0.0 < a.fold_roller_radius < 0.005:
+        _fail(where, "apparatus.fold_roller_radius",
+              f"{a.fold_roller_radius!r} m is too small a roller; allowed: 0 (as "
+              "apparatus.roller_radius) or 0.005-0.5 m")
     if a.fold_roller == "gripped":
         _check_gripped_fold(sim, where)
     if a.upper_guide == "joints" and a.plate != "groove":

@@ -411,8 +411,9 @@ class ApparatusConfig:
         6.0, unit="s", doc="Run time the tables and plates are sized for (rollers move at "
         "about v0/2)", min=0.1, max=600.0,
     )
-    roller_radius: float = param(0.03, unit="m", doc="Radius r of both rollers", min=0.005,
-                                 max=0.5)
+    roller_radius: float = param(0.03, unit="m", doc="Radius r of both rollers (of the pick-up "
+                                 "roller alone when apparatus.fold_roller_radius is set)",
+                                 min=0.005, max=0.5)
     roller_mass: float = param(0.02, unit="kg", doc="Mass of each roller", min=1e-4, max=10.0)
     carriage_mass: float = param(
         0.02, unit="kg", doc="Mass of each roller carriage (cart mass is added)", min=1e-4,
@@ -494,8 +495,9 @@ class ApparatusConfig:
         "the roller is welded to it where it is (the strand's last link caught onto the "
         "rim), carried round, and pinned to the table where it comes down, so the chain "
         "is laid at rest with no friction and no contact; the axle runs at a fixed height. "
-        "Loss-free it pulls the arriving strand with lambda*v^2/4 + F_lc/2; converged in the "
-        "step with a folding roller of radius 5 link lengths or more "
+        "Loss-free it pulls the arriving strand with lambda*v^2/4 + F_lc/2 + lambda*g*R (R: "
+        "the chain's radius on the roller); converged in the step with a folding roller of "
+        "radius 5 link lengths or more "
         "(apparatus.fold_roller_radius; docs/apparatus.md)",
         choices=("contact", "gripped"),
     )

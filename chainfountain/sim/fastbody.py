@@ -64,6 +64,21 @@ its length (:attr:`pymunk.Constraint.impulse`); ``tests/sim/test_fastbody.py`` c
 that the two agree and that the vector points the right way."""
 
 
+def _pivot_layout_ok() -> bool:
+    """Whether this pymunk build lays out ``cpPivotJoint`` as :data:`PIVOT_JACC` assumes:
+    64-bit words, and the anchors (which pymunk does expose) at doubles 13-16."""
+    if ffi.sizeof("void *") != 8:
+        return False
+    a, b = pymunk.Body(1.0, 1.0), pymunk.Body(1.0, 1.0)
+    j = pymunk.PivotJoint(a, b, (0.125, -0.25), (0.375, -0.5))
+    p = ffi.cast("double *", j._constraint)
+    return (p[13], p[14], p[15], p[16]) == (0.125, -0.25, 0.375, -0.5)
+
+
+PIVOT_LAYOUT_OK = _pivot_layout_ok()
+"""Checked once at import: :func:`pivot_impulse` refuses to read otherwise."""
+
+
 def pivot_impulse(joint: pymunk.PivotJoint) -> tuple[float, float]:
     """The impulse (N s) ``joint`` applied to its second body in the last pymunk step, as
     a vector (its opposite went to the first body). A chain joint ``PivotJoint(down, up)``
@@ -73,5 +88,11 @@ def pivot_impulse(joint: pymunk.PivotJoint) -> tuple[float, float]:
     joint force rings: at the folding roller it rings at the laying rate ``v/(2L)`` and its
     harmonics, more at smaller steps and more solver iterations, and the ringing's size
     outgrows the mean (docs/apparatus.md, "The gripped folding roller")."""
+    if not PIVOT_LAYOUT_OK:
+        raise RuntimeError(
+            f"this pymunk build ({pymunk.version}) does not lay out its pivot joints as "
+            "chainfountain reads them (chainfountain.sim.fastbody.PIVOT_JACC), so the "
+            "gripped folding roller's tensions cannot be read; use pymunk 7 on a 64-bit "
+            "Python")
     p = ffi.cast("double *", joint._constraint)
     return float(p[PIVOT_JACC]), float(p[PIVOT_JACC + 1])

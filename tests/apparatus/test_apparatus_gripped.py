@@ -10,15 +10,16 @@ faster), laid on its path at 3 m/s, real tables (no treadmill), 2 s:
 - the chain is laid at rest (each joint as it is pinned), the roller rolls at half the
   chain speed and about half its circle carries welded links;
 - the arriving strand pulls as the loss-free law with gravity says,
-  ``Tbar = 1/4 + Tbar_lc/2 + k R`` (the chain descends ``2R`` through the roller), and
-  within 1 % (0.368-0.369 against 0.372 from nudged starts);
+  ``Tbar = 1/4 + Tbar_lc/2 + k R`` (the chain descends ``2R`` through the roller):
+  0.368-0.369 against 0.372 from nudged starts (-1.0 %; asserted within 0.01);
 - the joints are pinned to the table at rest: at most 0.028 m/s at 0.5 ms and 0.014 m/s
   at 0.25 ms (a joint is pinned up to one bookkeeping step after its lowest point);
 - at half the pymunk step (0.25 ms) the machine still runs, at 3.018 m/s against 3.003
   (+0.5 %), where the contact fold collapses within 0.65-2.1 s ("The fold depends on the
   time step");
 - the tensions are converged in the step: the strand's pull, ``Tbar_E`` and ``Tbar_0``
-  agree within 0.01 at 0.5 and 0.25 ms, and ``Tbar_0 - Tbar_E = k H`` at both. They are
+  differ by at most 0.010 between 0.5 and 0.25 ms (asserted within 0.02), and
+  ``Tbar_0 - Tbar_E = k H`` at both. They are
   read from the joint forces' components (:func:`chainfountain.sim.fastbody.pivot_impulse`)
   every 2 ms: the joint forces ring at the laying rate, 75 Hz, and their sizes read
   0.47 at 0.25 ms against 0.38.
@@ -95,7 +96,6 @@ def test_the_arriving_strand_pulls_as_the_loss_free_law_says(step) -> None:
 def test_the_gripped_fold_runs_at_half_the_step(half_step) -> None:
     sim, rep = half_step
     m = rep["measured"]
-    assert sim.time == pytest.approx(2.0)
     assert m["roller_ratio_lo"] == pytest.approx(0.5, abs=0.005)
     assert sim.apparatus.landing_speed < 0.02 * m["v"]
 
@@ -125,6 +125,7 @@ def test_the_fountain_takes_k_h_of_the_pull(which, request) -> None:
 @pytest.mark.parametrize(("changes", "field"), [
     ({"apparatus.fold_roller": "gripped", "apparatus.fold_roller_radius": 0.005},
      "apparatus.fold_roller_radius"),
+    ({"apparatus.fold_roller_radius": 0.003}, "apparatus.fold_roller_radius"),
     ({"apparatus.fold_roller": "gripped", "apparatus.fold_clearance": 0.002},
      "apparatus.fold_clearance"),
     ({"apparatus.fold_roller": "gripped", "apparatus.plate": "contact",
@@ -138,14 +139,25 @@ def test_a_gripped_roller_that_cannot_work_is_refused_in_one_line(changes, field
     assert field in msg and "allowed" in msg and "\n" not in msg
 
 
-def test_the_contact_roller_is_unchanged_by_the_new_fields() -> None:
-    """The gripped roller's fields are off by default: the preset reads as it did."""
+def test_the_new_fields_are_off_by_default() -> None:
+    """A fold level without them builds the contact roller: nothing welded, the folding
+    roller as big as the pick-up."""
     level = io.load(LEVEL)
     assert level.sim.apparatus.fold_roller == "contact"
     assert level.sim.apparatus.fold_roller_radius == 0.0
     sim = Simulation(laid_on_path(level).sim)
-    try:
-        sim.advance(0.2)
-    except RunEnded:  # pragma: no cover - the preset holds far longer
-        pytest.fail("the contact preset stopped")
-    assert sim.apparatus.n_welded == 0 and sim.apparatus.lower.radius == 0.03
+    sim.advance(0.2)
+    app = sim.apparatus
+    assert app.n_welded == 0 and app.lower.radius == app.upper.radius == 0.03
+
+
+def test_a_gripped_fold_run_too_fast_says_to_lighten_the_lower_cart() -> None:
+    """The contact roller's 41 g lower cart runs the loss-free gripped fold ever faster
+    (3.0 -> 3.8 m/s in 1.5 s) until its fountain falls past the catch, at about 3 s; the
+    message says what to change, in one sentence."""
+    changes = {**GRIPPED, "carts[1].mass": 0.041, "carts[0].mass": 0.0175}
+    sim = Simulation(laid_on_path(with_changes(io.load(LEVEL), changes)).sim)
+    with pytest.raises(RunEnded) as err:
+        sim.advance(10.0)
+    plain = err.value.plain
+    assert "lighter lower cart" in plain and "\n" not in plain

@@ -58,6 +58,7 @@ def test_pivot_impulse_is_the_joint_impulse_as_a_vector() -> None:
     weight's momentum change less its weight's impulse, and its size is pymunk's
     ``impulse``; a chain joint ``PivotJoint(down, up)`` under tension pulls ``up``
     downstream."""
+    assert fastbody.PIVOT_LAYOUT_OK
     space = pymunk.Space()
     space.gravity = (0.0, -9.81)
     ball = pymunk.Body(0.2, 1e-3)

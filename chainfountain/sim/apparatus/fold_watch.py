@@ -62,6 +62,8 @@ class FoldWatch:
             return
         clamped = self.h < FOLD_DT_MIN and not self.cfg.fold_clearance and not self.gripped
         t = self._t
+        if self.gripped:
+            raise FoldCollapsed(**self._gripped_collapse(v_R))
         if self._held_t >= LATE_COLLAPSE and not clamped:
             cure = (("this fold holds only close to the speed and carts it was built for"
                      if self.gripped else
@@ -92,13 +94,6 @@ class FoldWatch:
                 "of 0.0005 s")
         cure = ("make the lower cart heavier" if push else
                 "this model's fold needs a lower cart to push it, which the paper's does not")
-        if self.gripped:
-            raise FoldCollapsed(
-                plain=f"At {t:.1f} s the folding roller fell behind and the fold collapsed; "
-                "make the lower cart heavier",
-                message=head + "The gripped folding roller is pulled on by the arriving strand "
-                "and its cart alone (docs/apparatus.md); raise the lower cart mass."
-                + self._catch_note())
         raise FoldCollapsed(
             plain=f"At {t:.1f} s the folding roller fell behind and the fold collapsed; {cure}",
             message=head + "This model's put-down needs a forward push of about 0.3 lambda*v^2 or "
@@ -106,6 +101,28 @@ class FoldWatch:
             + ("raise the lower cart mass" if push else
                "give the level a second [[carts]] entry (the lower cart)") + "."
             + self._catch_note())
+
+    def _gripped_collapse(self, v_R: float) -> dict[str, str]:
+        """The gripped folding roller rolled back: it holds the chain by joints, so it
+        cannot slip; the chain stopped arriving. Either the fountain fell past the end
+        guide's catch (every measured case, docs/apparatus.md) or the carts took the
+        chain far from the speed the level was built for."""
+        t, v0 = self._t, float(self.cfg.speed)
+        last = list(self._held_v)[-10:]  # the speed in the last 0.5 s it held the chain
+        v = sum(last) / len(last) if last else self.speed
+        if v > 1.05 * v0:
+            cure = (f"the chain had run up to {v:.2f} m/s against the {v0:g} m/s it was built "
+                    "for: a lighter lower cart (or a heavier upper one) holds it nearer")
+        elif v < 0.95 * v0:
+            cure = (f"the chain had slowed to {v:.2f} m/s against the {v0:g} m/s it was built "
+                    "for: a heavier lower cart (or a lighter upper one) keeps it going")
+        else:
+            cure = ("the fountain landed beside the end guide's mouth and fell past its "
+                    "catch; a cart a gram or two off the level's moves where it lands")
+        head = (f"t = {t:.2f} s: the gripped folding roller rolls backwards (v_R = {v_R:.2f} "
+                f"m/s): the chain no longer arrives at it. ")
+        return {"plain": f"At {t:.1f} s the fold stopped: {cure}",
+                "message": head + cure[0].upper() + cure[1:] + "." + self._catch_note()}
 
     def _catch_note(self) -> str:
         """'fold': a sentence for the collapse message if the chain had stopped entering

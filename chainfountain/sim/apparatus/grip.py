@@ -84,10 +84,9 @@ class GrippedFold:
         return b.local_to_world((h, 0.0)), b.local_to_world((-h, 0.0))
 
     # ------------------------------------------------------------------ start
-    def _init_grip(self) -> int:
+    def _init_grip(self) -> None:
         """Weld the links laid round the roller's front, pin the landing link's front to
-        the table and take the chain laid behind it out of the space. Returns how many
-        links left."""
+        the table and take the chain laid behind it out of the space."""
         chain, links = self.chain, self.chain.links
         c = self.lower.roller.position
         R = self._grip_R()
@@ -102,15 +101,13 @@ class GrippedFold:
         for _ in range(popped):
             chain.pop_front()
         self.absorbed += popped
-        for lk in links[:1 + len(wrap)]:
-            if lk.shape is not None and lk.shape.space is not None:
-                self.space.remove(lk.shape)
+        if links[0].shape is not None and links[0].shape.space is not None:
+            self.space.remove(links[0].shape)
         self._pin_front(links[0])
         for k in range(1, 1 + len(wrap)):
             self._weld(links[k])
             if k > 1:
                 chain.unjoin(k - 1)
-        return popped
 
     # ------------------------------------------------------------------ stepping
     def _weld(self, link: Link, angle: float | None = None) -> None:
@@ -119,6 +116,8 @@ class GrippedFold:
         roller = self.lower.roller
         bias = self.sim_cfg.solver.joint_error_bias
         h = 0.5 * self.L
+        if link.shape is not None and link.shape.space is not None:
+            self.space.remove(link.shape)  # held by joints: nothing to touch
         pf = link.body.local_to_world((h, 0.0))
         pj = pymunk.PivotJoint(roller, link.body, roller.world_to_local(pf), (h, 0.0))
         own = link.body.angle

@@ -57,6 +57,15 @@ impulses taken out, the same runs give 0.354 / 0.419 / 0.472 against the pivots'
 under a cart."""
 
 
+def gripped_putdown(lc_bar: float, k: float, R: float) -> float:
+    """The gripped folding roller's loss-free entry tension at ``alpha = 0``,
+    ``Tbar = 1/4 + Tbar_lc/2 + k R`` (``R``: the chain's radius on the roller, which it
+    descends twice; :mod:`~chainfountain.sim.apparatus.grip`). Measured in
+    ``apparatus_fold`` with a 100-mm roller: 0.368 against 0.372 at 0.5 and 0.25 ms
+    (``docs/apparatus.md``, "The gripped folding roller")."""
+    return 0.25 + 0.5 * lc_bar + k * R
+
+
 def pickup_rig_2cm(v: float) -> float:
     """:data:`PICKUP_RIG_2CM` at chain speed ``v`` (m/s), no cart: ``p_inf + R/(lambda
     v**2)``."""

@@ -16,6 +16,7 @@ from chainfountain.sim.apparatus import (
     PUTDOWN_BAR,
     PUTDOWN_RIG_2CM,
     Apparatus,
+    gripped_putdown,
     pickup_rig_2cm,
     rig_exit_tension,
     selected_speed,
@@ -318,10 +319,13 @@ def _open_run(app: Apparatus, w: _Window) -> dict:
 def _fold_run(app: Apparatus, w: _Window) -> dict:
     """'fold': the whole moving chain (upper roller exit to folding roller entry) on its
     fixed frictionless path, ``M dv/dt = lambda g H (1 - xi2 - xi3) + T_in - T_exit``,
-    with the 2 cm rig laws at both rollers."""
+    with the 2 cm rig laws at both rollers (the gripped folding roller's own law,
+    :func:`~chainfountain.sim.apparatus.laws.gripped_putdown`, at its entry)."""
     lam, g, v, H, xi2, xi3 = w.lam, w.g, w.v, w.H, w.xi2, w.xi3
     uc, lc, kH = w.uc, w.lc, w.kH
     d_r, G_d = PUTDOWN_RIG_2CM
+    if app.gripped:
+        d_r, G_d = gripped_putdown(0.0, g / (v * v), app.r_lo + app.rho), 0.5
     G = CART_GAIN_2CM
     T_in = (d_r + G_d * lc) * lam * v * v
     T_ex = (pickup_rig_2cm(v) + G * uc) * lam * v * v
@@ -337,6 +341,7 @@ def _fold_run(app: Apparatus, w: _Window) -> dict:
         "acceleration_predicted_rig": (drive + T_in - T_ex) / M,
         "released_links": app.released,
         "formula": "M dv/dt = lambda g H (1 - xi2 - xi3) + T_in - T_exit, "
-                   "T_in = (d + G_d Tbar_lc) lambda v^2, "
-                   "T_exit = (p(v) + G Tbar_uc) lambda v^2",
+                   + ("T_in = (1/4 + k R + Tbar_lc/2) lambda v^2 (gripped), " if app.gripped
+                      else "T_in = (d + G_d Tbar_lc) lambda v^2, ")
+                   + "T_exit = (p(v) + G Tbar_uc) lambda v^2",
     }
