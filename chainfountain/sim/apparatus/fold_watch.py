@@ -108,17 +108,18 @@ class FoldWatch:
         guide's catch (every measured case, docs/apparatus.md) or the carts took the
         chain far from the speed the level was built for."""
         t, v0 = self._t, float(self.cfg.speed)
-        last = list(self._held_v)[-10:]  # the speed in the last 0.5 s it held the chain
-        v = sum(last) / len(last) if last else self.speed
-        if v > 1.05 * v0:
-            cure = (f"the chain had run up to {v:.2f} m/s against the {v0:g} m/s it was built "
-                    "for: a lighter lower cart (or a heavier upper one) holds it nearer")
-        elif v < 0.95 * v0:
-            cure = (f"the chain had slowed to {v:.2f} m/s against the {v0:g} m/s it was built "
-                    "for: a heavier lower cart (or a lighter upper one) keeps it going")
+        held = sorted(self._held_v)  # the speed in the last 5 s it held the chain
+        v = held[len(held) // 2] if held else self.speed
+        ran = f"the chain ran at {v:.2f} m/s, built for {v0:g} m/s"
+        if v > 1.02 * v0:
+            cure = (f"{ran}, and the faster fountain landed beyond the end guide's catch: "
+                    "a lighter lower cart (or a heavier upper one) holds it nearer")
+        elif v < 0.98 * v0:
+            cure = (f"{ran}, and the slower fountain landed short of the end guide's catch: a "
+                    "heavier lower cart (or a lighter upper one) keeps it nearer")
         else:
-            cure = ("the fountain landed beside the end guide's mouth and fell past its "
-                    "catch; a cart a gram or two off the level's moves where it lands")
+            cure = (f"the fountain landed beside the end guide's mouth and fell past its catch "
+                    f"({ran}); a cart a gram or two off the level's moves where it lands")
         head = (f"t = {t:.2f} s: the gripped folding roller rolls backwards (v_R = {v_R:.2f} "
                 f"m/s): the chain no longer arrives at it. ")
         return {"plain": f"At {t:.1f} s the fold stopped: {cure}",
