@@ -7,24 +7,16 @@ import sys
 from pathlib import Path
 
 import numpy as np
-from pymunk._chipmunk_cffi import ffi
 
-from chainfountain.level import io
-from chainfountain.sim import Simulation
-from chainfountain.study.changes import laid_on_path, with_changes
+from chainfountain.sim.fastbody import pivot_impulse
 
 sys.path.insert(0, str(Path(__file__).parent))
-from fold_entry_step import JACC, parse_val  # noqa: E402
+from fold_entry_step import laid_run  # noqa: E402
 
 h = float(sys.argv[1])
-ch = {k: parse_val(v) for k, v in (a.split("=", 1) for a in sys.argv[2:])}
-lvl = io.load(Path("levels/apparatus_fold.toml"))
-ch["solver.dt"] = h * lvl.sim.solver.substeps
-lvl = with_changes(lvl, ch)
-sim = Simulation(laid_on_path(lvl).sim)
+sim = laid_run(h, sys.argv[2:])
 app = sim.apparatus
-lam = lvl.sim.chain.linear_density
-sim.advance(1.0)
+lam = sim.chain.cfg.linear_density
 ss = sim.space.step
 X, Y, V = [], [], []
 
@@ -32,9 +24,9 @@ X, Y, V = [], [], []
 def step(hs):
     ss(hs)
     q = list(app.fold_held[-1])
-    d = ffi.cast("double *", q[8][0].up_joint._constraint)
-    X.append(d[JACC] / hs)
-    Y.append(d[JACC + 1] / hs)
+    jx, jy = pivot_impulse(q[8][0].up_joint)
+    X.append(jx / hs)
+    Y.append(jy / hs)
     V.append(q[8][0].body.velocity.x)
 
 

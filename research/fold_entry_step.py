@@ -32,12 +32,23 @@ from chainfountain.sim.fastbody import PIVOT_JACC as JACC
 from chainfountain.sim.fastbody import pivot_impulse
 from chainfountain.study.changes import laid_on_path, with_changes
 
-__all__ = ["JACC", "jacc_x", "parse_val"]
+__all__ = ["JACC", "jacc_x", "laid_run", "parse_val"]
 
 
 def jacc_x(j) -> float:
     """Signed x-impulse of a chain pivot joint on its upstream link (> 0: tension)."""
     return pivot_impulse(j)[0]
+
+
+def laid_run(h: float, changes: list[str], level: str = "apparatus_fold") -> Simulation:
+    """``level`` at pymunk step ``h`` with ``key=value`` ``changes``, laid on its path and
+    run 1 s (the start of fold_entry_check.py and fold_entry_spectrum.py)."""
+    ch = {k: parse_val(v) for k, v in (a.split("=", 1) for a in changes)}
+    lvl = io.load(Path(__file__).resolve().parents[1] / "levels" / f"{level}.toml")
+    ch["solver.dt"] = h * lvl.sim.solver.substeps
+    sim = Simulation(laid_on_path(with_changes(lvl, ch)).sim)
+    sim.advance(1.0)
+    return sim
 
 
 def parse_val(v: str):
