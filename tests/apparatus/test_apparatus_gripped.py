@@ -22,7 +22,7 @@ faster), laid on its path at 3 m/s, real tables (no treadmill), 2 s:
   ``Tbar_0 - Tbar_E = k H`` at both. They are
   read from the joint forces' components (:func:`chainfountain.sim.fastbody.pivot_impulse`)
   every 2 ms: the joint forces ring at the laying rate, 75 Hz, and their sizes read
-  0.47 at 0.25 ms against 0.38.
+  0.46 at 0.25 ms against 0.38.
 
 docs/apparatus.md, "The gripped folding roller".
 """
