@@ -5,8 +5,10 @@ the strand it takes in, at the preset's pymunk step and at half of it.
 ``fold_roller_radius = 0.1``), laid along its path at 3 m/s; any field can be changed
 with ``--set path=value``. Per run it prints the chain speed's 1-s means and how the run
 ended; with ``--entry`` instead the 0.5-s means of the lower plate strand's tension
-(the solver's joint impulses of plate links 3-8 before the roller, scaled by
-``lambda v^2``) against the loss-free law ``1/4 + Tbar_lc/2 + k R``.
+(the joint forces along the strand, :func:`chainfountain.sim.fastbody.pivot_impulse`, of
+plate links 3-8 before the roller, every pymunk step, scaled by ``lambda v^2``) against the
+loss-free law ``1/4 + Tbar_lc/2 + k R``. (The joint forces' sizes, pymunk's ``impulse``,
+read high there: they ring at the laying rate; ``research/fold_entry_step.py``.)
 
 Usage::
 
@@ -32,6 +34,7 @@ import numpy as np
 from chainfountain.errors import RunEnded
 from chainfountain.level import io
 from chainfountain.sim import Simulation
+from chainfountain.sim.fastbody import pivot_impulse
 from chainfountain.study.changes import laid_on_path, with_changes
 
 LEVELS = Path(__file__).resolve().parents[1] / "levels"
@@ -81,7 +84,7 @@ def entry(sim: Simulation, seconds: float) -> list[tuple[float, float, float, fl
     def timed(h: float) -> None:
         step(h)
         held = list(app.fold_held[-1])[3:8]
-        buf.append((np.mean([abs(lk.up_joint.impulse) / h for lk, _ in held
+        buf.append((np.mean([pivot_impulse(lk.up_joint)[0] / h for lk, _ in held
                              if lk.up_joint is not None]), app.strand_speed))
 
     sim.space.step = timed  # type: ignore[method-assign]
