@@ -135,7 +135,7 @@ def run(level: str, h: float, sets: dict, patches: dict, t0: float, t1: float,
     a = np.array(rows)
     v = a[:, 2].mean()
     s = lam * v * v
-    R = (app.r_lo + app.rho) if app.gripped else 0.0
+    R = app.R_lo if app.gripped else 0.0
     law = 0.25 + 0.5 * app.lower.force / s + g * R / v**2
     pr = np.nanmean(np.array(prof), axis=0) / s
     return dict(T=a[:, 0].mean() / s, Tx=a[:, 1].mean() / s, v=v, vpl=a[:, 3].mean(),

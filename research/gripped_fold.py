@@ -78,7 +78,7 @@ def entry(sim: Simulation, seconds: float) -> list[tuple[float, float, float, fl
     (both scaled by ``lambda v^2``)."""
     app = sim.apparatus
     lam = sim.chain.cfg.linear_density
-    R = app.r_lo + app.rho if app.gripped else 0.0
+    R = app.R_lo if app.gripped else 0.0
     step, buf, out = sim.space.step, [], []
 
     def timed(h: float) -> None:

@@ -38,6 +38,7 @@ from chainfountain.errors import RunEnded
 from chainfountain.level import io
 from chainfountain.level.model import LevelError
 from chainfountain.sim import Recorder, Simulation
+from chainfountain.sim.apparatus import gripped_putdown
 from chainfountain.sim.apparatus_report import report
 from chainfountain.study.changes import laid_on_path, with_changes
 
@@ -71,17 +72,12 @@ def half_step() -> tuple[Simulation, dict]:
     return _run(5e-4)
 
 
-def _entry_law(m: dict, app) -> float:
-    """``1/4 + Tbar_lc/2 + k R``: the gripped roller's loss-free pull with gravity."""
-    return 0.25 + 0.5 * m["Tbar_lc"] + m["k"] * (app.r_lo + app.rho)
-
-
 def test_the_gripped_roller_lays_the_chain_down_at_rest(step) -> None:
     sim, rep = step
     app, m = sim.apparatus, rep["measured"]
     assert app.landing_speed < 0.02 * m["v"], "a joint was pinned moving"
     assert m["roller_ratio_lo"] == pytest.approx(0.5, abs=0.005)
-    half_turn = math.pi * (app.r_lo + app.rho) / app.L  # links on half the circle
+    half_turn = math.pi * app.R_lo / app.L  # links on half the circle
     assert abs(app.n_welded - half_turn) <= 2.0
     assert app.gripped_links > 0.9 * (m["v"] / 2.0) * 2.0 / app.L
 
@@ -90,7 +86,8 @@ def test_the_arriving_strand_pulls_as_the_loss_free_law_says(step) -> None:
     sim, rep = step
     m = rep["measured"]
     # measured 0.3674-0.3688 against 0.3716 (three nudged starts)
-    assert m["T_putdown_entry_bar"] == pytest.approx(_entry_law(m, sim.apparatus), abs=0.01)
+    law = gripped_putdown(m["Tbar_lc"], m["k"], sim.apparatus.R_lo)
+    assert m["T_putdown_entry_bar"] == pytest.approx(law, abs=0.01)
 
 
 def test_the_gripped_fold_runs_at_half_the_step(half_step) -> None:

@@ -103,6 +103,8 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Gri
         self.r = float(a.roller_radius)
         self.r_lo = float(a.fold_roller_radius) or self.r
         """Radius (m) of the folding roller ('fold'; ``apparatus.fold_roller_radius``)."""
+        self.R_lo = self.r_lo + self.rho
+        """Radius (m) of the chain's centre line on the folding roller."""
         self.gripped = a.variant == "fold" and a.fold_roller == "gripped"
         """The folding roller holds the chain by joints (:mod:`.grip`), not by contact."""
         self.H = float(a.drop)
@@ -158,7 +160,6 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Gri
         v0 = self.v_lay
         vR = 0.5 * v0
         R = self.r + self.rho
-        R_lo = self.r_lo + self.rho
         s_wrap0 = self.n_ahead * L
         s_wrap1 = s_wrap0 + math.pi * R
         s_lo_wrap = math.inf
@@ -171,13 +172,14 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Gri
                                      & np.isclose(path[:, 1], self.y_lo))[0])
             s_lo_wrap = float(s_all[idx])
         pts, s = resample(path, L)
-        self._lay(pts, s, s_wrap0, s_wrap1, s_lo_wrap, v0, vR, R, R_lo)
+        self._lay(pts, s, s_wrap0, s_wrap1, s_lo_wrap, v0, vR, R)
 
     def _lay(self, pts: np.ndarray, s: np.ndarray, s_w0: float, s_w1: float, s_lw: float,
-             v0: float, vR: float, R: float, R_lo: float) -> None:
+             v0: float, vR: float, R: float) -> None:
         """Create the links along the resampled path (``pts[i]`` to ``pts[i+1]``)."""
         up, lo = self.upper, self.lower
         om = -vR / R
+        R_lo = self.R_lo
         om_lo = -vR / R_lo
         links: list[Link] = []
         for i in range(len(pts) - 1):

@@ -60,14 +60,12 @@ class FoldWatch:
         self._back_t += dt
         if self._back_t < COLLAPSE_TIME:
             return
-        clamped = self.h < FOLD_DT_MIN and not self.cfg.fold_clearance and not self.gripped
-        t = self._t
         if self.gripped:
             raise FoldCollapsed(**self._gripped_collapse(v_R))
+        clamped = self.h < FOLD_DT_MIN and not self.cfg.fold_clearance
+        t = self._t
         if self._held_t >= LATE_COLLAPSE and not clamped:
-            cure = (("this fold holds only close to the speed and carts it was built for"
-                     if self.gripped else
-                     "this contact fold holds only close to the speed it was built for")
+            cure = ("this contact fold holds only close to the speed it was built for"
                     if self.cfg.swing_damper else
                     "the swing damper holds the swing down (0.5 holds apparatus_special)")
             raise FoldCollapsed(

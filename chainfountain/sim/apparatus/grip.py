@@ -74,10 +74,6 @@ class GrippedFold:
         return len(self._welds)
 
     # ------------------------------------------------------------------ geometry
-    def _grip_R(self) -> float:
-        """Radius (m) of the chain's centre line on the folding roller."""
-        return self.r_lo + self.rho
-
     def _ends(self, link: Link) -> tuple[pymunk.Vec2d, pymunk.Vec2d]:
         h = 0.5 * self.L
         b = link.body
@@ -89,7 +85,7 @@ class GrippedFold:
         the table and take the chain laid behind it out of the space."""
         chain, links = self.chain, self.chain.links
         c = self.lower.roller.position
-        R = self._grip_R()
+        R = self.R_lo
 
         def on_wrap(p: pymunk.Vec2d) -> bool:
             return abs((p - c).length - R) < ON_WRAP and p.x >= c.x - 1e-9
@@ -147,14 +143,14 @@ class GrippedFold:
         popped = 0
         while len(self._welds) > 1:
             link, pj, gj = self._welds[0]
-            if self._ends(link)[0].x > cx:
+            front = self._ends(link)[0]
+            if front.x > cx:
                 break
             self.space.remove(self._table_pin)
             chain.pop_front()  # the landing link, both ends down
             popped += 1
             self._welds.popleft()
             self.space.remove(pj, gj)
-            front = link.body.local_to_world((0.5 * self.L, 0.0))
             self.landing_speed = max(self.landing_speed,
                                      link.body.velocity_at_world_point(front).length)
             self._pin_front(link)
@@ -167,7 +163,7 @@ class GrippedFold:
         centre or come within :data:`GRIP_TOL` of the rim, caught onto the rim chord."""
         chain, links = self.chain, self.chain.links
         c = self.lower.roller.position
-        R = self._grip_R()
+        R = self.R_lo
         d_ang = 2.0 * math.asin(self.L / (2.0 * R))
         plate = self._gq[-1]
         while True:

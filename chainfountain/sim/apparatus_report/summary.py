@@ -325,7 +325,7 @@ def _fold_run(app: Apparatus, w: _Window) -> dict:
     uc, lc, kH = w.uc, w.lc, w.kH
     d_r, G_d = PUTDOWN_RIG_2CM
     if app.gripped:
-        d_r, G_d = gripped_putdown(0.0, g / (v * v), app.r_lo + app.rho), 0.5
+        d_r, G_d = gripped_putdown(0.0, g / (v * v), app.R_lo), 0.5
     G = CART_GAIN_2CM
     T_in = (d_r + G_d * lc) * lam * v * v
     T_ex = (pickup_rig_2cm(v) + G * uc) * lam * v * v
