@@ -10,6 +10,7 @@ Usage::
 
     python research/contact_holds.py apparatus_special --duration 60 \
         --set apparatus.bearing_drag=0.05 --dt-factor 0.5
+    python research/contact_holds.py apparatus_fold_gripped --duration 600 --seed 1
 """
 
 from __future__ import annotations
@@ -35,8 +36,9 @@ def _value(text: str) -> int | float | str:
 
 
 def run(name: str, duration: float, window: float, dt_factor: float,
-        changes: dict[str, str]) -> dict:
-    """One run; per-window figures and the end."""
+        changes: dict[str, str], seed: int | None = None) -> dict:
+    """One run; per-window figures and the end. ``seed``: nudge the start
+    (:meth:`~chainfountain.sim.world.Simulation.nudge`, 1e-12 of each velocity)."""
     from chainfountain.level import io
     from chainfountain.sim import Simulation
     from chainfountain.study.changes import with_changes
@@ -47,6 +49,8 @@ def run(name: str, duration: float, window: float, dt_factor: float,
     cfg = level.sim
     cfg.solver.dt *= dt_factor
     sim = Simulation(cfg)
+    if seed is not None:
+        sim.nudge(seed)
     app = sim.apparatus
     every = max(1, int(round(0.02 / sim.dt)))
     wall = time.perf_counter()
@@ -74,7 +78,7 @@ def run(name: str, duration: float, window: float, dt_factor: float,
                         "drift_pct_s": round(100 * float(slope / v_mean), 4),
                         "fold_swing": round(float(np.max(vl) - np.min(vl)), 4)
                         if app.lower is not None else None})
-    return {"level": name, "changes": changes, "dt": sim.dt, "ended": ended,
+    return {"level": name, "changes": changes, "seed": seed, "dt": sim.dt, "ended": ended,
             "simulated_s": round(sim.time, 2), "wall_s": round(time.perf_counter() - wall, 1),
             "windows": windows}
 
@@ -86,9 +90,11 @@ def main() -> None:
     ap.add_argument("--window", type=float, default=10.0)
     ap.add_argument("--dt-factor", type=float, default=1.0)
     ap.add_argument("--set", action="append", default=[], metavar="FIELD=VALUE")
+    ap.add_argument("--seed", type=int, help="nudge the start by 1e-12 with this seed")
     ns = ap.parse_args()
     changes = dict(s.split("=", 1) for s in ns.set)
-    print(json.dumps(run(ns.level, ns.duration, ns.window, ns.dt_factor, changes), indent=1))
+    print(json.dumps(run(ns.level, ns.duration, ns.window, ns.dt_factor, changes, ns.seed),
+                     indent=1))
 
 
 if __name__ == "__main__":

@@ -530,6 +530,7 @@ ONLY_FOR_VARIANT: dict[str, tuple[str, ...]] = {
     "xi3": ("fold",),
     "fold_roller": ("fold",),
     "fold_roller_radius": ("fold",),
+    "fold_brake": ("fold",),
     "end_pull": ("open",),
     "end": ("floor",),
     "floor_width": ("floor",),

@@ -510,6 +510,16 @@ class ApparatusConfig:
         "roller unit (bearings and cart rolling resistance), a force -c*u on its carriage "
         "moving at u (about v/2). 0: loss-free bearings", min=0.0, max=10.0, live=True,
     )
+    fold_brake: float = param(
+        0.0, unit="N*s/m", doc="Variant 'fold': a brake c on the folding roller's carriage "
+        "(an eddy-current brake, not in the paper), a force -c*u on it moving at u (about "
+        "v/2). The paper's machine is balanced at every speed and keeps whatever speed it "
+        "drifts to; with the brake the lower cart's force beyond the balance, c*v/2, selects "
+        "the speed (a heavier lower cart runs it faster), and a speed that wanders is pulled "
+        "back within about a second. The fountain is the paper's with the cart's force less "
+        "the brake's, F_lc - c*v/2. 0: none (docs/apparatus.md)",
+        min=0.0, max=10.0, live=True,
+    )
     swing_damper: float = param(
         0.0, unit="N*s/m", doc="Variant 'fold': a dashpot c between the two roller "
         "carriages, a force -c*(u_up - u_lo) on the upper and its opposite on the lower "

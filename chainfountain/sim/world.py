@@ -381,7 +381,7 @@ class Simulation:
             if unit is None or unit.cart is None:
                 raise KeyError(f"{path}: no such cart in this apparatus")
             unit.set_cart_mass(v, self.config.apparatus.carriage_mass)
-        elif path in ("apparatus.bearing_drag", "apparatus.swing_damper"):
+        elif path in ("apparatus.bearing_drag", "apparatus.fold_brake", "apparatus.swing_damper"):
             setattr(self.config.apparatus, path.split(".")[1], v)
             if self.apparatus is not None:
                 self.apparatus.set_losses()  # the carriages' springs

@@ -1,6 +1,6 @@
 """The machine's forces are pymunk springs (``RollerUnit.drive``, the swing damper): a cart's
 spring pushes with the cart's force wherever the carriage rolls, and a live change of a
-cart, the bearing drag or the swing damper reaches the springs."""
+cart, the bearing drag, the fold's brake or the swing damper reaches the springs."""
 
 from __future__ import annotations
 
@@ -48,6 +48,31 @@ def test_live_changes_reach_the_springs() -> None:
     assert _drive_force(app.lower) == pytest.approx(0.056 * 9.81 * 0.5, abs=1e-9)
     sim.set_param("apparatus.swing_damper", 1.5)
     assert app.swing_spring is not None and app.swing_spring.damping == 1.5
+
+
+def test_the_fold_brake_acts_on_the_folding_roller_alone() -> None:
+    """``apparatus.fold_brake`` adds to the lower carriage's damper only, built and live,
+    and leaves the cart's force as it is."""
+    from chainfountain.study.changes import with_changes
+
+    level = with_changes(io.load(LEVELS / "apparatus_special.toml"),
+                         {"apparatus.bearing_drag": 0.002, "apparatus.fold_brake": 0.5})
+    app = Simulation(level.sim).apparatus
+    assert app.upper.drive.damping == 0.002
+    assert app.lower.drive.damping == pytest.approx(0.502, abs=1e-15)
+    sim = Simulation(io.load(LEVELS / "apparatus_special.toml").sim)
+    sim.set_param("apparatus.fold_brake", 1.0)
+    app = sim.apparatus
+    assert app.upper.drive.damping == 0.0 and app.lower.drive.damping == 1.0
+    assert _drive_force(app.lower) == pytest.approx(app.lower.force, abs=1e-9)
+
+
+def test_the_fold_brake_is_refused_where_there_is_no_folding_roller() -> None:
+    from chainfountain.level.model import LevelError
+    from chainfountain.study.changes import with_changes
+
+    with pytest.raises(LevelError, match=r"apparatus\.fold_brake.*allowed: 0"):
+        with_changes(io.load(LEVELS / "apparatus_floor.toml"), {"apparatus.fold_brake": 1.0})
 
 
 def test_the_swing_damper_axis_is_horizontal() -> None:

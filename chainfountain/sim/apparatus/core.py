@@ -300,11 +300,11 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Gri
         self.swing_spring = s
 
     def set_losses(self) -> None:
-        """Apply the level's cart forces, ``apparatus.bearing_drag`` and
-        ``apparatus.swing_damper`` (after a live change of any of them)."""
-        for unit in (self.upper, self.lower):
-            if unit is not None:
-                unit.set_drive(self.cfg.bearing_drag)
+        """Apply the level's cart forces, ``apparatus.bearing_drag``, ``apparatus.fold_brake``
+        and ``apparatus.swing_damper`` (after a live change of any of them)."""
+        self.upper.set_drive(self.cfg.bearing_drag)
+        if self.lower is not None:
+            self.lower.set_drive(self.cfg.bearing_drag + self.cfg.fold_brake)
         if self.swing_spring is not None:
             self.swing_spring.damping = float(self.cfg.swing_damper)
 
@@ -441,5 +441,6 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Gri
         pick-up back, ``c*v/2`` less pushing the fold on)."""
         s = lam * v * v
         d = 0.5 * self.cfg.bearing_drag * v
-        lo = self.lower.force - d if self.lower is not None else 0.0
+        brake = 0.5 * self.cfg.fold_brake * v
+        lo = self.lower.force - d - brake if self.lower is not None else 0.0
         return (self.upper.force + d) / s, lo / s

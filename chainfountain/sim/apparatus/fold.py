@@ -79,7 +79,8 @@ class FoldPart:
         self.lower = add_roller(space, x_lo, ylt, rho, r, a.roller_mass,
                                 a.carriage_mass, carts[1] if len(carts) > 1 else None,
                                 1.0, self.g, self.sim_cfg.solver.joint_error_bias, vR, -vR / R,
-                                drag=a.bearing_drag, fixed_axle=self.gripped)
+                                drag=a.bearing_drag + a.fold_brake,
+                                fixed_axle=self.gripped)
         self.table_lo = static_segment(space, (xl - 0.5, ylt - 0.01),
                                        (x_lo + travel_lo + 1.0, ylt - 0.01), 0.01,
                                        a.table_friction, SCENERY)

@@ -12,6 +12,7 @@ from collections import deque
 from chainfountain.errors import RunEnded
 from chainfountain.sim.apparatus.tuning import (
     CATCH_LOST,
+    CATCH_STOP,
     COLLAPSE_TIME,
     FOLD_DT_MIN,
     HELD,
@@ -48,6 +49,9 @@ class FoldWatch:
         :data:`~.tuning.COLLAPSE_TIME` (a chain that keeps running into a stopped fold only piles
         up; nothing after that is the apparatus any more)."""
         v_R = self.lower.speed
+        if self.gripped and self._mouth_t is not None and \
+                self._t - self._mouth_t >= CATCH_STOP:
+            raise FoldCollapsed(**self._gripped_collapse(v_R))
         if v_R >= 0.0:
             self._back_t = 0.0
             if self._t >= self._swing_next:  # the hold is sampled, not read every step
@@ -101,8 +105,9 @@ class FoldWatch:
             + self._catch_note())
 
     def _gripped_collapse(self, v_R: float) -> dict[str, str]:
-        """The gripped folding roller rolled back: it holds the chain by joints, so it
-        cannot slip; the chain stopped arriving. Either the fountain fell past the end
+        """The gripped folding roller rolled back, or no link entered the end guide's mouth
+        for :data:`~.tuning.CATCH_STOP`: it holds the chain by joints, so it cannot slip;
+        the chain stopped arriving as it should. Either the fountain fell past the end
         guide's catch (every measured case, docs/apparatus.md) or the carts took the
         chain far from the speed the level was built for."""
         t, v0 = self._t, float(self.cfg.speed)
@@ -119,7 +124,9 @@ class FoldWatch:
             cure = (f"the fountain landed beside the end guide's mouth and fell past its catch "
                     f"({ran}); a cart a gram or two off the level's moves where it lands")
         head = (f"t = {t:.2f} s: the gripped folding roller rolls backwards (v_R = {v_R:.2f} "
-                f"m/s): the chain no longer arrives at it. ")
+                f"m/s): the chain no longer arrives at it. " if v_R < 0.0 else
+                f"t = {t:.2f} s: no link has entered the end guide through its mouth since "
+                f"t = {self._mouth_t:.2f} s. ")
         return {"plain": f"At {t:.1f} s the fold stopped: {cure}",
                 "message": head + cure[0].upper() + cure[1:] + "." + self._catch_note()}
 

@@ -75,6 +75,13 @@ CATCH_LOST = 0.1
 """'fold': a collapse this long (s) or longer after the last link entered the end guide
 through its mouth (normally one does every ``L/v``, about 7 ms) was preceded by a lost
 catch, and the collapse message says so (docs/apparatus.md)."""
+CATCH_STOP = 0.5
+"""'fold' with the gripped folding roller: the run ends once no link has entered the end
+guide through its mouth for this long (s; normally one does every ``L/v``, about 7 ms).
+The gripped roller cannot slip, so after a lost catch a heavy lower cart (a braked fold's,
+``apparatus.fold_brake``) keeps pulling the chain on and runs it away instead of letting
+the roller roll back; measured on ``apparatus_special`` with a brake and a 325 g lower
+cart, which lost its catch at 13.9 s and ran the chain up to 13 m/s by 16.9 s."""
 PRELOAD_STEPS = 40
 """Treadmill: a joint made in the tensioned plate strand starts with the tension of the
 joint it replaces as an internal force pair, faded out over this many steps (the
