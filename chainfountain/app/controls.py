@@ -36,6 +36,7 @@ CONTROL_PATTERNS: tuple[str, ...] = (
     r"apparatus\.floor_depth",
     r"apparatus\.fold_clearance",
     r"apparatus\.bearing_drag",
+    r"apparatus\.fold_brake",
     r"apparatus\.swing_damper",
     r"carts\[\d+\]\.mass",
     r"carts\[\d+\]\.incline",
@@ -65,6 +66,7 @@ LABELS: dict[str, str] = {
     "apparatus.floor_depth": "floor below end d",
     "apparatus.fold_clearance": "fold clearance",
     "apparatus.bearing_drag": "bearing drag c",
+    "apparatus.fold_brake": "fold brake c_b",
     "apparatus.swing_damper": "swing damper c_s",
     "apparatus.xi2": "beaker below start xi2",
     "apparatus.xi3": "bottom above end xi3",
@@ -319,6 +321,7 @@ ONLY_FOR_VARIANT: dict[str, tuple[str, ...]] = {
     "apparatus.floor_depth": ("floor",),
     "apparatus.fold_clearance": ("fold",),
     "apparatus.swing_damper": ("fold",),
+    "apparatus.fold_brake": ("fold",),
 }
 """Apparatus fields that only the named ``apparatus.variant`` values use: for any other
 variant a slider would change nothing (xi3 is the lower table's height, and only
@@ -342,7 +345,11 @@ def unused_fields(config: Any) -> set[str]:
     if kind != "apparatus":
         return bend
     variant = config.apparatus.variant
-    return {p for p, variants in ONLY_FOR_VARIANT.items() if variant not in variants} | bend
+    # the gripped folding roller has no clearance; the brake is built for it
+    roller = {"apparatus.fold_clearance"} if config.apparatus.fold_roller == "gripped" \
+        else {"apparatus.fold_brake"}
+    return {p for p, variants in ONLY_FOR_VARIANT.items() if variant not in variants} | bend \
+        | roller
 
 
 def control_fields(config: Any, patterns: tuple[str, ...] = CONTROL_PATTERNS) -> list[FieldSpec]:

@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from chainfountain.sim.apparatus.laws import floor_speeds
+from chainfountain.sim.apparatus.laws import braked_fold_speed, floor_speeds
 from chainfountain.sim.machine_rules import keeps_any_speed
 from chainfountain.sim.measure import steady_time
 from chainfountain.sim.recorder import Recorder
@@ -215,9 +215,19 @@ def machine_line(sim: Simulation) -> str:
 
 def selection_line(sim: Simulation) -> str:
     """A contact 'floor' machine: the speed its upper cart selects now by this model's
-    pick-up law and by the paper's (:func:`~chainfountain.sim.apparatus.laws.floor_speeds`),
-    to read beside the measured speed; '' for the other arrangements."""
-    if sim.apparatus is None or sim.config.apparatus.variant != "floor":
+    pick-up law and by the paper's (:func:`~chainfountain.sim.apparatus.laws.floor_speeds`);
+    a 'fold' machine with a brake on its folding roller: the speed its carts and brake
+    select by the paper's laws (:func:`~chainfountain.sim.apparatus.laws.braked_fold_speed`);
+    to read beside the measured speed. '' for the other arrangements."""
+    if sim.apparatus is None:
+        return ""
+    a = sim.config.apparatus
+    if a.variant == "fold" and a.fold_brake > 0.0:
+        v = braked_fold_speed(sim.config)
+        if not math.isfinite(v):
+            return "the carts and the brake select no speed: the upper cart holds the chain back"
+        return f"the carts and the brake select {v:.2f} m/s by the paper's laws"
+    if a.variant != "floor":
         return ""
     model, paper = floor_speeds(sim.config)
     if not math.isfinite(model):

@@ -14,7 +14,9 @@ The contact floor machine's upper cart, bearing drag and offset span where this 
 pick-up law leaves the chain running (:data:`FLOOR_FIELDS`; the limit is measured:
 :data:`~chainfountain.sim.apparatus.laws.FLOOR_KH_MAX`). A contact 'fold' machine's carts
 span the measured band around the balance the level was built with
-(:data:`FOLD_FIELDS`, :data:`~chainfountain.sim.apparatus.laws.FOLD_CART_BAND`).
+(:data:`FOLD_FIELDS`, :data:`~chainfountain.sim.apparatus.laws.FOLD_CART_BAND`), and so
+do a gripped fold's with a brake
+(:data:`~chainfountain.sim.apparatus.laws.BRAKED_CART_BAND`).
 """
 
 from __future__ import annotations
@@ -40,7 +42,8 @@ FOLD_FIELDS = ("carts[0].mass", "carts[1].mass")
 level's own balance (:func:`~chainfountain.sim.apparatus.laws.fold_cart_span`; when the
 other cart is so far off that no value runs, the span of the level as built)."""
 
-FOLD_OTHER_FIELDS = ("apparatus.bearing_drag", "carts[0].incline", "carts[1].incline")
+FOLD_OTHER_FIELDS = ("apparatus.bearing_drag", "apparatus.fold_brake", "carts[0].incline",
+                     "carts[1].incline")
 """A contact 'fold' machine's other fields that move its carts' push: their sliders span
 where :func:`~chainfountain.sim.apparatus.laws.fold_runs_on` holds (by bisection)."""
 
@@ -100,8 +103,9 @@ def admissible(level: Level, spec: FieldSpec,
     fold machine, or the present value is outside already (the schema's range then)."""
     sim = level.sim
     variant = sim.apparatus.variant if sim.kind == "apparatus" else None
-    fold = (variant == "fold" and sim.apparatus.fold_roller == "contact"
-            and origin is not None and len(sim.carts) >= 2 and len(origin.carts) >= 2)
+    fold = (variant == "fold" and origin is not None and len(sim.carts) >= 2
+            and len(origin.carts) >= 2 and (origin.apparatus.fold_roller == "contact"
+                                             or origin.apparatus.fold_brake > 0.0))
     if fold and spec.path in FOLD_FIELDS:  # linear in the carts' forces: exact
         i = FOLD_FIELDS.index(spec.path)
         return fold_cart_span(sim, origin, i) or fold_cart_span(origin, origin, i)

@@ -67,12 +67,14 @@ def resolve(name_or_path: str | os.PathLike[str]) -> Path:
 TWINS: dict[str, str] = {
     "apparatus_floor": "ideal_floor",
     "apparatus_fold": "ideal_fold",
+    "apparatus_fold_gripped": "ideal_fold",
     "apparatus_special": "ideal_special",
     "apparatus_limit": "ideal_limit",
     "apparatus_open": "ideal_open",
 }
 """Each contact-machine preset and the ideal machine that shows the same arrangement by the
-paper's laws (both ways round: :func:`twin`)."""
+paper's laws (both ways round: :func:`twin`; an ideal machine opens the first preset that
+names it)."""
 
 
 def twin(name: str) -> str | None:

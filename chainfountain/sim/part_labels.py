@@ -4,6 +4,7 @@ the paper's figure ("pulley_experiment"). World coordinates (m); no pixels here.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any, Protocol
 
@@ -66,8 +67,10 @@ def part_labels(sim: Simulation) -> list[PartLabel]:
     names = ("upper cart", "lower cart")
     carts = sim.cart_geometry()
     with_cart = [i for i, u in enumerate(units) if u.cart is not None]
+    cart_y: dict[int, float] = {}
     for i, verts in zip(with_cart, carts, strict=False):
         cx, cy = np.asarray(verts).mean(axis=0)
+        cart_y[i] = float(cy)
         out.append(PartLabel(f"{names[i]} {_grams(units[i].cart.mass)}",
                              float(cx), float(cy), "below", tier=1))
     if getattr(app, "starting", False) and app.up_guide:
@@ -82,8 +85,14 @@ def part_labels(sim: Simulation) -> list[PartLabel]:
             x, y, r, _ = rollers[1]
             out.append(PartLabel("folding roller", x, y + r, "above"))
             tab = app.table_lo
+            y_tab = float(tab.a.y)
+            # the lower cart's label sits a row under the cart, right of the roller, where
+            # the table's name goes too; a cart riding just above the table (a large
+            # folding roller) would put both on one row, so then the table's name goes left
+            crowded = -0.01 < cart_y.get(1, math.inf) - y_tab < 0.1
             out.append(PartLabel("lower table (bottom)",
-                                 min(float(tab.b.x), x + 0.3), float(tab.a.y), "below"))
+                                 x - 0.3 if crowded else min(float(tab.b.x), x + 0.3),
+                                 y_tab, "below"))
     elif a.variant == "open":
         out.append(PartLabel("lower plate: the chain slides away", ex, ey, "below"))
     return out

@@ -161,3 +161,44 @@ def test_the_contact_fold_machines_carts_span_their_measured_band() -> None:
         assert f"spans {lower[0]:g}-{lower[1]:g} kg, where this machine keeps running" in tip
     limit = io.load(library.resolve("apparatus_limit"))
     assert spans.admissible(limit, _spec(limit, "carts[0].mass"), limit.sim) is None
+
+
+def test_the_braked_gripped_folds_carts_span_where_it_still_lands_in_its_catch() -> None:
+    """``apparatus_fold_gripped`` (19 / 311 g): upper 17-20 g and lower 309-316 g, every
+    value changed live that held (``laws.BRAKED_CART_BAND``); the upper cart 1 g lighter
+    moves the lower's span down by 1.5 g; the brake spans where the carts' push stays in
+    its band; the window shows a brake slider for it and none for a contact fold."""
+    from chainfountain.sim.apparatus.laws import fold_runs_on
+
+    lvl = io.load(library.resolve("apparatus_fold_gripped"))
+    for path, want in (("carts[0].mass", (0.017, 0.020)), ("carts[1].mass", (0.309, 0.316))):
+        lo, hi = spans.admissible(lvl, _spec(lvl, path), lvl.sim)
+        assert (lo, hi) == pytest.approx(want, abs=1e-9)
+        i = spans.FOLD_FIELDS.index(path)
+        for m, runs in ((lo, True), (hi, True), (lo - 1e-5, False), (hi + 1e-5, False)):
+            cand = io.load(library.resolve("apparatus_fold_gripped"))
+            cand.sim.carts[i].mass = m
+            assert fold_runs_on(cand.sim, lvl.sim) is runs
+    moved = io.load(library.resolve("apparatus_fold_gripped"))
+    moved.sim.carts[0].mass = 0.018
+    assert spans.admissible(moved, _spec(moved, "carts[1].mass"), lvl.sim) == \
+        pytest.approx((0.309, 0.316 - 0.0015), abs=1e-9)
+    # 1 N s/m of brake at 3 m/s is 1.5 N off the lower cart's push (about 300 g)
+    lo, hi = spans.admissible(lvl, _spec(lvl, "apparatus.fold_brake"), lvl.sim)
+    assert lo < 1.0 < hi and hi - lo < 0.05
+    paths = {s.path for s in controls.control_fields(lvl.sim)}
+    assert "apparatus.fold_brake" in paths and "apparatus.fold_clearance" not in paths
+    contact = io.load(library.resolve("apparatus_fold"))
+    assert "apparatus.fold_brake" not in {s.path for s in controls.control_fields(contact.sim)}
+
+
+def test_the_readout_gives_the_speed_a_braked_fold_selects() -> None:
+    """``v = 2 (F_lc + lambda g H (1 - xi2 - xi3) - F_uc)/c`` with the preset's numbers
+    (19 g and 311 g on 30-deg tracks, brake 1 N s/m): 2.961 m/s."""
+    s = Session(io.load(library.resolve("apparatus_fold_gripped")))
+    g, lam, H = 9.81, 0.05, 0.5
+    F = [m * g * 0.5 for m in (0.019, 0.311)]
+    v = 2.0 * (F[1] + lam * g * H * (1.0 - 0.5 - 0.303) - F[0]) / 1.0
+    assert machine_line(s.sim) == f"the carts and the brake select {v:.2f} m/s by the paper's laws"
+    s.sim.set_param("carts[0].mass", 0.4)  # holds the chain back: no speed
+    assert "select no speed" in machine_line(s.sim)

@@ -160,41 +160,70 @@ build: measured, ``apparatus_special`` with 0.005, 0.01 and 0.02 N s/m held none
 ``apparatus_fold`` 1 of 3 at 0.005 and none at 0.01 and 0.02."""
 
 
+BRAKED_CART_BAND = ((-2.0 * _GRAM_AT_30, _GRAM_AT_30), (-2.0 * _GRAM_AT_30, 5.0 * _GRAM_AT_30))
+"""How far the upper and the lower cart of a gripped 'fold' machine with a brake
+(``apparatus.fold_brake``) can each move from the balance the level was built with and
+the fountain still land in the end guide: ``(lo, hi)`` in N of cart force. The brake holds
+the speed; the catch sets the band (docs/apparatus.md, "A brake that selects the speed").
+Measured on ``apparatus_fold_gripped`` (19 / 311 g; ``python research/live_tuning.py
+apparatus_fold_gripped 'carts[i].mass' VALUES --at 5 --after 30``, one start each): upper
+17-20 g and lower 309-316 g held 30 s; upper 21 g and lower 308 g lost the catch within
+7-14 s."""
+BRAKED_PUSH_BAND = (-2.0 * _GRAM_AT_30, 5.0 * _GRAM_AT_30)
+"""Band (N) of a braked gripped fold's net push from its balance,
+``dF_lc - FOLD_UPPER_WEIGHT*dF_uc``: a gram more on the upper cart lost the catch where
+two more grams off the lower one did not (upper 21 g against lower 309 g), as in the
+contact fold (:data:`FOLD_UPPER_WEIGHT`). Both carts moved at once were not measured."""
+
+
+def _bands(cfg: SimConfig) -> tuple[tuple[tuple[float, float], tuple[float, float]],
+                                     tuple[float, float], float]:
+    """The fold machine's measured bands: each cart's, the net push's and the upper cart's
+    weight in it (:data:`FOLD_CART_BAND`, :data:`FOLD_PUSH_BAND`,
+    :data:`FOLD_UPPER_WEIGHT` for the contact fold; :data:`BRAKED_CART_BAND` and
+    :data:`BRAKED_PUSH_BAND` for a gripped fold with a brake)."""
+    a = cfg.apparatus
+    if a.fold_roller == "gripped" and a.fold_brake > 0.0:
+        return BRAKED_CART_BAND, BRAKED_PUSH_BAND, FOLD_UPPER_WEIGHT
+    return FOLD_CART_BAND, FOLD_PUSH_BAND, FOLD_UPPER_WEIGHT
+
+
 def _fold_offsets(cfg: SimConfig, balance: SimConfig) -> list[float]:
     """The two carts' forces (N) less ``balance``'s, a bearing drag ``c`` beyond
     ``balance``'s counted in as the carts (``c*v/2`` more holding the pick-up back, less
-    pushing the fold on, at the level's start speed ``v``)."""
+    pushing the fold on, at the level's start speed ``v``), and the fold's brake as less
+    push."""
     g = float(cfg.gravity)
-    drag = 0.5 * float(balance.apparatus.speed) * (
-        float(cfg.apparatus.bearing_drag) - float(balance.apparatus.bearing_drag))
+    half_v = 0.5 * float(balance.apparatus.speed)
+    drag = half_v * (float(cfg.apparatus.bearing_drag) - float(balance.apparatus.bearing_drag))
+    brake = half_v * (float(cfg.apparatus.fold_brake) - float(balance.apparatus.fold_brake))
     up, lo = (g * (c.mass * math.sin(c.incline) - r.mass * math.sin(r.incline))
               for c, r in zip(cfg.carts[:2], balance.carts[:2], strict=True))
-    return [up + drag, lo - drag]
+    return [up + drag, lo - drag - brake]
 
 
 def fold_runs_on(cfg: SimConfig, balance: SimConfig) -> bool:
-    """Whether a contact 'fold' machine's carts lie within :data:`FOLD_CART_BAND` of
-    ``balance``'s (the level as built), each, and their net push within
-    :data:`FOLD_PUSH_BAND`."""
+    """Whether a 'fold' machine's carts lie within their band of ``balance``'s (the level
+    as built), each, and their net push within its band (:func:`_bands`)."""
     if len(cfg.carts) < 2 or len(balance.carts) < 2:
         return True
+    carts, pushes, w = _bands(balance)
     df = _fold_offsets(cfg, balance)
-    for (lo, hi), d in zip(FOLD_CART_BAND, df, strict=True):
+    for (lo, hi), d in zip(carts, df, strict=True):
         if not lo - 1e-12 <= d <= hi + 1e-12:
             return False
-    push = df[1] - FOLD_UPPER_WEIGHT * df[0]
-    return FOLD_PUSH_BAND[0] - 1e-12 <= push <= FOLD_PUSH_BAND[1] + 1e-12
+    push = df[1] - w * df[0]
+    return pushes[0] - 1e-12 <= push <= pushes[1] + 1e-12
 
 
 def fold_cart_span(cfg: SimConfig, balance: SimConfig, i: int) -> tuple[float, float] | None:
-    """The masses (kg) of cart ``i`` (0 upper, 1 lower) of a contact 'fold' machine for
-    which, the other cart as it is, :func:`fold_runs_on` holds; ``None`` when the other
-    cart is so far off that none does, or the cart's track is level (its mass pushes
-    nothing) or tilted the other way (only a negative mass would run)."""
+    """The masses (kg) of cart ``i`` (0 upper, 1 lower) of a 'fold' machine for which, the
+    other cart as it is, :func:`fold_runs_on` holds; ``None`` when the other cart is so
+    far off that none does, or the cart's track is level (its mass pushes nothing) or
+    tilted the other way (only a negative mass would run)."""
     df = _fold_offsets(cfg, balance)
-    lo, hi = FOLD_CART_BAND[i]
-    a, b = FOLD_PUSH_BAND
-    w = FOLD_UPPER_WEIGHT
+    carts, (a, b), w = _bands(balance)
+    lo, hi = carts[i]
     if i == 1:  # a <= d1 - w*d0 <= b
         lo, hi = max(lo, a + w * df[0]), min(hi, b + w * df[0])
     else:  # (d1 - b)/w <= d0 <= (d1 - a)/w
@@ -227,6 +256,29 @@ def floor_speeds(cfg: SimConfig) -> tuple[float, float]:
     F_uc, c = cart.mass * g * math.sin(cart.incline), float(a.bearing_drag)
     return (selected_speed(g, H, xi2, F_uc, lam, gain=CART_GAIN_2CM, drag=c),
             selected_speed(g, H, xi2, F_uc, lam, 0.5, gain=1.0, drag=c))
+
+
+def braked_fold_speed(cfg: SimConfig) -> float:
+    """A 'fold' machine with a brake on its folding roller (``apparatus.fold_brake`` c > 0):
+    the speed (m/s) its carts and brake select by the paper's laws. The paper's balance
+    ``Tbar_uc = Tbar_lc + k H (1 - xi2 - xi3)`` holds at every speed; the brake takes
+    ``c*v/2`` (the carriage rolls at ``v/2``) off the lower cart's push, so the balance
+    holds at one speed, ``v = 2 (F_lc + lambda g H (1 - xi2 - xi3) - F_uc)/c``
+    (:func:`~chainfountain.theory.apparatus.ideal_fold_speed` with a drag ``c/2`` on the
+    chain's speed). Any bearing drag counts in with each carriage. nan without a brake,
+    or where the carts hold the chain back."""
+    from chainfountain.theory.apparatus import ideal_fold_speed
+
+    a = cfg.apparatus
+    if a.variant != "fold" or a.fold_brake <= 0.0 or len(cfg.carts) < 2:
+        return math.nan
+    g, lam = float(cfg.gravity), float(cfg.chain.linear_density)
+    up, lo = cfg.carts[0], cfg.carts[1]
+    F_uc = up.mass * g * math.sin(up.incline)
+    F_lc = lo.mass * g * math.sin(lo.incline)
+    drag = 0.5 * (float(a.fold_brake) + 2.0 * float(a.bearing_drag))
+    return ideal_fold_speed(F_uc, F_lc, float(a.xi2), float(a.xi3), drag, lam,
+                            float(a.drop), g)
 
 
 def floor_runs_on(cfg: SimConfig) -> bool:
