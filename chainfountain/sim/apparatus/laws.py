@@ -167,8 +167,8 @@ the fountain still land in the end guide: ``(lo, hi)`` in N of cart force. The b
 the speed; the catch sets the band (docs/apparatus.md, "A brake that selects the speed").
 Measured on ``apparatus_fold_gripped`` (19 / 311 g; ``python research/live_tuning.py
 apparatus_fold_gripped 'carts[i].mass' VALUES --at 5 --after 30``, one start each): upper
-17-20 g and lower 309-316 g held 30 s; upper 21 g and lower 308 g lost the catch within
-7-14 s."""
+17-20 g and lower 309-316 g held 30 s; upper 21 g and lower 308 g lost the catch 7 and 14 s
+after the change."""
 BRAKED_PUSH_BAND = (-2.0 * _GRAM_AT_30, 5.0 * _GRAM_AT_30)
 """Band (N) of a braked gripped fold's net push from its balance,
 ``dF_lc - FOLD_UPPER_WEIGHT*dF_uc``: a gram more on the upper cart lost the catch where
