@@ -232,6 +232,14 @@ def describe_outputs(summary_path: Path) -> str:
             f"ENDED EARLY (of {s['requested_duration_s']:g} s asked for): {ended['reason']}",
             width=width, initial_indent="  ", subsequent_indent="    ",
             break_on_hyphens=False))
+    ap = s.get("apparatus") or {}
+    v_sel = (ap.get("predicted_paper") or {}).get("v_steady")
+    v_meas = (ap.get("measured") or {}).get("v")
+    if ap.get("variant") == "fold" and v_sel and v_meas:  # a braked fold selects its speed
+        w0, w1 = ap["window"]
+        lines.append(f"  over {w0:.1f}-{w1:.1f} s: speed {v_meas:.3f} m/s; the carts and the "
+                     f"brake select {v_sel:.3f} m/s by the paper's laws "
+                     f"({pct(v_meas / v_sel - 1.0)})")
     bk = s.get("beaker")
     if bk and bk.get("alpha"):
         a = bk["alpha"]

@@ -229,3 +229,19 @@ def test_a_scene_level_runs_and_says_how_it_compares(tmp_path):
 def test_scene_levels_refuse_what_they_cannot_do(args, words, tmp_path):
     r = _cli(*args, cwd=tmp_path)
     assert r.returncode == 2 and words in r.stderr and "Traceback" not in r.stderr
+
+
+def test_a_braked_fold_says_the_speed_it_selects(tmp_path):
+    """``apparatus_fold_gripped``: the terminal gives the measured speed beside the one the
+    carts and the brake select by the paper's laws (``laws.braked_fold_speed``)."""
+    from chainfountain.headless import describe_outputs
+    from chainfountain.level import library
+    from chainfountain.sim.apparatus import braked_fold_speed
+
+    level = io.load(library.resolve("apparatus_fold_gripped"))
+    path = run_level(level, tmp_path, 0.5, progress=False)
+    s = json.loads(path.read_text())
+    v_sel = braked_fold_speed(level.sim)
+    assert s["apparatus"]["predicted_paper"]["v_steady"] == pytest.approx(v_sel, rel=1e-12)
+    line = next(ln for ln in describe_outputs(path).splitlines() if "brake select" in ln)
+    assert f"select {v_sel:.3f} m/s by the paper's laws" in line

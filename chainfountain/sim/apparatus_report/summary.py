@@ -16,6 +16,7 @@ from chainfountain.sim.apparatus import (
     PUTDOWN_BAR,
     PUTDOWN_RIG_2CM,
     Apparatus,
+    braked_fold_speed,
     gripped_putdown,
     pickup_rig_2cm,
     rig_exit_tension,
@@ -233,6 +234,8 @@ def _predictions(app: Apparatus, w: _Window) -> tuple[dict, dict]:
         law["Tbar_uc_steady"] = lc + (kH * (1.0 - xi2 - xi3) + PUTDOWN_BAR - PICKUP_BAR) / G10
         law["Tbar_uc_steady_with_measured_p_d"] = \
             lc + (kH * (1.0 - xi2 - xi3) + w.d_meas - w.p_meas) / G10
+        if app.cfg.fold_brake > 0.0:  # the brake selects the speed
+            paper["v_steady"] = braked_fold_speed(app.sim_cfg)
         return paper, law
     # a floor d below the fountain end: the hanging strand's weight, Tbar_E = k*d
     d_fl = app.floor_depth
