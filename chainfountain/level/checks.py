@@ -471,6 +471,10 @@ def _check_apparatus(level: Level, where: str) -> None:
         _fail(where, "apparatus.plate_links",
               f"{a.plate_links!r} needs apparatus.plate = 'groove' (it is {a.plate!r}); "
               "allowed: 0 with a 'contact' plate")
+    if a.end_follow and a.plate != "groove":
+        _fail(where, "apparatus.end_follow",
+              f"{a.end_follow!r} needs the end guide of joints, apparatus.plate = 'groove' "
+              f"(it is {a.plate!r}); allowed: 0 with a 'contact' plate")
     if a.plate_links and a.plate_links < 4:
         _fail(where, "apparatus.plate_links",
               f"{a.plate_links!r} is too short a plate strand to cut or extend in the middle; "
@@ -531,6 +535,7 @@ ONLY_FOR_VARIANT: dict[str, tuple[str, ...]] = {
     "fold_roller": ("fold",),
     "fold_roller_radius": ("fold",),
     "fold_brake": ("fold",),
+    "end_follow": ("fold",),
     "end_pull": ("open",),
     "end": ("floor",),
     "floor_width": ("floor",),

@@ -520,6 +520,16 @@ class ApparatusConfig:
         "the brake's, F_lc - c*v/2. 0: none (docs/apparatus.md)",
         min=0.0, max=10.0, live=True,
     )
+    end_follow: float = param(
+        0.0, unit="1/s", doc="Variant 'fold' with plate = 'groove': the end guide (its "
+        "turn, rise and second turn) rides on a horizontal slide and follows where the "
+        "fountain lands, moving at this rate times the landing's offset from the turn's "
+        "radius (averaged over 0.5 s; at most 5 cm/s, 30 cm either way; not in the paper). "
+        "The paper's machine lands the fountain wherever its carts and offsets put it; "
+        "a fixed guide catches it only within a few centimetres, so a change of a cart by "
+        "more than a few grams loses the chain. 0: the guide stays where the level puts it "
+        "(docs/apparatus.md)", min=0.0, max=20.0,
+    )
     swing_damper: float = param(
         0.0, unit="N*s/m", doc="Variant 'fold': a dashpot c between the two roller "
         "carriages, a force -c*(u_up - u_lo) on the upper and its opposite on the lower "

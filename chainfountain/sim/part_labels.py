@@ -79,7 +79,10 @@ def part_labels(sim: Simulation) -> list[PartLabel]:
                              0.5 * (ax + bx), 0.5 * (ay + by), "left"))
     ex, ey = app.end
     if a.variant == "fold":
-        out.append(PartLabel(f"end guide up xi3*H = {a.xi3 * app.H:.2f} m",
+        follows = ""
+        if getattr(app, "end_follow", 0.0):  # it rides a slide under the landing
+            follows = f", follows the landing ({100 * app.end_shift:+.0f} cm)"
+        out.append(PartLabel(f"end guide up xi3*H = {a.xi3 * app.H:.2f} m{follows}",
                              ex, ey, "below"))
         if len(rollers) > 1:
             x, y, r, _ = rollers[1]

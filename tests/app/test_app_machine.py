@@ -11,6 +11,8 @@ from chainfountain.app.readout import machine_line
 from chainfountain.app.session import Session
 from chainfountain.app.window import _tooltip
 from chainfountain.level import io, library
+from chainfountain.level.model import Level
+from chainfountain.study.changes import with_changes
 from chainfountain.theory import apparatus as ap
 
 
@@ -163,29 +165,42 @@ def test_the_contact_fold_machines_carts_span_their_measured_band() -> None:
     assert spans.admissible(limit, _spec(limit, "carts[0].mass"), limit.sim) is None
 
 
-def test_the_braked_gripped_folds_carts_span_where_it_still_lands_in_its_catch() -> None:
-    """``apparatus_fold_gripped`` (19 / 311 g): upper 17-20 g and lower 309-316 g, every
-    value changed live that held (``laws.BRAKED_CART_BAND``); the upper cart 1 g lighter
-    moves the lower's span down by 1.5 g; the brake spans where the carts' push stays in
-    its band; the window shows a brake slider for it and none for a contact fold."""
+@pytest.mark.parametrize("follow, upper, lower", [
+    (2.0, (0.008, 0.027), (0.296, 0.341)),  # as shipped: laws.FOLLOW_CART_BAND
+    (0.0, (0.017, 0.020), (0.309, 0.316)),  # a fixed end guide: laws.BRAKED_CART_BAND
+])
+def test_the_braked_gripped_folds_carts_span_where_it_keeps_running(
+        follow: float, upper: tuple[float, float], lower: tuple[float, float]) -> None:
+    """``apparatus_fold_gripped`` (19 / 311 g): with its end guide following the landing,
+    upper 8-27 g and lower 296-341 g, every value changed live that held from two starts;
+    with the guide fixed, upper 17-20 g and lower 309-316 g (where the fountain still lands
+    in the catch). The upper cart 1 g lighter moves the lower's span down by 1.5 g; the
+    brake spans where the carts' push stays in its band; the window shows a brake slider
+    for it and none for a contact fold."""
     from chainfountain.sim.apparatus.laws import fold_runs_on
 
-    lvl = io.load(library.resolve("apparatus_fold_gripped"))
-    for path, want in (("carts[0].mass", (0.017, 0.020)), ("carts[1].mass", (0.309, 0.316))):
+    def load() -> Level:
+        return with_changes(io.load(library.resolve("apparatus_fold_gripped")),
+                            {"apparatus.end_follow": follow})
+
+    lvl = load()
+    for path, want in (("carts[0].mass", upper), ("carts[1].mass", lower)):
         lo, hi = spans.admissible(lvl, _spec(lvl, path), lvl.sim)
         assert (lo, hi) == pytest.approx(want, abs=1e-9)
         i = spans.FOLD_FIELDS.index(path)
         for m, runs in ((lo, True), (hi, True), (lo - 1e-5, False), (hi + 1e-5, False)):
-            cand = io.load(library.resolve("apparatus_fold_gripped"))
+            cand = load()
             cand.sim.carts[i].mass = m
             assert fold_runs_on(cand.sim, lvl.sim) is runs
-    moved = io.load(library.resolve("apparatus_fold_gripped"))
+    moved = load()
     moved.sim.carts[0].mass = 0.018
     assert spans.admissible(moved, _spec(moved, "carts[1].mass"), lvl.sim) == \
-        pytest.approx((0.309, 0.316 - 0.0015), abs=1e-9)
-    # 1 N s/m of brake at 3 m/s is 1.5 N off the lower cart's push (about 300 g)
+        pytest.approx((lower[0], lower[1] - 0.0015), abs=1e-9)
+    # 1 N s/m of brake at 3 m/s is 1.5 N off the lower cart's push (about 300 g): the
+    # brake spans the push band over v/2 (7 g and 45 g of push: 0.023 and 0.147 N s/m)
     lo, hi = spans.admissible(lvl, _spec(lvl, "apparatus.fold_brake"), lvl.sim)
-    assert lo < 1.0 < hi and hi - lo < 0.05
+    push = (lower[1] - lower[0]) * 9.81 * 0.5
+    assert lo < 1.0 < hi and hi - lo == pytest.approx(push / 1.5, rel=1e-6)
     paths = {s.path for s in controls.control_fields(lvl.sim)}
     assert "apparatus.fold_brake" in paths and "apparatus.fold_clearance" not in paths
     contact = io.load(library.resolve("apparatus_fold"))

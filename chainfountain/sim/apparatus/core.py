@@ -22,6 +22,7 @@ from chainfountain.errors import RunEnded
 from chainfountain.sim.apparatus.ends import EndPart
 from chainfountain.sim.apparatus.fold import FoldPart
 from chainfountain.sim.apparatus.fold_watch import FoldWatch
+from chainfountain.sim.apparatus.follow import FollowingEnd
 from chainfountain.sim.apparatus.grip import GrippedFold
 from chainfountain.sim.apparatus.grooves import PlateGrooves
 from chainfountain.sim.apparatus.open_tail import OpenTail
@@ -29,7 +30,12 @@ from chainfountain.sim.apparatus.parts import DRIVE_REACH
 from chainfountain.sim.apparatus.stall_watch import StallWatch
 from chainfountain.sim.apparatus.starter import StarterPart
 from chainfountain.sim.apparatus.treadmill import Treadmills
-from chainfountain.sim.apparatus.tuning import FOLD_CAPTURE, FOLD_CLOSE_RATE
+from chainfountain.sim.apparatus.tuning import (
+    FOLD_CAPTURE,
+    FOLD_CLOSE_RATE,
+    FOLLOW_CAPTURE,
+    FOLLOW_CLOSE_RATE,
+)
 from chainfountain.sim.apparatus.upper import UpperPart
 from chainfountain.sim.apparatus.upper_guide import UpperJointGuide
 from chainfountain.sim.chain import Chain, Link
@@ -45,7 +51,7 @@ class TableUsedUp(RunEnded):
 
 
 class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, GrippedFold,
-                FoldWatch, StallWatch, Treadmills, OpenTail, StarterPart):
+                FoldWatch, FollowingEnd, StallWatch, Treadmills, OpenTail, StarterPart):
     """Builds the apparatus into a space and keeps its bookkeeping (duck-types the
     :class:`~chainfountain.sim.feed.Feed` interface the simulation uses).
 
@@ -92,6 +98,12 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Gri
         self.sim_cfg = cfg
         a = self.cfg = cfg.apparatus
         self.g = float(cfg.gravity)
+        if a.variant == "fold" and a.plate == "groove" and a.end_follow > 0.0:
+            # a following end guide's wide mouth (unless a study has set the class's)
+            if type(self).fold_capture == FOLD_CAPTURE:
+                self.fold_capture = FOLLOW_CAPTURE
+            if type(self).fold_close_rate == FOLD_CLOSE_RATE:
+                self.fold_close_rate = FOLLOW_CLOSE_RATE
         self.h = float(cfg.solver.dt) / int(cfg.solver.substeps)
         """pymunk's step (s): ``solver.dt / solver.substeps``. The bookkeeping
         (:meth:`after_step`) runs once per ``solver.dt``; forces apply in every pymunk step."""
@@ -222,6 +234,7 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Gri
         self._init_open_state()
         self._init_fold_state()
         self._init_grip_state()
+        self._init_follow_state()
         self._init_watch_state()
         self._init_stall_state()
         self._init_starter_state()
@@ -334,6 +347,8 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Gri
                 self._grip_arriving()
             if self.treadmill:
                 self._treadmill_lower()
+            if self.end_follow:
+                self._follow_landing(dt)
         if self.lower is not None:
             self._check_fold(dt)
         if self.starting:

@@ -129,7 +129,11 @@ class EndPart:
         t0, n0 = self._mouth_frame(cp)
         off = self.rho + CLEAR + WALL_R
         self.fold_guided = a.plate == "groove"
+        self._lo_wall_shapes = []
+        """The end channel's walls (a following end guide moves them)."""
         for wl, side in zip(Channel(cp).walls(off), (1.0, -1.0), strict=True):
             flare = wl[0] - FUNNEL[0] * t0 + side * FUNNEL[1] * n0
-            self.walls += static_polyline(self.space, np.vstack((flare, wl)), WALL_R,
-                                          add=not self.fold_guided)
+            segs = static_polyline(self.space, np.vstack((flare, wl)), WALL_R,
+                                   add=not self.fold_guided)
+            self._lo_wall_shapes += segs
+            self.walls += segs

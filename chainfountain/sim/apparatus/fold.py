@@ -206,7 +206,8 @@ class FoldPart:
             if not (el0.th0 - self.fold_capture[1] <= th <= max(lim, el0.th1)
                     and abs(d - Rc) < self.fold_capture[0]):
                 break
-            if th <= el0.th0:  # through the mouth, not into the turn from the side
+            if th <= el0.th0 or self.end_follow:  # through the mouth, not from the side
+                # (a following end guide's wide mouth takes both: it follows either)
                 self._mouth_t, self._mouth_dr = self._t, d - Rc
             self._hold(0, links[self._cap_next])
             self._cap_next += 1

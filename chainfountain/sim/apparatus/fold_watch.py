@@ -17,6 +17,7 @@ from chainfountain.sim.apparatus.tuning import (
     FOLD_DT_MIN,
     HELD,
     LATE_COLLAPSE,
+    RUNAWAY,
     SWING_EVERY,
     SWING_SAMPLES,
 )
@@ -49,8 +50,8 @@ class FoldWatch:
         :data:`~.tuning.COLLAPSE_TIME` (a chain that keeps running into a stopped fold only piles
         up; nothing after that is the apparatus any more)."""
         v_R = self.lower.speed
-        if self.gripped and self._mouth_t is not None and \
-                self._t - self._mouth_t >= CATCH_STOP:
+        if self.gripped and (self._mouth_t is not None and self._t - self._mouth_t >= CATCH_STOP
+                             or self.speed > RUNAWAY * self.cfg.speed):
             raise FoldCollapsed(**self._gripped_collapse(v_R))
         if v_R >= 0.0:
             self._back_t = 0.0
@@ -123,10 +124,17 @@ class FoldWatch:
         else:
             cure = (f"the fountain landed beside the end guide's mouth and fell past its catch "
                     f"({ran}); a cart a gram or two off the level's moves where it lands")
-        head = (f"t = {t:.2f} s: the gripped folding roller rolls backwards (v_R = {v_R:.2f} "
-                f"m/s): the chain no longer arrives at it. " if v_R < 0.0 else
-                f"t = {t:.2f} s: no link has entered the end guide through its mouth since "
-                f"t = {self._mouth_t:.2f} s. ")
+        if v_R < 0.0:
+            head = (f"t = {t:.2f} s: the gripped folding roller rolls backwards (v_R = "
+                    f"{v_R:.2f} m/s): the chain no longer arrives at it. ")
+        elif self.speed > RUNAWAY * v0:
+            head = (f"t = {t:.2f} s: the chain runs away ({self.speed:.2f} m/s, more than "
+                    f"{RUNAWAY:g} times the {v0:g} m/s it was built for). ")
+            cure = (f"{ran}, then the fountain left the end guide and the lower cart ran the "
+                    "chain away: a lighter lower cart (or a heavier upper one) holds it")
+        else:
+            head = (f"t = {t:.2f} s: no link has entered the end guide through its mouth since "
+                    f"t = {self._mouth_t:.2f} s. ")
         return {"plain": f"At {t:.1f} s the fold stopped: {cure}",
                 "message": head + cure[0].upper() + cure[1:] + "." + self._catch_note()}
 

@@ -175,14 +175,32 @@ BRAKED_PUSH_BAND = (-2.0 * _GRAM_AT_30, 5.0 * _GRAM_AT_30)
 two more grams off the lower one did not (upper 21 g against lower 309 g), as in the
 contact fold (:data:`FOLD_UPPER_WEIGHT`). Both carts moved at once were not measured."""
 
+FOLLOW_CART_BAND = ((-11.0 * _GRAM_AT_30, 8.0 * _GRAM_AT_30),
+                    (-15.0 * _GRAM_AT_30, 30.0 * _GRAM_AT_30))
+"""As :data:`BRAKED_CART_BAND`, with an end guide that follows the landing
+(``apparatus.end_follow``): the catch no longer sets the band, the landing swing does.
+Measured on ``apparatus_fold_gripped`` (19 / 311 g, ``end_follow = 2``; ``python
+research/live_tuning.py apparatus_fold_gripped 'carts[i].mass' VALUES --at 5 --after 40
+--starts 2``): upper 8, 10 and 27 g and lower 296, 301, 321, 331 and 341 g held 40 s
+from both starts; upper 30 g from one of two, upper 4 and 36 g and lower 291 g from
+neither (the speed swings until the fountain leaves the mouth). The speed then spans
+2.8-3.3 m/s."""
+FOLLOW_PUSH_BAND = (-15.0 * _GRAM_AT_30, 30.0 * _GRAM_AT_30)
+"""Band (N) of the net push ``dF_lc - FOLD_UPPER_WEIGHT*dF_uc`` with a following end
+guide: the single carts' bands of :data:`FOLLOW_CART_BAND` (both carts moved at once were
+not measured)."""
+
 
 def _bands(cfg: SimConfig) -> tuple[tuple[tuple[float, float], tuple[float, float]],
                                      tuple[float, float], float]:
     """The fold machine's measured bands: each cart's, the net push's and the upper cart's
     weight in it (:data:`FOLD_CART_BAND`, :data:`FOLD_PUSH_BAND`,
     :data:`FOLD_UPPER_WEIGHT` for the contact fold; :data:`BRAKED_CART_BAND` and
-    :data:`BRAKED_PUSH_BAND` for a gripped fold with a brake)."""
+    :data:`BRAKED_PUSH_BAND` for a gripped fold with a brake; :data:`FOLLOW_CART_BAND` and
+    :data:`FOLLOW_PUSH_BAND` when its end guide also follows the landing)."""
     a = cfg.apparatus
+    if a.fold_roller == "gripped" and a.fold_brake > 0.0 and a.end_follow > 0.0:
+        return FOLLOW_CART_BAND, FOLLOW_PUSH_BAND, FOLD_UPPER_WEIGHT
     if a.fold_roller == "gripped" and a.fold_brake > 0.0:
         return BRAKED_CART_BAND, BRAKED_PUSH_BAND, FOLD_UPPER_WEIGHT
     return FOLD_CART_BAND, FOLD_PUSH_BAND, FOLD_UPPER_WEIGHT

@@ -40,6 +40,22 @@ stiff funnel at the mouth. Measured
 (docs/apparatus.md): at a close rate of 0.5 m/s the landing point's oscillation grew
 until the catch was lost at about 4.3 s (both treadmills on); at 2, 5 and 20 m/s the
 run held to 8 s, at 5 m/s to about 13 s."""
+FOLLOW_CAPTURE = (0.30, math.radians(40.0))
+"""'fold' with a following end guide (``apparatus.end_follow``): the first turn's capture
+band (m) and angular margin (rad). The guide follows the landing's mean; its mouth takes
+the landing's swing, several centimetres after a cart is changed."""
+FOLLOW_CLOSE_RATE = 20.0
+"""Joint guides with a following end guide: the close rate (m/s) instead of
+:data:`FOLD_CLOSE_RATE`. At 5 m/s a link caught 10-20 cm off the radius rides the turn
+on a larger radius for a while, the guide's path grows and the fountain loses its stored
+length; at 20 m/s a 10-cm offset closes in 5 ms (research/notes/apparatus_notebook.md,
+forty-first session)."""
+FOLLOW_TAU = 0.5
+"""Time (s) over which a following end guide averages the landing's offset."""
+FOLLOW_SPEED = 0.05
+"""Fastest a following end guide moves (m/s)."""
+FOLLOW_TRAVEL = 0.30
+"""Farthest a following end guide moves from where the level puts it (m, either way)."""
 TAIL_KEEP = 30
 """'open': links kept in the lower plate grooves; the tail beyond is lumped into the
 end link (:meth:`~.open_tail.OpenTail._lump_tail`)."""
@@ -82,6 +98,12 @@ The gripped roller cannot slip, so after a lost catch a heavy lower cart (a brak
 ``apparatus.fold_brake``) keeps pulling the chain on and runs it away instead of letting
 the roller roll back; measured on ``apparatus_special`` with a brake and a 325 g lower
 cart, which lost its catch at 13.9 s and ran the chain up to 13 m/s by 16.9 s."""
+RUNAWAY = 1.5
+"""'fold' with the gripped folding roller: the run ends once the chain runs faster than this
+times ``apparatus.speed``. A following end guide's wide mouth takes links landing beside
+it too, so a lost fountain can run away while links still enter; no fountain this machine
+catches is that fast (the landing moves about 1.5 cm per 1 % of speed, the guide at most
+:data:`FOLLOW_TRAVEL`)."""
 PRELOAD_STEPS = 40
 """Treadmill: a joint made in the tensioned plate strand starts with the tension of the
 joint it replaces as an internal force pair, faded out over this many steps (the
