@@ -30,12 +30,22 @@ from concurrent.futures import ProcessPoolExecutor
 
 
 def run(level: str, field: str, value: float, at: float, after: float, every: float,
-        also: tuple[tuple[str, float], ...] = ()) -> str:
+        also: tuple[tuple[str, float], ...] = (),
+        catch: tuple[float, float, float] | None = None) -> str:
     """One run; a line with the speeds after the change, or where it stopped. ``also``:
-    more fields set at the same moment, before ``field``."""
+    more fields set at the same moment, before ``field``; ``catch``: the 'fold' guide's
+    capture band (m), margin (deg) and close rate (m/s), set on
+    :class:`~chainfountain.sim.apparatus.Apparatus` (a study of the catch)."""
     os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
+    import math
+
     from chainfountain.app.session import Session
     from chainfountain.level import io, library
+    from chainfountain.sim.apparatus import Apparatus
+
+    if catch is not None:
+        Apparatus.fold_capture = (catch[0], math.radians(catch[1]))
+        Apparatus.fold_close_rate = catch[2]
 
     s = Session(io.load(library.resolve(level)))
     s.advance(at)
@@ -74,6 +84,9 @@ def main() -> None:
                     help="runs per value, changed 0.7 s apart (default 1)")
     ap.add_argument("--also", action="append", default=[], metavar="FIELD=VALUE",
                     help="another field set at the same moment (repeatable)")
+    ap.add_argument("--catch", type=float, nargs=3, metavar=("BAND_M", "MARGIN_DEG", "CLOSE"),
+                    help="the 'fold' guide's catch: capture band (m), angular margin (deg) "
+                    "and close rate (m/s) (default: the package's)")
     ap.add_argument("--jobs", type=int, default=2)
     args = ap.parse_args()
     also = []
@@ -89,7 +102,8 @@ def main() -> None:
         ap.error(f"--starts: {args.starts} is not a number of runs; allowed: 1 or more")
     with ProcessPoolExecutor(args.jobs) as pool:
         futures = {v: [pool.submit(run, args.level, args.field, v, args.at + 0.7 * i,
-                                   args.after, args.every, tuple(also))
+                                   args.after, args.every, tuple(also),
+                                   tuple(args.catch) if args.catch else None)
                        for i in range(args.starts)]
                    for v in args.values}
         for v, fs in futures.items():
