@@ -259,6 +259,13 @@ class GuideElement:
         d = np.abs(rel @ np.array([-t[1], t[0]]))
         return (d < tol) & (s >= -0.01) & (s <= ln + 0.01)
 
+    def groove_ends(self) -> tuple[tuple[float, float], tuple[float, float]]:
+        """A line's groove: from 5 cm before its start to 5 cm past its end."""
+        (ax, ay), (bx, by) = self.a, self.b
+        ln = math.hypot(bx - ax, by - ay)
+        tx, ty = (bx - ax) / ln, (by - ay) / ln
+        return (ax - 0.05 * tx, ay - 0.05 * ty), (bx + 0.05 * tx, by + 0.05 * ty)
+
     def joint(self, space: pymunk.Space, body: pymunk.Body, error_bias: float) -> \
             pymunk.Constraint:
         """A frictionless constraint holding the link centre on the element; an arc's
@@ -271,11 +278,8 @@ class GuideElement:
                 max(self.R + PLAY, d))
             j.error_bias = GUIDE_BIAS
         else:
-            (ax, ay), (bx, by) = self.a, self.b
-            ln = math.hypot(bx - ax, by - ay)
-            tx, ty = (bx - ax) / ln, (by - ay) / ln
-            j = pymunk.GrooveJoint(space.static_body, body, (ax - 0.05 * tx, ay - 0.05 * ty),
-                                   (bx + 0.05 * tx, by + 0.05 * ty), (0.0, 0.0))
+            ga, gb = self.groove_ends()
+            j = pymunk.GrooveJoint(space.static_body, body, ga, gb, (0.0, 0.0))
             j.error_bias = error_bias
         space.add(j)
         return j

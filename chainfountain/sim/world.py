@@ -526,6 +526,7 @@ class Simulation:
         if app is None:
             return []
         app.sync_plates()
+        app.sync_end_walls()
         shapes = list(app.walls) + [app.plate_up, app.table_up]
         for extra in (app.plate_lo, getattr(app, "table_lo", None), app.floor):
             if extra is not None:

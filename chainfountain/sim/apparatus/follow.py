@@ -20,6 +20,7 @@ takes its swing. Measured (docs/apparatus.md, "An end guide that follows the lan
 
 from __future__ import annotations
 
+from chainfountain.sim import fastbody
 from chainfountain.sim.apparatus.tuning import FOLLOW_SPEED, FOLLOW_TAU, FOLLOW_TRAVEL
 
 
@@ -34,6 +35,8 @@ class FollowingEnd:
         self._follow_dr = 0.0
         self._follow_seen: float | None = None
         self._lo_walls = list(getattr(self, "_lo_wall_shapes", []))
+        self._walls_shift = 0.0
+        """How far the drawn walls have been moved (:meth:`sync_end_walls`)."""
 
     def _follow_landing(self, dt: float) -> None:
         """Move the end guide toward where the fountain lands (every bookkeeping step)."""
@@ -49,33 +52,42 @@ class FollowingEnd:
             self._shift_end_guide(dx)
 
     def _shift_end_guide(self, dx: float) -> None:
-        """Move the end guide's turn, rise and second turn, their held links' joints, the
-        lower plate's start and the drawn walls by ``dx`` along x."""
+        """Move the end guide's turn, rise and second turn, their held links' joints and
+        the lower plate's start by ``dx`` along x (the drawn walls follow when read,
+        :meth:`sync_end_walls`)."""
         els, qs = self.guide, self._gq
         last = len(els) - 1
+        handle = fastbody.constraint_handle
         for k, (el, q) in enumerate(zip(els, qs, strict=True)):
             if el.kind == "arc":
-                el.a = el.b = (el.a[0] + dx, el.a[1])
-                for _, j in q:
-                    a = j.anchor_a
-                    j.anchor_a = (a.x + dx, a.y)
+                el.a = el.b = c = (el.a[0] + dx, el.a[1])
+                for _, j in q:  # every arc joint is anchored at the arc's centre
+                    fastbody.set_slide_anchor_a(handle(j), c)
                 continue
             el.a = (el.a[0] + dx, el.a[1])
             if k == last:  # the lower plate: only its start moves (its grooves are along it)
                 continue
             el.b = (el.b[0] + dx, el.b[1])
+            ga, gb = el.groove_ends()
             for _, j in q:
-                a, b = j.groove_a, j.groove_b
-                j.groove_a, j.groove_b = (a.x + dx, a.y), (b.x + dx, b.y)
+                h = handle(j)
+                fastbody.set_groove_a(h, ga)
+                fastbody.set_groove_b(h, gb)
         cx, cy = self.guide_centre
         self.guide_centre = (cx + dx, cy)
         self.x_plate_lo_start += dx
         self.end = (self.end[0] + dx, self.end[1])
         if self.channel_lo is not None:
             self.channel_lo[:, 0] += dx
-        for s in self._lo_walls:  # drawn only (out of the space)
-            s.unsafe_set_endpoints((s.a.x + dx, s.a.y), (s.b.x + dx, s.b.y))
         if self.plate_lo is not None:
             a, b = self.plate_lo.a, self.plate_lo.b
             self.plate_lo.unsafe_set_endpoints((a.x + dx, a.y), b)
         self.end_shift += dx
+
+    def sync_end_walls(self) -> None:
+        """Put the end channel's drawn walls (out of the space) where the guide is now."""
+        dx = self.end_shift - self._walls_shift
+        if dx:
+            for s in self._lo_walls:
+                s.unsafe_set_endpoints((s.a.x + dx, s.a.y), (s.b.x + dx, s.b.y))
+            self._walls_shift = self.end_shift
