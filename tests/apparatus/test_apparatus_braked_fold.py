@@ -5,17 +5,20 @@ The paper's machine is balanced at every speed, so it keeps whatever speed it dr
 a brake on the folding roller's carriage (``apparatus.fold_brake`` c, a force ``-c*u``)
 makes the balance hold at one speed, set by the lower cart's push beyond it. Asserted on
 the preset as shipped (treadmills, swing damper, 100-mm gripped folding roller, brake
-1 N s/m), laid on its path at 3 m/s, means over 2-5 s (10-ms samples):
+1 N s/m, the end guide following the landing), laid on its path at 3 m/s, means over
+2-5 s (10-ms samples):
 
 - at half the pymunk step (0.25 ms) the speed is the same within 1 % (the issue's
-  target): 3.0143 / 3.0339 m/s (+0.65 %; another nudged start +0.72 %);
-- the lower cart sets the speed: 5 g more or less (0.0245 N) moves it by +0.042 / -0.025
-  m/s, together 0.67-0.68 of the paper's ``4*dF/c`` (two starts; the paper's laws with the
-  brake, :func:`~chainfountain.sim.apparatus.laws.braked_fold_speed`; docs/apparatus.md),
+  target): 2.9994 / 3.0182 m/s (+0.63 %; over 600 s from two starts +0.76 %);
+- the lower cart sets the speed: 5 g more or less (0.0245 N) moves it by +0.036 / -0.039
+  m/s, together 0.76 of the paper's ``4*dF/c`` (0.67-0.68 from two starts with the end
+  guide fixed; the paper's laws with the brake,
+  :func:`~chainfountain.sim.apparatus.laws.braked_fold_speed`; docs/apparatus.md),
   asserted within 0.5-0.85;
 - a cart that takes the fountain out of the end guide's catch ends the run within
-  :data:`~chainfountain.sim.apparatus.tuning.CATCH_STOP` of the last link caught, with one
-  plain sentence naming the cart (a 360 g lower cart: stopped at about 2 s).
+  :data:`~chainfountain.sim.apparatus.tuning.CATCH_STOP` of the last link caught (or
+  sooner, once the chain runs away, :data:`~chainfountain.sim.apparatus.tuning.RUNAWAY`),
+  with one plain sentence naming the cart (a 360 g lower cart).
 
 docs/apparatus.md, "The gripped folding roller".
 """
@@ -79,7 +82,8 @@ def test_a_lost_catch_ends_the_run_in_one_sentence() -> None:
     with pytest.raises(RunEnded) as err:
         sim.advance(6.0)
     app = sim.apparatus
-    assert sim.time - app.last_mouth_entry == pytest.approx(CATCH_STOP, abs=0.01)
+    # it ends on the lost catch or, sooner, on the chain running away (tuning.RUNAWAY)
+    assert 0.0 < sim.time - app.last_mouth_entry <= CATCH_STOP + 0.01
     plain = err.value.plain
     assert plain.startswith("At ") and "lighter lower cart" in plain
     assert "\n" not in plain
