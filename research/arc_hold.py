@@ -26,12 +26,17 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import math
+import sys
 import time
 from pathlib import Path
 
 import numpy as np
 
-from chainfountain.errors import RunEnded
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from gripped_fold import _value  # noqa: E402
+
+from chainfountain.errors import RunEnded  # noqa: E402
 from chainfountain.level import io
 from chainfountain.sim import Recorder, Simulation, guide
 from chainfountain.sim.apparatus import fold, joints, upper_guide
@@ -39,15 +44,6 @@ from chainfountain.study.changes import laid_on_path, with_changes
 
 LEVELS = Path(__file__).resolve().parents[1] / "levels"
 ORIG_KEEP = joints.keep_on_arcs
-
-
-def _value(text: str) -> object:
-    for kind in (int, float):
-        try:
-            return kind(text)
-        except ValueError:
-            pass
-    return text
 
 
 def close_only(els, qs, close: float) -> None:

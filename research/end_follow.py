@@ -18,25 +18,21 @@ from __future__ import annotations
 import argparse
 import math
 import os
+import sys
 from pathlib import Path
 
 import numpy as np
 
-from chainfountain.errors import RunEnded
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from gripped_fold import _value  # noqa: E402
+
+from chainfountain.errors import RunEnded  # noqa: E402
 from chainfountain.level import io
 from chainfountain.sim.apparatus import Apparatus
 from chainfountain.study.changes import laid_on_path, with_changes
 
 LEVELS = Path(__file__).resolve().parents[1] / "levels"
-
-
-def _value(text: str) -> object:
-    for kind in (int, float):
-        try:
-            return kind(text)
-        except ValueError:
-            pass
-    return text
 
 
 def main() -> None:

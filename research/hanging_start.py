@@ -14,7 +14,9 @@ first turn's radius) 0.5-s means, and how the run ended.
 
 Usage::
 
-    python research/hanging_start.py --seconds 20 --hand-over 4 [--slack 0.05] [--dt-factor 0.5]
+    python research/hanging_start.py --seconds 12 --hand-over 1.2 --keep-capture --close 20 \
+        --drive-lower carriage --set apparatus.end_follow=0     # formed and held 12 s
+    python research/hanging_start.py ... --dt-factor 0.5           # did not rise
 """
 
 from __future__ import annotations
@@ -103,21 +105,7 @@ def patch(slack: float, hand_over: float, capture: tuple[float, float], keep: bo
             f = min(1.2, max(0.5, 1.0 - steer * dr))
             self.lower.carriage.velocity = (0.5 * v * f, 0.0)
             return
-        for el, q in zip(self.guide, self._gq, strict=True):  # the chain in the lower guide
-            if el.kind == "line":
-                (ax, ay), (bx, by) = el.a, el.b
-                ln = math.hypot(bx - ax, by - ay)
-                vel = (v * (bx - ax) / ln, v * (by - ay) / ln)
-                for link, _ in q:
-                    link.body.velocity = vel
-                continue
-            cx, cy = el.a
-            turn = 1.0 if el.ccw else -1.0
-            for link, _ in q:
-                p = link.body.position
-                dx, dy = p.x - cx, p.y - cy
-                d = math.hypot(dx, dy) or 1.0
-                link.body.velocity = (-turn * v * dy / d, turn * v * dx / d)
+        starter.run_along(self.guide, self._gq, v)  # the chain in the lower guide
 
     def check(self) -> None:
         if self._t >= hand_over:

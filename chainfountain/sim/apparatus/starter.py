@@ -21,6 +21,27 @@ LAND_WITHIN = 10.0
 """Time (s) by which a started chain must have reached the floor (it takes about 1 s)."""
 
 
+def run_along(guide: list, queues: list, v: float) -> None:
+    """Set the links held in a joint guide (``guide``'s elements, ``queues`` their held
+    ``(link, joint)`` pairs) moving along it at ``v``: along a straight's line, on a bend
+    along its tangent."""
+    for el, q in zip(guide, queues, strict=True):
+        if el.kind == "line":
+            (ax, ay), (bx, by) = el.a, el.b
+            ln = math.hypot(bx - ax, by - ay)
+            vel = (v * (bx - ax) / ln, v * (by - ay) / ln)
+            for link, _ in q:
+                link.body.velocity = vel
+            continue
+        cx, cy = el.a
+        turn = 1.0 if el.ccw else -1.0
+        for link, _ in q:
+            p = link.body.position
+            dx, dy = p.x - cx, p.y - cy
+            d = math.hypot(dx, dy) or 1.0
+            link.body.velocity = (-turn * v * dy / d, turn * v * dx / d)
+
+
 class StarterFailed(RunEnded):
     """The starter could not run the chain up to the floor (raised by
     :meth:`StarterPart._check_starter`)."""
@@ -45,22 +66,7 @@ class StarterPart:
         (before each step; the solver passes the pull on): along a straight's line, on a
         bend along its tangent. (The last straight alone holds one link when the rise
         ``xi2*H`` is short, too little to pull the chain.)"""
-        v = self.starter_speed
-        for el, q in zip(self.up_guide, self._uq, strict=True):
-            if el.kind == "line":
-                (ax, ay), (bx, by) = el.a, el.b
-                ln = math.hypot(bx - ax, by - ay)
-                vel = (v * (bx - ax) / ln, v * (by - ay) / ln)
-                for link, _ in q:
-                    link.body.velocity = vel
-                continue
-            cx, cy = el.a
-            turn = 1.0 if el.ccw else -1.0
-            for link, _ in q:
-                p = link.body.position
-                dx, dy = p.x - cx, p.y - cy
-                d = math.hypot(dx, dy) or 1.0
-                link.body.velocity = (-turn * v * dy / d, turn * v * dx / d)
+        run_along(self.up_guide, self._uq, self.starter_speed)
 
     def _check_starter(self) -> None:
         """Let go :attr:`~chainfountain.sim.config.ApparatusConfig.starter` seconds after
