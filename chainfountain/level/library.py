@@ -69,6 +69,7 @@ TWINS: dict[str, str] = {
     "apparatus_fold": "ideal_fold",
     "apparatus_fold_gripped": "ideal_fold",
     "apparatus_special": "ideal_special",
+    "apparatus_special_gripped": "ideal_special",
     "apparatus_limit": "ideal_limit",
     "apparatus_open": "ideal_open",
 }
