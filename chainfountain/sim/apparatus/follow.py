@@ -6,10 +6,10 @@ about 2 cm per gram of the upper cart in ``apparatus_fold_gripped``. A fixed end
 catches the chain only within a few centimetres of its turn's radius, so changing a cart by
 more than a few grams lost the chain. Here the end guide's turn, rise and second turn ride
 on a horizontal slide: every bookkeeping step they move by ``-end_follow * dr * dt``,
-``dr`` being the offset from the first turn's radius of the links entering through its
-mouth (> 0 outside, i.e. landed short), averaged over :data:`FOLLOW_TAU`, at most
+``dr`` being the offset from the first turn's radius of the links it catches (> 0
+outside, i.e. landed short), averaged over :data:`FOLLOW_TAU`, at most
 :data:`FOLLOW_SPEED` and :data:`FOLLOW_TRAVEL` from where the level put them. The links
-held in the moving elements follow their joints' anchors (a few micrometres a step). The
+held in the moving elements follow their joints' anchors (at most 50 um a step). The
 heights do not change, so neither do the paper's laws (``xi3*H`` is the same); only the
 fountain's span is free, as it is in the paper's laws.
 
@@ -40,12 +40,11 @@ class FollowingEnd:
 
     def _follow_landing(self, dt: float) -> None:
         """Move the end guide toward where the fountain lands (every bookkeeping step)."""
-        t = self._mouth_t
-        if t is not None and t != self._follow_seen:  # a link has entered since
-            w = min(1.0, (t - (self._follow_seen if self._follow_seen is not None else t))
-                    / FOLLOW_TAU)
+        t, prev = self._mouth_t, self._follow_seen
+        if t is not None and t != prev:  # a link has been caught since: average by time
+            w = 1.0 if prev is None else min(1.0, (t - prev) / FOLLOW_TAU)
             self._follow_seen = t
-            self._follow_dr += (self._mouth_dr - self._follow_dr) * (w if w > 0.0 else 1.0)
+            self._follow_dr += (self._mouth_dr - self._follow_dr) * w
         u = max(-FOLLOW_SPEED, min(FOLLOW_SPEED, -self.end_follow * self._follow_dr))
         dx = max(-FOLLOW_TRAVEL - self.end_shift, min(FOLLOW_TRAVEL - self.end_shift, u * dt))
         if dx:
