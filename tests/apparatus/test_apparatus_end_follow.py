@@ -82,14 +82,14 @@ def test_the_guide_moves_as_one_piece() -> None:
     c0, p0 = el0.a, plate.a
     held = [j.anchor_a.x for _, j in app.fold_held[0]]
     sim.guide_geometry_segments()  # the drawn walls where the guide is now
-    walls = [s.a.x for s in app._lo_walls]
+    walls = [s.a.x for s in app.end_walls]
     end0, shift0 = app.end[0], app.end_shift
     app._shift_end_guide(0.05)
     assert el0.a[0] == pytest.approx(c0[0] + 0.05) and el0.a[1] == c0[1]
     assert plate.a[0] == pytest.approx(p0[0] + 0.05) and plate.b == app.guide[-1].b
     assert [j.anchor_a.x for _, j in app.fold_held[0]] == pytest.approx([x + 0.05 for x in held])
     sim.guide_geometry_segments()  # the drawn walls follow when read
-    assert [s.a.x for s in app._lo_walls] == pytest.approx([x + 0.05 for x in walls])
+    assert [s.a.x for s in app.end_walls] == pytest.approx([x + 0.05 for x in walls])
     assert app.end[0] == pytest.approx(end0 + 0.05)
     assert app.end_shift == pytest.approx(shift0 + 0.05)
     sim.advance(0.2)  # the held links follow their anchors and the run goes on

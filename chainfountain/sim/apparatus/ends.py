@@ -43,6 +43,8 @@ class EndPart:
         """'fold' with ``plate = "groove"``: the lower channel (turn, rise, turn) and the
         lower plate are a frictionless joint guide (:attr:`guide`)."""
         self.guide: list[GuideElement] = []
+        self.end_walls: list[pymunk.Segment] = []
+        """'fold': the end channel's walls (drawn; a following end guide moves them)."""
         self.guide_centre = (math.nan, math.nan)
         self.guide_radius = math.nan
         alphaE = math.atan(math.sinh(f.q * (ex - x_rise)))
@@ -129,11 +131,9 @@ class EndPart:
         t0, n0 = self._mouth_frame(cp)
         off = self.rho + CLEAR + WALL_R
         self.fold_guided = a.plate == "groove"
-        self._lo_wall_shapes = []
-        """The end channel's walls (a following end guide moves them)."""
         for wl, side in zip(Channel(cp).walls(off), (1.0, -1.0), strict=True):
             flare = wl[0] - FUNNEL[0] * t0 + side * FUNNEL[1] * n0
             segs = static_polyline(self.space, np.vstack((flare, wl)), WALL_R,
                                    add=not self.fold_guided)
-            self._lo_wall_shapes += segs
+            self.end_walls += segs
             self.walls += segs

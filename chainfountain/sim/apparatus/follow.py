@@ -34,7 +34,6 @@ class FollowingEnd:
         """How far (m, along x) the end guide has moved from where the level put it."""
         self._follow_dr = 0.0
         self._follow_seen: float | None = None
-        self._lo_walls = list(getattr(self, "_lo_wall_shapes", []))
         self._walls_shift = 0.0
         """How far the drawn walls have been moved (:meth:`sync_end_walls`)."""
 
@@ -87,6 +86,6 @@ class FollowingEnd:
         """Put the end channel's drawn walls (out of the space) where the guide is now."""
         dx = self.end_shift - self._walls_shift
         if dx:
-            for s in self._lo_walls:
+            for s in self.end_walls:
                 s.unsafe_set_endpoints((s.a.x + dx, s.a.y), (s.b.x + dx, s.b.y))
             self._walls_shift = self.end_shift

@@ -48,8 +48,8 @@ FOLLOW_CLOSE_RATE = 20.0
 """Joint guides with a following end guide: the close rate (m/s) instead of
 :data:`FOLD_CLOSE_RATE`. At 5 m/s a link caught 10-20 cm off the radius rides the turn
 on a larger radius for a while, the guide's path grows and the fountain loses its stored
-length; at 20 m/s a 10-cm offset closes in 5 ms (research/notes/apparatus_notebook.md,
-forty-first session)."""
+length; at 20 m/s a 10-cm offset closes in 5 ms (research/notes/apparatus_notebook.md, "a start from
+rest for the gripped fold")."""
 FOLLOW_TAU = 0.5
 """Time (s) over which a following end guide averages the landing's offset."""
 FOLLOW_SPEED = 0.05
