@@ -10,7 +10,7 @@ Usage::
 
     python research/contact_holds.py apparatus_special --duration 60 \
         --set apparatus.bearing_drag=0.05 --dt-factor 0.5
-    python research/contact_holds.py apparatus_fold_gripped --duration 600 --seed 1
+    python research/contact_holds.py apparatus_fold_gripped --duration 600 --seed 1 --laid
 """
 
 from __future__ import annotations
@@ -36,14 +36,16 @@ def _value(text: str) -> int | float | str:
 
 
 def run(name: str, duration: float, window: float, dt_factor: float,
-        changes: dict[str, str], seed: int | None = None) -> dict:
+        changes: dict[str, str], seed: int | None = None, laid: bool = False) -> dict:
     """One run; per-window figures and the end. ``seed``: nudge the start
     (:meth:`~chainfountain.sim.world.Simulation.nudge`, 1e-12 of each velocity)."""
     from chainfountain.level import io
     from chainfountain.sim import Simulation
-    from chainfountain.study.changes import with_changes
+    from chainfountain.study.changes import laid_on_path, with_changes
 
     level = io.load(LEVELS / f"{name}.toml")
+    if laid:
+        level = laid_on_path(level)
     if changes:
         level = with_changes(level, {k: _value(v) for k, v in changes.items()})
     cfg = level.sim
@@ -91,10 +93,12 @@ def main() -> None:
     ap.add_argument("--dt-factor", type=float, default=1.0)
     ap.add_argument("--set", action="append", default=[], metavar="FIELD=VALUE")
     ap.add_argument("--seed", type=int, help="nudge the start by 1e-12 with this seed")
+    ap.add_argument("--laid", action="store_true",
+                    help="start laid on its path, moving, not from the level's own start")
     ns = ap.parse_args()
     changes = dict(s.split("=", 1) for s in ns.set)
-    print(json.dumps(run(ns.level, ns.duration, ns.window, ns.dt_factor, changes, ns.seed),
-                     indent=1))
+    print(json.dumps(run(ns.level, ns.duration, ns.window, ns.dt_factor, changes, ns.seed,
+                         ns.laid), indent=1))
 
 
 if __name__ == "__main__":

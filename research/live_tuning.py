@@ -1,7 +1,8 @@
 """A machine tuned while it runs: one field changed as the window's slider changes it.
 
-Opens LEVEL as the window does (its own start), runs ``--at`` simulated seconds, sets
-FIELD to each VALUE (``Session.set_field``, live), runs ``--after`` seconds more and
+Opens LEVEL as the window does (its own start; ``--laid``: laid on its path), runs
+``--at`` simulated seconds, sets FIELD to each VALUE (``Session.set_field``, live), runs
+``--after`` seconds more and
 prints the chain speed every ``--every`` seconds, or when and why the run stopped. One run
 per value and change time (``--starts N`` changes at ``--at``, ``--at + 0.7``, ... s:
 different phases of the fold's 2.1-s landing swing); a chaotic machine, so near an edge a
@@ -31,7 +32,7 @@ from concurrent.futures import ProcessPoolExecutor
 
 def run(level: str, field: str, value: float, at: float, after: float, every: float,
         also: tuple[tuple[str, float], ...] = (),
-        catch: tuple[float, float, float] | None = None) -> str:
+        catch: tuple[float, float, float] | None = None, laid: bool = False) -> str:
     """One run; a line with the speeds after the change, or where it stopped. ``also``:
     more fields set at the same moment, before ``field``; ``catch``: the 'fold' guide's
     capture band (m), margin (deg) and close rate (m/s), set on
@@ -47,7 +48,10 @@ def run(level: str, field: str, value: float, at: float, after: float, every: fl
         Apparatus.fold_capture = (catch[0], math.radians(catch[1]))
         Apparatus.fold_close_rate = catch[2]
 
-    s = Session(io.load(library.resolve(level)))
+    from chainfountain.study.changes import laid_on_path
+
+    lvl = io.load(library.resolve(level))
+    s = Session(laid_on_path(lvl) if laid else lvl)
     s.advance(at)
     for other, v in also:
         res = s.set_field(other, v)
@@ -87,6 +91,9 @@ def main() -> None:
     ap.add_argument("--catch", type=float, nargs=3, metavar=("BAND_M", "MARGIN_DEG", "CLOSE"),
                     help="the 'fold' guide's catch: capture band (m), angular margin (deg) "
                     "and close rate (m/s) (default: the package's)")
+    ap.add_argument("--laid", action="store_true",
+                    help="start laid on its path, moving (as the steady-state studies do), "
+                    "not from the level's own start")
     ap.add_argument("--jobs", type=int, default=2)
     args = ap.parse_args()
     also = []
@@ -103,7 +110,7 @@ def main() -> None:
     with ProcessPoolExecutor(args.jobs) as pool:
         futures = {v: [pool.submit(run, args.level, args.field, v, args.at + 0.7 * i,
                                    args.after, args.every, tuple(also),
-                                   tuple(args.catch) if args.catch else None)
+                                   tuple(args.catch) if args.catch else None, args.laid)
                        for i in range(args.starts)]
                    for v in args.values}
         for v, fs in futures.items():

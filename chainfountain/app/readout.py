@@ -104,6 +104,12 @@ class History:
         }
 
 
+def _mean(a: np.ndarray) -> float:
+    """Mean of the finite values of ``a``; nan (without numpy's warning) if none."""
+    a = a[np.isfinite(a)]
+    return float(a.mean()) if len(a) else math.nan
+
+
 def compute_readout(sim: Simulation, recorder: Recorder, history: History) -> Readout:
     """The numbers and theory overlay the readout shows, from the recorded history."""
     from chainfountain.theory import Fountain
@@ -122,8 +128,8 @@ def compute_readout(sim: Simulation, recorder: Recorder, history: History) -> Re
         v = float(np.nanmean(hist["speed"][sel]))
         h = float(np.nanmean(hist["vertex_y"][sel]))
         lx = float(np.nanmean(hist["landing_x"][sel]))
-        r.T0_bar = float(np.nanmean(hist["T0"][sel]))
-        r.TE_bar = float(np.nanmean(hist["TE"][sel]))
+        r.T0_bar = _mean(hist["T0"][sel])
+        r.TE_bar = _mean(hist["TE"][sel])
         r.measured = True
         r.measured_vertex = (float(recorder.samples[-1].vertex_x)
                              if recorder.samples else math.nan, h)
@@ -170,13 +176,13 @@ def compute_readout(sim: Simulation, recorder: Recorder, history: History) -> Re
         r.curve = np.column_stack((np.asarray(xs) - sx, np.asarray(ys) - sy))
         r.vertex = (-sx, -sy)
     elif r.measured:
-        r.v = float(np.nanmean(hist["speed"][t >= t[-1] - avg_span]))
+        r.v = _mean(hist["speed"][t >= t[-1] - avg_span])
         r.k = g / r.v**2 if r.v > 0 else math.nan
     if not r.measured and len(t):
         # measured tensions and speed exist before the chain lands; show them
         sel = t >= t[-1] - avg_span
-        r.T0_bar = float(np.nanmean(hist["T0"][sel]))
-        r.TE_bar = float(np.nanmean(hist["TE"][sel]))
+        r.T0_bar = _mean(hist["T0"][sel])
+        r.TE_bar = _mean(hist["TE"][sel])
     # tension profile: average of the last few samples, launch end first
     profs = recorder.profiles[-8:]
     if profs and not sim.dragging:

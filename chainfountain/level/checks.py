@@ -193,7 +193,7 @@ def _check_feed(level: Level, where: str) -> None:
 def _check_apparatus_start(sim: SimConfig, where: str) -> None:
     """How an apparatus starts: laid along its path, moving (``initial`` at its defaults,
     no starter), or from rest with a starter (``initial.mode = "stub"``, the 'floor'
-    variant with the upper joint guide)."""
+    variant or the gripped 'fold', with the upper joint guide)."""
     a = sim.apparatus
     default_initial = type(sim.initial)()
     from_rest = sim.initial.mode == "stub"
@@ -213,14 +213,28 @@ def _check_apparatus_start(sim: SimConfig, where: str) -> None:
                   "starts laid along its path at apparatus.speed); allowed: 0, or "
                   "initial.mode = 'stub'")
         return
-    if a.variant != "floor" or a.upper_guide != "joints":
-        field, value = (("apparatus.variant", a.variant) if a.variant != "floor"
+    threads = a.variant == "fold" and a.plate == "groove" and a.fold_roller == "gripped"
+    if a.variant not in ("floor", "fold") or a.upper_guide != "joints":
+        field, value = (("apparatus.variant", a.variant) if a.variant not in ("floor", "fold")
                         else ("apparatus.upper_guide", a.upper_guide))
         _fail(where, field,
               f"{value!r} cannot start from rest (initial.mode = 'stub'): the starter runs the "
-              "chain in the upper joint guide and only the floor catches a forming fountain; "
-              "allowed: variant = 'floor' with upper_guide = 'joints', or initial.mode = "
-              "'catenary'")
+              "chain in the upper joint guide, and only the floor or the gripped fold takes "
+              "in a forming fountain; allowed: variant = 'floor' or 'fold' with upper_guide "
+              "= 'joints', or initial.mode = 'catenary'")
+    if a.variant == "fold" and not threads:
+        field, value = (("apparatus.fold_roller", a.fold_roller) if a.plate == "groove"
+                        else ("apparatus.plate", a.plate))
+        _fail(where, field,
+              f"{value!r} cannot start from rest (initial.mode = 'stub'): the starter threads "
+              "the chain's head through the end guide's joints and the gripped folding "
+              "roller; allowed: fold_roller = 'gripped' with plate = 'groove', or "
+              "initial.mode = 'catenary'")
+    if a.variant == "fold" and sim.initial.stub_length != default_initial.stub_length:
+        _fail(where, "initial.stub_length",
+              f"{sim.initial.stub_length!r} m has no effect in 'fold': its head waits inside "
+              "the upper guide until the starter launches it; allowed: "
+              f"{default_initial.stub_length!r}")
     if a.starter <= 0.0:
         _fail(where, "apparatus.starter",
               f"{a.starter!r} s with initial.mode = 'stub': at rest the cart holds the chain "

@@ -539,12 +539,15 @@ class ApparatusConfig:
         min=0.0, max=10.0, live=True,
     )
     starter: float = param(
-        0.0, unit="s", doc="Variant 'floor' from rest (initial.mode = 'stub'): the chain lies "
-        "at rest from the upper table to a stub at the start, and a starter motor in the "
-        "upper guide runs it up to apparatus.speed (over 0.5 s) and holds it "
-        "there until the chain has landed and this long after; then the carts and the fall "
-        "alone drive it (a real machine is started by hand). Needs upper_guide = 'joints'. "
-        "0: no starter, the chain starts laid along its path at apparatus.speed",
+        0.0, unit="s", doc="From rest (initial.mode = 'stub'): the chain lies at rest from "
+        "the upper table to a stub at the start ('floor'; in 'fold' its head waits 10 cm "
+        "inside the upper guide), and a starter motor in the upper guide runs it up to "
+        "apparatus.speed (over 0.5 s) and holds it there until the chain has landed (in "
+        "'fold': has been threaded through the end guide and round the folding roller onto "
+        "the lower table) and this long after; then the carts and the fall alone drive it "
+        "(a real machine is started by hand). Needs upper_guide = 'joints' ('fold': and the "
+        "gripped folding roller). 0: no starter, the chain starts laid along its path at "
+        "apparatus.speed",
         min=0.0, max=60.0,
     )
     upper_guide: str = param(

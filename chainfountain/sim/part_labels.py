@@ -75,8 +75,14 @@ def part_labels(sim: Simulation) -> list[PartLabel]:
                              float(cx), float(cy), "below", tier=1))
     if getattr(app, "starting", False) and app.up_guide:
         (ax, ay), (bx, by) = app.up_guide[-1].a, app.up_guide[-1].b
-        out.append(PartLabel("starter motor: runs the chain up, lets go once it has landed",
-                             0.5 * (ax + bx), 0.5 * (ay + by), "left"))
+        text = ("starter motor: runs the chain up, lets go once it has landed"
+                if a.variant != "fold" else "starter motor: threads the chain round the "
+                "folding roller, then lets go")
+        out.append(PartLabel(text, 0.5 * (ax + bx), 0.5 * (ay + by), "left"))
+    elif getattr(app, "fading", False) and app.up_guide:
+        (ax, ay), (bx, by) = app.up_guide[-1].a, app.up_guide[-1].b
+        out.append(PartLabel("starter motor: letting go", 0.5 * (ax + bx),
+                             0.5 * (ay + by), "left"))
     ex, ey = app.end
     if a.variant == "fold":
         follows = ""

@@ -4,7 +4,7 @@ its speed is selected and converged in the step.
 The paper's machine is balanced at every speed, so it keeps whatever speed it drifts to;
 a brake on the folding roller's carriage (``apparatus.fold_brake`` c, a force ``-c*u``)
 makes the balance hold at one speed, set by the lower cart's push beyond it. Asserted on
-the preset as shipped (treadmills, swing damper, 100-mm gripped folding roller, brake
+the preset (treadmills, swing damper, 100-mm gripped folding roller, brake
 1 N s/m, the end guide following the landing), laid on its path at 3 m/s, means over
 2-5 s (10-ms samples):
 
@@ -38,7 +38,7 @@ from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus.laws import braked_fold_speed
 from chainfountain.sim.apparatus.tuning import CATCH_STOP
 from chainfountain.sim.apparatus_report import report
-from chainfountain.study.changes import with_changes
+from chainfountain.study.changes import laid_on_path, with_changes
 
 LEVELS = Path(__file__).resolve().parents[2] / "levels"
 WINDOW = (2.0, 5.0)
@@ -47,7 +47,7 @@ pytestmark = pytest.mark.xdist_group("apparatus_braked")
 
 def _speed(name: str, changes: dict) -> float:
     """Mean chain speed (m/s) over :data:`WINDOW` of preset ``name`` with ``changes``."""
-    level = with_changes(io.load(LEVELS / f"{name}.toml"), changes)
+    level = laid_on_path(with_changes(io.load(LEVELS / f"{name}.toml"), changes))
     sim = Simulation(level.sim)
     rec = Recorder(sim, profiles=False)
     sim.advance(WINDOW[1])
@@ -78,8 +78,8 @@ def test_the_lower_cart_sets_the_speed() -> None:
 
 
 def test_a_lost_catch_ends_the_run_in_one_sentence() -> None:
-    level = with_changes(io.load(LEVELS / "apparatus_fold_gripped.toml"),
-                         {"carts[1].mass": 0.36})
+    level = laid_on_path(with_changes(io.load(LEVELS / "apparatus_fold_gripped.toml"),
+                                      {"carts[1].mass": 0.36}))
     sim = Simulation(level.sim)
     with pytest.raises(RunEnded) as err:
         sim.advance(6.0)

@@ -2,8 +2,8 @@
 :mod:`chainfountain.sim.apparatus.follow`).
 
 The carts choose the fountain, and with it where it lands; a fixed end guide catches it
-only within a few centimetres. Asserted on ``apparatus_fold_gripped`` as shipped (laid on
-its path, two nudged starts each):
+only within a few centimetres. Asserted on ``apparatus_fold_gripped`` laid on its path
+(two nudged starts each):
 
 - the upper cart 8 g heavier (19 -> 27 g) at 2 s: the guide moves toward the start (the
   heavier cart pulls ``Tbar_0`` up, the fountain narrows and lands short) and the run
@@ -30,7 +30,7 @@ from chainfountain.errors import RunEnded
 from chainfountain.level import io
 from chainfountain.level.model import LevelError
 from chainfountain.sim import Simulation
-from chainfountain.study.changes import with_changes
+from chainfountain.study.changes import laid_on_path, with_changes
 
 LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_fold_gripped.toml"
 SEEDS = (0, 1)
@@ -42,7 +42,7 @@ pytestmark = pytest.mark.xdist_group("apparatus_follow")
 def _run(seed: int, changes: dict) -> tuple[Simulation, list[tuple[float, float, float]], str]:
     """The preset with ``changes``, nudged by ``seed``, its upper cart ``DM`` heavier from
     :data:`CHANGE_AT`; every 0.1 s ``(t, guide shift, landing offset)``; how it ended."""
-    level = with_changes(io.load(LEVEL), changes) if changes else io.load(LEVEL)
+    level = laid_on_path(with_changes(io.load(LEVEL), changes) if changes else io.load(LEVEL))
     sim = Simulation(level.sim)
     sim.nudge(seed)
     app = sim.apparatus
@@ -75,7 +75,7 @@ def test_a_fixed_end_guide_loses_the_same_fountain(seed: int) -> None:
 
 
 def test_the_guide_moves_as_one_piece() -> None:
-    sim = Simulation(io.load(LEVEL).sim)
+    sim = Simulation(laid_on_path(io.load(LEVEL)).sim)
     app = sim.apparatus
     sim.advance(0.2)
     el0, plate = app.guide[0], app.guide[-1]
@@ -103,5 +103,5 @@ def test_the_guide_moves_as_one_piece() -> None:
 ])
 def test_a_following_guide_needs_the_fold_s_joint_guide(level: str, changes: dict) -> None:
     with pytest.raises(LevelError) as err:
-        with_changes(io.load(LEVEL.parent / f"{level}.toml"), changes)
+        with_changes(laid_on_path(io.load(LEVEL.parent / f"{level}.toml")), changes)
     assert "apparatus.end_follow" in str(err.value) and "\n" not in str(err.value)

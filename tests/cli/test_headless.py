@@ -237,8 +237,9 @@ def test_a_braked_fold_says_the_speed_it_selects(tmp_path):
     from chainfountain.headless import describe_outputs
     from chainfountain.level import library
     from chainfountain.sim.apparatus import braked_fold_speed
+    from chainfountain.study.changes import laid_on_path
 
-    level = io.load(library.resolve("apparatus_fold_gripped"))
+    level = laid_on_path(io.load(library.resolve("apparatus_fold_gripped")))
     path = run_level(level, tmp_path, 0.5, progress=False)
     s = json.loads(path.read_text())
     v_sel = braked_fold_speed(level.sim)

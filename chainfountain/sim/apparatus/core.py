@@ -43,6 +43,11 @@ from chainfountain.sim.config import SimConfig
 from chainfountain.sim.fastbody import pos
 from chainfountain.sim.guide import resample
 
+HEAD_BACK = 0.1
+"""'fold' from rest: how far (m) inside the upper guide the chain's head waits, so that
+the starter has it at its launch speed before it leaves (a head that leaves slowly
+droops and falls short)."""
+
 
 class TableUsedUp(RunEnded):
     """The pick-up roller has reached the upper channel: the run has outgrown the
@@ -81,12 +86,14 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Gri
         self._predict_fountain()
         path = self._build_upper()
         path.append(self._fountain_path())
-        path += self._build_end()
+        beyond = self._build_end()
+        if not self.from_rest:  # from rest the chain's head is threaded through later
+            path += beyond
         self._lay_along(path)
         self._init_state()
         self._add_swing_damper()
         self.sync_plates()
-        if self.gripped:
+        if self.gripped and not self.from_rest:
             self._init_grip()
         self._take_in_held_links()
 
@@ -156,6 +163,8 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Gri
     def _fountain_path(self) -> np.ndarray:
         """The chain's path through the predicted fountain (to ``x_floor``, the end's x
         without a ``floor_depth``); from rest, a straight stub along the launch line."""
+        if self.from_rest and self.variant == "fold":
+            return np.empty((0, 2))  # the head waits inside the upper guide (_lay_along)
         if self.from_rest:
             s = np.linspace(0.0, self.stub_length, 8)[1:]
             return np.column_stack((s * self.launch_u[0], s * self.launch_u[1]))
@@ -178,12 +187,15 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Gri
         path = np.vstack(parts)
         seg = np.linalg.norm(np.diff(path, axis=0), axis=1)
         s_all = np.concatenate([[0.0], np.cumsum(seg)])
-        if self.lower is not None:
+        if self.lower is not None and not self.from_rest:
             # arc length where the lower wrap starts: the point (x_lo, y_lo)
             idx = int(np.flatnonzero(np.isclose(path[:, 0], self.lower.x)
                                      & np.isclose(path[:, 1], self.y_lo))[0])
             s_lo_wrap = float(s_all[idx])
         pts, s = resample(path, L)
+        if self.from_rest and self.variant == "fold":
+            n = int(round(HEAD_BACK / L))
+            pts, s = pts[:-n], s[:-n]
         self._lay(pts, s, s_wrap0, s_wrap1, s_lo_wrap, v0, vR, R)
 
     def _lay(self, pts: np.ndarray, s: np.ndarray, s_w0: float, s_w1: float, s_lw: float,
@@ -295,6 +307,8 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Gri
             self._apply_preload()
         if self.starting:
             self._drive_starter()
+        elif self.fading:
+            self._fade_starter()
         if self._release_every_step:
             self._release_upper()
 
@@ -347,7 +361,8 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Gri
                 self._grip_arriving()
             if self.treadmill:
                 self._treadmill_lower()
-            if self.end_follow:
+            self._track_landing()
+            if self.end_follow and not self.starting:  # the starter sets the length
                 self._follow_landing(dt)
         if self.lower is not None:
             self._check_fold(dt)

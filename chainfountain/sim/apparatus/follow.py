@@ -37,13 +37,23 @@ class FollowingEnd:
         self._walls_shift = 0.0
         """How far the drawn walls have been moved (:meth:`sync_end_walls`)."""
 
-    def _follow_landing(self, dt: float) -> None:
-        """Move the end guide toward where the fountain lands (every bookkeeping step)."""
+    @property
+    def landing_offset(self) -> float:
+        """Where the fountain lands (m): the caught links' offset from the first turn's
+        radius (> 0 outside: landed short), averaged over :data:`FOLLOW_TAU` by the time
+        between catches; 0 before any link was caught."""
+        return self._follow_dr
+
+    def _track_landing(self) -> None:
+        """Update :attr:`landing_offset` (every bookkeeping step)."""
         t, prev = self._mouth_t, self._follow_seen
         if t is not None and t != prev:  # a link has been caught since: average by time
             w = 1.0 if prev is None else min(1.0, (t - prev) / FOLLOW_TAU)
             self._follow_seen = t
             self._follow_dr += (self._mouth_dr - self._follow_dr) * w
+
+    def _follow_landing(self, dt: float) -> None:
+        """Move the end guide toward where the fountain lands (every bookkeeping step)."""
         u = max(-FOLLOW_SPEED, min(FOLLOW_SPEED, -self.end_follow * self._follow_dr))
         dx = max(-FOLLOW_TRAVEL - self.end_shift, min(FOLLOW_TRAVEL - self.end_shift, u * dt))
         if dx:

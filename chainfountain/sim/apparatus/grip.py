@@ -140,6 +140,9 @@ class GrippedFold:
         (keeping at least one welded); returns how many links left the space."""
         chain = self.chain
         cx = self.lower.x
+        if self._table_pin is None:  # from rest: the head lands first
+            self._land_head(cx)
+            return 0
         popped = 0
         while len(self._welds) > 1:
             link, pj, gj = self._welds[0]
@@ -158,6 +161,22 @@ class GrippedFold:
         self.absorbed += popped
         return popped
 
+    def _land_head(self, cx: float) -> None:
+        """From rest: once the threaded head (welded first) has gone round the roller's
+        front and its front joint passes under the centre, un-weld it, pin its front to the
+        table and join its back to the next welded link: from then on the roller lays the
+        chain as in the steady state."""
+        if len(self._welds) < 2 or self._welds[0][0] is not self.chain.links[0]:
+            return
+        link, pj, gj = self._welds[0]
+        front = self._ends(link)[0]
+        if front.x > cx:
+            return
+        self._welds.popleft()
+        self.space.remove(pj, gj)
+        self._pin_front(link)
+        self.chain.join(0)
+
     def _grip_arriving(self) -> None:
         """Weld the strand's last link once its back joint has passed over the roller's
         centre or come within :data:`GRIP_TOL` of the rim, caught onto the rim chord."""
@@ -166,8 +185,9 @@ class GrippedFold:
         R = self.R_lo
         d_ang = 2.0 * math.asin(self.L / (2.0 * R))
         plate = self._gq[-1]
+        first = 1 if self._table_pin is not None else 0  # 0: the head is threaded
         while True:
-            k = 1 + len(self._welds)
+            k = first + len(self._welds)
             if k >= len(links):
                 return
             link = links[k]
@@ -180,7 +200,8 @@ class GrippedFold:
             ang = math.atan2(u.y, u.x) + d_ang  # the rim point one link on, upstream
             qx, qy = c.x + R * math.cos(ang), c.y + R * math.sin(ang)
             self._weld(link, math.atan2(pf.y - qy, pf.x - qx))
-            chain.unjoin(k - 1)
+            if k > 0:
+                chain.unjoin(k - 1)
             self.gripped_links += 1
 
     def _shift_pin(self, dx: float) -> None:

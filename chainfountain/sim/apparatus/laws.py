@@ -180,8 +180,8 @@ FOLLOW_CART_BAND = ((-11.0 * _GRAM_AT_30, 8.0 * _GRAM_AT_30),
 """As :data:`BRAKED_CART_BAND`, with an end guide that follows the landing
 (``apparatus.end_follow``): the catch no longer sets the band, the landing swing does.
 Measured on ``apparatus_fold_gripped`` (19 / 311 g, ``end_follow = 2``; ``python
-research/live_tuning.py apparatus_fold_gripped 'carts[i].mass' VALUES --at 5 --after 40
---starts 2``): upper 8, 10 and 27 g and lower 296, 301, 321, 331 and 341 g held 40 s
+research/live_tuning.py apparatus_fold_gripped 'carts[i].mass' VALUES --laid --at 5
+--after 40 --starts 2``): upper 8, 10 and 27 g and lower 296, 301, 321, 331 and 341 g held 40 s
 from both starts; upper 30 g from one of two, upper 4 and 36 g and lower 291 g from
 neither (the speed swings until the fountain leaves the mouth). The speed then spans
 2.8-3.3 m/s."""

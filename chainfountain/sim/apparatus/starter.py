@@ -7,6 +7,21 @@ links held there along the guide, from rest up to ``apparatus.speed`` over
 seconds after. Then it lets go, and the carts and the fall alone drive the chain, which
 settles at the speed the machine selects (a mixin of
 :class:`~chainfountain.sim.apparatus.Apparatus`).
+
+'fold' (the gripped folding roller, :mod:`.grip`) has no floor to land on: the chain's
+head must be threaded through the end guide and round the folding roller. Its head waits
+:data:`~.core.HEAD_BACK` inside the upper guide; the starter runs it up within
+:data:`THREAD_RAMP` to :attr:`StarterPart.launch_speed`, at which a free head flies onto
+the predicted fountain end (faster, it would fly past the end guide: a free end carries no
+tension, so it does not follow the fountain's curve). Once the end guide has caught the
+head, the starter runs the chain up to ``apparatus.speed`` within :data:`CATCH_RAMP` (below
+the paper's ``v(k_max)`` the fountain cannot stand, and it falls) and runs the links in the
+end guide and the folding roller at that speed too, so that the head is carried round
+the roller and pinned to the table. The end guide does not follow the landing while the
+starter runs: with both ends driven the fountain's length is fixed, and moving the guide
+would stretch it. ``apparatus.starter`` seconds after the first link is laid on the lower
+table, the starter lets go, gradually (:data:`FADE`): its hold on both roller carriages
+fades out over 3 s.
 """
 
 from __future__ import annotations
@@ -17,6 +32,19 @@ from chainfountain.errors import RunEnded
 
 RAMP = 0.5
 """Time (s) over which the starter runs the chain up from rest to ``apparatus.speed``."""
+THREAD_RAMP = 0.05
+"""'fold': time (s) over which the starter runs the chain up from rest to the head's
+launch speed (short: a slow head droops out of the guide instead of flying)."""
+CATCH_RAMP = 0.2
+"""'fold': time (s) over which the starter runs the chain up from the launch speed to
+``apparatus.speed`` once the end guide has caught the head."""
+FADE = 3.0
+"""'fold': time (s) over which the starter's hold on the roller carriages fades out after
+it lets go (a sudden release leaves some starts swinging slowly, 3 % below the speed
+the machine selects, for tens of seconds; docs/apparatus.md)."""
+FADE_RATE = 40.0
+"""'fold': the rate (1/s) at which the fading starter brings each roller carriage toward
+half ``apparatus.speed`` when it lets go, falling linearly to 0 over :data:`FADE`."""
 LAND_WITHIN = 10.0
 """Time (s) by which a started chain must have reached the floor (it takes about 1 s)."""
 
@@ -53,29 +81,97 @@ class StarterPart:
     def _init_starter_state(self) -> None:
         self.starting = self.from_rest
         """True while the starter drives the chain."""
+        self.fading = False
+        """'fold': True while the starter's hold fades after it let go (:meth:`_fade_starter`)."""
+        self._caught_t: float | None = None
+        """'fold': when the end guide caught the head (s)."""
         self._hand_over: float | None = None
         """When the starter lets go (s): set once the first link reaches the floor."""
 
     @property
     def starter_speed(self) -> float:
-        """The speed (m/s) the starter runs the chain at now."""
-        return float(self.cfg.speed) * min(1.0, self._t / RAMP)
+        """The speed (m/s) the starter runs the chain at now. 'fold': first the speed
+        :attr:`launch_speed` at which the free head flies onto the end guide's mouth,
+        reached within :data:`THREAD_RAMP`, and once the end guide has caught the head
+        ``apparatus.speed``, reached within :data:`CATCH_RAMP`."""
+        v = float(self.cfg.speed)
+        if not self.fold_guided:
+            return v * min(1.0, self._t / RAMP)
+        v1 = self.launch_speed
+        if self._mouth_t is None:
+            return v1 * min(1.0, self._t / THREAD_RAMP)
+        if self._caught_t is None:
+            self._caught_t = self._t
+        return v1 + (v - v1) * min(1.0, (self._t - self._caught_t) / CATCH_RAMP)
+
+    @property
+    def launch_speed(self) -> float:
+        """'fold' from rest: the speed (m/s) at which a free head leaving the upper guide
+        at ``launch_angle`` flies onto the predicted fountain end ``(x_E, -H)``:
+        ``v^2 = g x_E^2 / (2 cos^2(alpha0) (x_E tan(alpha0) + H))`` (a projectile; the
+        chain behind a free head pulls on it little)."""
+        xe, a = self.end[0] - self.end_shift, self.alpha0
+        return math.sqrt(self.g * xe * xe
+                         / (2.0 * math.cos(a) ** 2 * (xe * math.tan(a) + self.H)))
 
     def _drive_starter(self) -> None:
         """Set the links held in the upper guide moving along it at :attr:`starter_speed`
         (before each step; the solver passes the pull on): along a straight's line, on a
         bend along its tangent. (The last straight alone holds one link when the rise
         ``xi2*H`` is short, too little to pull the chain.)"""
-        run_along(self.up_guide, self._uq, self.starter_speed)
+        v = self.starter_speed
+        run_along(self.up_guide, self._uq, v)
+        if self.fold_guided:  # 'fold': the head threads through the end guide
+            self._drive_fold(v)
+
+    def _drive_fold(self, v: float) -> None:
+        """'fold' from rest: the end guide's starter runs the links it holds along it at
+        ``v``, and the folding roller rolls at ``v/2`` on its table (its top at ``v``), so
+        that the fountain's head, caught at the mouth, is carried to the roller and round
+        it onto the table."""
+        run_along(self.guide, self._gq, v)
+        lo = self.lower
+        u = 0.5 * v
+        lo.carriage.velocity = (u, 0.0)
+        lo.roller.velocity = (u, 0.0)
+        lo.roller.angular_velocity = -u / self.R_lo
+
+    def _fade_starter(self) -> None:
+        """'fold', for :data:`FADE` s after the starter lets go (before each pymunk step):
+        bring each roller carriage's speed toward half ``apparatus.speed`` at a rate that
+        falls from :data:`FADE_RATE` to 0, so that the carts and the brake take the
+        machine over gradually."""
+        t = self._t - self._hand_over
+        if t >= FADE:
+            self.fading = False
+            return
+        k = 1.0 - math.exp(-FADE_RATE * (1.0 - t / FADE) * self.h)
+        u_s = 0.5 * float(self.cfg.speed)
+        for body in (self.upper.carriage, self.lower.carriage):
+            u, w = body.velocity
+            body.velocity = (u + k * (u_s - u), w)
 
     def _check_starter(self) -> None:
         """Let go :attr:`~chainfountain.sim.config.ApparatusConfig.starter` seconds after
-        the first link has reached the floor; end the run with one sentence if the chain
-        has not landed within :data:`LAND_WITHIN` s (the starter could not run it up)."""
+        the first link has reached the floor (or the lower table); end the run with one
+        sentence if the chain has not landed within :data:`LAND_WITHIN` s (the starter
+        could not run it up, or could not thread it)."""
         if self._hand_over is None and self.absorbed > 0:
             self._hand_over = self._t + float(self.cfg.starter)
         if self._hand_over is not None and self._t >= self._hand_over:
             self.starting = False
+            self.fading = self.fold_guided
+        elif self._hand_over is None and self._t > LAND_WITHIN and self.fold_guided:
+            where = ("the end guide has not caught its head" if self._caught_t is None
+                     else "its head has not reached the lower table")
+            raise StarterFailed(
+                f"t = {self._t:.2f} s: the starter could not thread the chain through the "
+                f"machine ({where} within {LAND_WITHIN:g} s): the carts hold it harder than "
+                "the starter pulls, or the fountain misses the end guide; make the upper "
+                "cart lighter (carts[0].mass), or start it laid along its path "
+                "(initial.mode = 'catenary')",
+                plain=f"At {self._t:.1f} s the starter had not threaded the chain through "
+                "the machine; press R to try again, or make the upper cart lighter")
         elif self._hand_over is None and self._t > LAND_WITHIN:
             raise StarterFailed(
                 f"t = {self._t:.2f} s: the starter could not run the chain up (it moves at "
