@@ -316,15 +316,16 @@ def test_forms_from_rest_and_selects_the_same_speed(run, from_rest) -> None:
 @pytest.mark.parametrize("change, field", [
     ({"apparatus.starter": 0.0}, "apparatus.starter"),
     ({"initial.mode": "catenary"}, "apparatus.starter"),
-    ({"apparatus.variant": "fold"}, "apparatus.variant"),
+    ({"apparatus.variant": "open"}, "apparatus.variant"),
+    ({"apparatus.variant": "fold"}, "apparatus.fold_roller"),  # the contact fold
     ({"apparatus.upper_guide": "walls"}, "apparatus.upper_guide"),
     ({"initial.jitter": 0.01}, "initial.jitter"),
     ({"apparatus.swing_damper": 0.5}, "apparatus.swing_damper"),
 ])
 def test_a_start_that_cannot_work_is_refused_naming_the_field(change, field) -> None:
     """From rest without a starter the carts hold the chain and nothing falls; a starter
-    with the study start does nothing; only the floor variant with the joint guide can
-    start from rest."""
+    with the study start does nothing; only the floor variant and the gripped fold, with
+    the joint guide, can start from rest."""
     from chainfountain.level.model import LevelError
     from chainfountain.study.changes import with_changes
 
