@@ -54,9 +54,9 @@ def run(name: str, seconds: float, seed: int, dt_factor: float, window: float,
             sim.advance(0.05)
             top = max(lk.body.position.y for lk in sim.chain.links)
             rows.append((sim.time, app.speed, top, app.landing_offset))
-            if out.get("caught_s") is None and app._caught_t is not None:
-                out["caught_s"] = round(app._caught_t, 3)
-            if out.get("threaded_s") is None and app._table_pin is not None:
+            if out.get("caught_s") is None and not math.isnan(app.head_caught_at):
+                out["caught_s"] = round(app.head_caught_at, 3)
+            if out.get("threaded_s") is None and app.head_pinned:
                 out["threaded_s"] = round(sim.time, 2)
             if out.get("hand_over_s") is None and not app.starting:
                 out["hand_over_s"] = round(sim.time, 2)

@@ -51,12 +51,12 @@ def test_a_gripped_fold_forms_from_rest_and_holds(name: str, seed: int) -> None:
     v, top = [], []
     while sim.time < END - 1e-9:
         sim.advance(0.05)
-        if pinned_at is None and app.n_welded and app._table_pin is not None:
+        if pinned_at is None and app.head_pinned:
             pinned_at = sim.time
         if sim.time > WINDOW[0] + 1e-9:
             v.append(app.speed)
             top.append(max(lk.body.position.y for lk in sim.chain.links))
-    assert app._caught_t is not None and app._caught_t < 1.0
+    assert app.head_caught_at < 1.0
     assert pinned_at is not None and pinned_at < 3.0
     assert not app.starting and not app.fading  # the machine runs on its own
     assert float(np.mean(v)) == pytest.approx(LAID_SPEED[name], rel=0.01)

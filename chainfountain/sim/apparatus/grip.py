@@ -69,6 +69,12 @@ class GrippedFold:
         not move; it is pinned at most one bookkeeping step later)."""
 
     @property
+    def head_pinned(self) -> bool:
+        """Whether a link of the chain is pinned to the lower table (from rest: once the
+        starter has carried the head round the roller; laid: from the start)."""
+        return self._table_pin is not None
+
+    @property
     def n_welded(self) -> int:
         """Links welded to the folding roller now."""
         return len(self._welds)

@@ -98,11 +98,14 @@ class StarterPart:
         if not self.fold_guided:
             return v * min(1.0, self._t / RAMP)
         v1 = self.launch_speed
-        if self._mouth_t is None:
-            return v1 * min(1.0, self._t / THREAD_RAMP)
         if self._caught_t is None:
-            self._caught_t = self._t
+            return v1 * min(1.0, self._t / THREAD_RAMP)
         return v1 + (v - v1) * min(1.0, (self._t - self._caught_t) / CATCH_RAMP)
+
+    @property
+    def head_caught_at(self) -> float:
+        """'fold' from rest: when the end guide caught the chain's head (s; nan before)."""
+        return math.nan if self._caught_t is None else self._caught_t
 
     @property
     def launch_speed(self) -> float:
@@ -119,6 +122,8 @@ class StarterPart:
         (before each step; the solver passes the pull on): along a straight's line, on a
         bend along its tangent. (The last straight alone holds one link when the rise
         ``xi2*H`` is short, too little to pull the chain.)"""
+        if self.fold_guided and self._caught_t is None and self._mouth_t is not None:
+            self._caught_t = self._t  # the end guide has caught the head
         v = self.starter_speed
         run_along(self.up_guide, self._uq, v)
         if self.fold_guided:  # 'fold': the head threads through the end guide
