@@ -125,9 +125,9 @@ def compute_readout(sim: Simulation, recorder: Recorder, history: History) -> Re
     landed = sim.feed.absorbed > 0 or sim.floor_geometry()[3] != "absorbing"
     if len(t) >= 3 and sim.n_free >= 8 and landed:
         sel = t >= t[-1] - avg_span
-        v = float(np.nanmean(hist["speed"][sel]))
-        h = float(np.nanmean(hist["vertex_y"][sel]))
-        lx = float(np.nanmean(hist["landing_x"][sel]))
+        v = _mean(hist["speed"][sel])
+        h = _mean(hist["vertex_y"][sel])
+        lx = _mean(hist["landing_x"][sel])
         r.T0_bar = _mean(hist["T0"][sel])
         r.TE_bar = _mean(hist["TE"][sel])
         r.measured = True
