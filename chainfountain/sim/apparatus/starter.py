@@ -20,8 +20,8 @@ end guide and the folding roller at that speed too, so that the head is carried 
 the roller and pinned to the table. The end guide does not follow the landing while the
 starter runs: with both ends driven the fountain's length is fixed, and moving the guide
 would stretch it. ``apparatus.starter`` seconds after the first link is laid on the lower
-table, the starter lets go, gradually (:data:`FADE`): its hold on both roller carriages
-fades out over 3 s.
+table, or sooner once the fountain lands where the end guide is (:data:`HOME`), the starter
+lets go, gradually (:data:`FADE`): its hold on both roller carriages fades out over 3 s.
 """
 
 from __future__ import annotations
@@ -38,6 +38,15 @@ launch speed (short: a slow head droops out of the guide instead of flying)."""
 CATCH_RAMP = 0.2
 """'fold': time (s) over which the starter runs the chain up from the launch speed to
 ``apparatus.speed`` once the end guide has caught the head."""
+HOME = 0.01
+"""'fold': the starter lets go early once the fountain lands within this (m) of the end
+guide's first turn (:meth:`StarterPart._landed_home`). It first lands long (the launch
+stores more chain than the machine's fountain holds), and while both ends are driven two
+drives set to one speed differ a little, so its length drifts; at about the machine's own
+length a driven fountain falls (measured at a quarter of a millisecond: 44 links in
+flight), while the machine, let go, holds it."""
+SETTLE = 1.0
+"""'fold': the least time (s) the starter drives on after the first link is laid."""
 FADE = 3.0
 """'fold': time (s) over which the starter's hold on the roller carriages fades out after
 it lets go (a sudden release leaves some starts swinging slowly, 3 % below the speed
@@ -85,6 +94,8 @@ class StarterPart:
         """'fold': True while the starter's hold fades after it let go (:meth:`_fade_starter`)."""
         self._caught_t: float | None = None
         """'fold': when the end guide caught the head (s)."""
+        self._laid_t = math.inf
+        """When the first link was laid on the floor or the lower table (s)."""
         self._hand_over: float | None = None
         """When the starter lets go (s): set once the first link reaches the floor."""
 
@@ -156,6 +167,14 @@ class StarterPart:
             u, w = body.velocity
             body.velocity = (u + k * (u_s - u), w)
 
+    def _landed_home(self) -> bool:
+        """'fold': whether the fountain, its length drifting while both ends are driven,
+        has come to land within :data:`HOME` of the end guide's first turn, at least
+        :data:`SETTLE` after the first link was laid: the starter then lets go at once
+        (a driven fountain shorter than that falls)."""
+        return (self.fold_guided and self._t >= self._laid_t + SETTLE
+                and self.landing_offset > -HOME)
+
     def _check_starter(self) -> None:
         """Let go :attr:`~chainfountain.sim.config.ApparatusConfig.starter` seconds after
         the first link has reached the floor (or the lower table); end the run with one
@@ -163,7 +182,8 @@ class StarterPart:
         could not run it up, or could not thread it)."""
         if self._hand_over is None and self.absorbed > 0:
             self._hand_over = self._t + float(self.cfg.starter)
-        if self._hand_over is not None and self._t >= self._hand_over:
+            self._laid_t = self._t
+        if self._hand_over is not None and (self._t >= self._hand_over or self._landed_home()):
             self.starting = False
             self.fading = self.fold_guided
         elif self._hand_over is None and self._t > LAND_WITHIN and self.fold_guided:
