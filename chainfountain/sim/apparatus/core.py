@@ -87,13 +87,13 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Gri
         path = self._build_upper()
         path.append(self._fountain_path())
         beyond = self._build_end()
-        if not self.from_rest:  # from rest the chain's head is threaded through later
+        if not self.threads:  # else the starter threads the head through later
             path += beyond
         self._lay_along(path)
         self._init_state()
         self._add_swing_damper()
         self.sync_plates()
-        if self.gripped and not self.from_rest:
+        if self.gripped and not self.threads:
             self._init_grip()
         self._take_in_held_links()
 
@@ -139,6 +139,9 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Gri
         self.from_rest = cfg.initial.mode == "stub"
         """The chain starts at rest with a stub at the start, run up by the starter
         (:mod:`.starter`); else it starts laid along its path, moving."""
+        self.threads = self.from_rest and a.variant == "fold"
+        """From rest in 'fold': the chain ends inside the upper guide, and the starter
+        threads its head through the end guide and round the folding roller."""
         self.stub_length = float(cfg.initial.stub_length)
         self.v_lay = 0.0 if self.from_rest else float(a.speed)
         """The speed (m/s) the chain is laid moving at."""
@@ -162,8 +165,9 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Gri
 
     def _fountain_path(self) -> np.ndarray:
         """The chain's path through the predicted fountain (to ``x_floor``, the end's x
-        without a ``floor_depth``); from rest, a straight stub along the launch line."""
-        if self.from_rest and self.variant == "fold":
+        without a ``floor_depth``); from rest, a straight stub along the launch line, and
+        in 'fold' none (the starter threads the head through, :mod:`.starter`)."""
+        if self.threads:
             return np.empty((0, 2))  # the head waits inside the upper guide (_lay_along)
         if self.from_rest:
             s = np.linspace(0.0, self.stub_length, 8)[1:]
@@ -187,13 +191,13 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Gri
         path = np.vstack(parts)
         seg = np.linalg.norm(np.diff(path, axis=0), axis=1)
         s_all = np.concatenate([[0.0], np.cumsum(seg)])
-        if self.lower is not None and not self.from_rest:
+        if self.lower is not None and not self.threads:
             # arc length where the lower wrap starts: the point (x_lo, y_lo)
             idx = int(np.flatnonzero(np.isclose(path[:, 0], self.lower.x)
                                      & np.isclose(path[:, 1], self.y_lo))[0])
             s_lo_wrap = float(s_all[idx])
         pts, s = resample(path, L)
-        if self.from_rest and self.variant == "fold":
+        if self.threads:
             n = int(round(HEAD_BACK / L))
             pts, s = pts[:-n], s[:-n]
         self._lay(pts, s, s_wrap0, s_wrap1, s_lo_wrap, v0, vR, R)
