@@ -140,10 +140,12 @@ def compute_readout(sim: Simulation, recorder: Recorder, history: History) -> Re
             ox, oy = sim.beaker.pickup
             h, lx, H = h - oy, lx - ox, H + oy
             v = sim.beaker.speed
+        starting = sim.apparatus is not None and sim.apparatus.starting
         if not v * v > g * H:
             # no fountain can reach the floor (k*H >= 1): nothing to compare, and tensions
             # scaled by lambda*v^2 of a chain this slow mean nothing to a reader
-            r.note = (f"no fountain: the chain moves at {v:.2f} m/s, slower than the "
+            r.note = ("the starter motor is running the chain up" if starting else
+                      f"no fountain: the chain moves at {v:.2f} m/s, slower than the "
                       f"sqrt(g*H) = {math.sqrt(g * H):.2f} m/s a fountain over this drop needs")
             r.T0_bar = r.TE_bar = math.nan
         elif not h > 0.0:

@@ -308,6 +308,17 @@ def test_a_stalled_chain_pauses_with_a_sentence_and_no_nonsense_readout() -> Non
     assert math.isnan(ro.T0_bar) and math.isnan(ro.TE_theory)
 
 
+def test_while_the_starter_launches_a_fold_the_readout_names_it() -> None:
+    """apparatus_fold_gripped from rest launches its head at 1.87 m/s, slower than a
+    fountain over its drop needs: the readout names the starter, not a missing fountain."""
+    s = Session(io.load(Path(__file__).resolve().parents[2] / "levels"
+                        / "apparatus_fold_gripped.toml"))
+    s.advance(0.6)  # the head in flight, before the end guide catches it (0.71 s)
+    assert s.sim.apparatus.starting and s.sim.apparatus.speed < 2.0
+    ro = s.readout()
+    assert ro.note == "the starter motor is running the chain up" and ro.curve is None
+
+
 def test_window_keeps_a_fed_fountain_at_real_time():
     """Guard-rail: 30 m/s on classroom (3,400 links in flight, about 0.16x real time) is
     set to the fastest speed whose physics the error model's cost keeps within half of
