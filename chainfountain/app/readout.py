@@ -140,12 +140,10 @@ def compute_readout(sim: Simulation, recorder: Recorder, history: History) -> Re
             ox, oy = sim.beaker.pickup
             h, lx, H = h - oy, lx - ox, H + oy
             v = sim.beaker.speed
-        starting = sim.apparatus is not None and sim.apparatus.starting
         if not v * v > g * H:
             # no fountain can reach the floor (k*H >= 1): nothing to compare, and tensions
             # scaled by lambda*v^2 of a chain this slow mean nothing to a reader
-            r.note = ("the starter motor is running the chain up" if starting else
-                      f"no fountain: the chain moves at {v:.2f} m/s, slower than the "
+            r.note = (f"no fountain: the chain moves at {v:.2f} m/s, slower than the "
                       f"sqrt(g*H) = {math.sqrt(g * H):.2f} m/s a fountain over this drop needs")
             r.T0_bar = r.TE_bar = math.nan
         elif not h > 0.0:
@@ -192,6 +190,10 @@ def compute_readout(sim: Simulation, recorder: Recorder, history: History) -> Re
         if n >= 2:
             r.tension_bar = np.mean([p.tension_bar[:n] for p in profs], axis=0)
             r.tension_y = np.mean([p.y[:n] for p in profs], axis=0)
+    if sim.apparatus is not None and sim.apparatus.starting:
+        # the starter sets the links' velocities: the momentum balance reads its drive
+        r.note = "the starter motor is running the chain: pulls are read once it lets go"
+        r.T0_bar = r.TE_bar = math.nan
     if sim.dragging:
         r.note = "a link is held: tension readings paused"
         r.T0_bar = r.TE_bar = math.nan

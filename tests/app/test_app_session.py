@@ -308,15 +308,20 @@ def test_a_stalled_chain_pauses_with_a_sentence_and_no_nonsense_readout() -> Non
     assert math.isnan(ro.T0_bar) and math.isnan(ro.TE_theory)
 
 
-def test_while_the_starter_launches_a_fold_the_readout_names_it() -> None:
-    """apparatus_fold_gripped from rest launches its head at 1.87 m/s, slower than a
-    fountain over its drop needs: the readout names the starter, not a missing fountain."""
+@pytest.mark.parametrize("t", [0.6, 3.0])
+def test_while_the_starter_runs_the_readout_names_it_and_reads_no_pull(t: float) -> None:
+    """apparatus_fold_gripped from rest: while the starter sets the links' velocities the
+    momentum balance reads its drive (a launch pull of -0.67 N at 1.1 s), so the readout
+    names the starter and shows no pull; at 0.6 s the head flies at 1.87 m/s, slower than a
+    fountain over the drop needs, and the readout names the starter, not a missing
+    fountain."""
     s = Session(io.load(Path(__file__).resolve().parents[2] / "levels"
                         / "apparatus_fold_gripped.toml"))
-    s.advance(0.6)  # the head in flight, before the end guide catches it (0.71 s)
-    assert s.sim.apparatus.starting and s.sim.apparatus.speed < 2.0
+    s.advance(t)
+    assert s.sim.apparatus.starting
     ro = s.readout()
-    assert ro.note == "the starter motor is running the chain up" and ro.curve is None
+    assert ro.note.startswith("the starter motor is running the chain")
+    assert math.isnan(ro.T0_bar) and math.isnan(ro.TE_bar)
 
 
 def test_window_keeps_a_fed_fountain_at_real_time():
