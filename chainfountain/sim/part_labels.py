@@ -73,16 +73,15 @@ def part_labels(sim: Simulation) -> list[PartLabel]:
         cart_y[i] = float(cy)
         out.append(PartLabel(f"{names[i]} {_grams(units[i].cart.mass)}",
                              float(cx), float(cy), "below", tier=1))
-    if getattr(app, "starting", False) and app.up_guide:
+    starter = ("" if not app.up_guide else
+               "starter motor: letting go" if getattr(app, "fading", False) else
+               "" if not getattr(app, "starting", False) else
+               "starter motor: threads the chain round the folding roller, then lets go"
+               if a.variant == "fold" else
+               "starter motor: runs the chain up, lets go once it has landed")
+    if starter:
         (ax, ay), (bx, by) = app.up_guide[-1].a, app.up_guide[-1].b
-        text = ("starter motor: runs the chain up, lets go once it has landed"
-                if a.variant != "fold" else "starter motor: threads the chain round the "
-                "folding roller, then lets go")
-        out.append(PartLabel(text, 0.5 * (ax + bx), 0.5 * (ay + by), "left"))
-    elif getattr(app, "fading", False) and app.up_guide:
-        (ax, ay), (bx, by) = app.up_guide[-1].a, app.up_guide[-1].b
-        out.append(PartLabel("starter motor: letting go", 0.5 * (ax + bx),
-                             0.5 * (ay + by), "left"))
+        out.append(PartLabel(starter, 0.5 * (ax + bx), 0.5 * (ay + by), "left"))
     ex, ey = app.end
     if a.variant == "fold":
         follows = ""

@@ -97,7 +97,8 @@ class StarterPart:
         self._laid_t = math.inf
         """When the first link was laid on the floor or the lower table (s)."""
         self._hand_over: float | None = None
-        """When the starter lets go (s): set once the first link reaches the floor."""
+        """When the starter lets go (s): set once the first link reaches the floor, and
+        to the moment it does let go (:meth:`_fade_starter` counts from it)."""
 
     @property
     def starter_speed(self) -> float:
@@ -184,6 +185,7 @@ class StarterPart:
             self._hand_over = self._t + float(self.cfg.starter)
             self._laid_t = self._t
         if self._hand_over is not None and (self._t >= self._hand_over or self._landed_home()):
+            self._hand_over = min(self._hand_over, self._t)  # sooner if it landed home
             self.starting = False
             self.fading = self.fold_guided
         elif self._hand_over is None and self._t > LAND_WITHIN and self.fold_guided:
