@@ -29,24 +29,29 @@ XI2 = (0.15, 0.25, 0.35)
 
 def tuning_args(doc: str, duration: float, argv: list[str] | None) -> argparse.Namespace:
     """The tuning scripts' options: ``--out`` (required), ``--duration``, ``--jobs``,
-    ``--figure``."""
+    ``--figure``, ``--seeds``."""
     ap = argparse.ArgumentParser(description=doc.split("\n\n")[0])
     ap.add_argument("--out", type=Path, required=True)
     ap.add_argument("--duration", type=float, default=duration)
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--figure", type=Path)
+    ap.add_argument("--seeds", type=int, nargs="+", default=None,
+                    help="run every point once per seed (an apparatus: a seed above 0 "
+                    "nudges its start by 1e-12)")
     return ap.parse_args(argv)
 
 
-def run_grid(level: str, grid: dict[str, tuple[float, ...]], a: argparse.Namespace
-             ) -> list[dict]:
+def run_grid(level: str, grid: dict[str, tuple[float, ...]], a: argparse.Namespace,
+             seeds: list[int] | None = None) -> list[dict]:
     """Sweep the shipped ``level`` over ``grid`` (field: values) for ``a.duration`` s per
-    point into ``a.out`` on ``a.jobs`` processes (``chainfountain sweep``); its rows."""
+    point into ``a.out`` on ``a.jobs`` processes (``chainfountain sweep``), once per seed
+    of ``seeds`` if given; its rows."""
     a.out.mkdir(parents=True, exist_ok=True)
     sweep_file = a.out / "tuning.toml"
     lines = "".join(f'"{k}" = {list(v)}\n' for k, v in grid.items())
+    seeded = f"seeds = {list(seeds)}\n" if seeds else ""
     sweep_file.write_text(f'base = "{ROOT / "levels" / f"{level}.toml"}"\n'
-                          f"duration = {a.duration}\n[grid]\n{lines}")
+                          f"duration = {a.duration}\n{seeded}[grid]\n{lines}")
     from chainfountain.study import sweep
 
     sw = sweep.load(sweep_file)

@@ -40,8 +40,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="output folder (default runs/<level name>)")
     p.add_argument("--seed", type=integer("a seed", min=0), default=None,
                    help="override the level's random seed (kind 'feed'; kind 'scene' with "
-                   "scene.jitter; kind 'beaker': a 1e-12 nudge that picks another of the "
-                   "pile's chaotic runs)")
+                   "scene.jitter; kinds 'beaker' and 'apparatus': a seed above 0 nudges "
+                   "every moving body by 1e-12 of its velocity, which picks another of "
+                   "the run's chaotic outcomes)")
     p.add_argument("--error-bars", action="store_true",
                    help="also estimate the discretisation error (kind 'feed': two short runs "
                    "from the catenary at the level's link length and step and at half of "
@@ -62,12 +63,6 @@ def run(args: argparse.Namespace) -> int:
     from chainfountain.level import io, library
 
     level = io.load(library.resolve(args.level))
-    if args.seed is not None and level.sim.kind == "apparatus":
-        raise UserError(
-            f"argument --seed: {args.seed} has no effect on {level.meta.name!r} (kind "
-            f"{level.sim.kind!r}: the apparatus lays its chain along its own path; to start a "
-            "perturbed run, change apparatus.speed slightly); allowed: only with kind 'feed' "
-            "or 'scene' levels")
     if args.seed is not None and level.sim.kind == "scene" and level.sim.scene.jitter == 0:
         raise UserError(
             f"argument --seed: {args.seed} has no effect on {level.meta.name!r} (its "

@@ -199,13 +199,14 @@ def _check_apparatus_start(sim: SimConfig, where: str) -> None:
     from_rest = sim.initial.mode == "stub"
     for f in dataclasses.fields(sim.initial):
         value, default = getattr(sim.initial, f.name), getattr(default_initial, f.name)
-        if value == default or (from_rest and f.name in ("mode", "stub_length")):
+        if value == default or f.name == "seed" or (
+                from_rest and f.name in ("mode", "stub_length")):
             continue
         _fail(where, f"initial.{f.name}",
               f"{value!r} has no effect in an 'apparatus' level: the apparatus lays its "
               "chain along its own path, moving at apparatus.speed, or from rest with "
-              "initial.mode = 'stub' (to start a perturbed run, change apparatus.speed "
-              f"slightly); allowed: {default!r}" + (", or 'stub'" if f.name == "mode" else ""))
+              "initial.mode = 'stub' (to start a perturbed run, set initial.seed above 0: "
+              f"a 1e-12 nudge); allowed: {default!r}" + (", or 'stub'" if f.name == "mode" else ""))
     if not from_rest:
         if a.starter:
             _fail(where, "apparatus.starter",

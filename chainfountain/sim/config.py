@@ -283,7 +283,11 @@ class InitialConfig:
         1e-3, unit="rad", doc="Random angle perturbation per link at start (rad)",
         min=0.0, max=0.5,
     )
-    seed: int = param(0, unit="1", doc="Random seed for the initial perturbation", min=0)
+    seed: int = param(
+        0, unit="1", doc="Random seed for the initial perturbation (kinds 'apparatus' and "
+        "'beaker': a seed above 0 nudges every moving body by 1e-12 of its velocity, which "
+        "picks another of the run's chaotic outcomes; 0: no nudge)", min=0,
+    )
 
 
 @dataclass

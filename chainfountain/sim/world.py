@@ -169,12 +169,16 @@ class Simulation:
 
         ``self.feed`` is the :class:`Apparatus` too (it offers the feed's interface:
         ``speed``, ``n_free``, ``floor_y``, ``absorbed``); ``reference`` is ``None``
-        (the apparatus chooses its speed; see ``apparatus.fountain`` for the layout)."""
+        (the apparatus chooses its speed; see ``apparatus.fountain`` for the layout).
+        ``initial.seed`` > 0 nudges every moving body by 1e-12 of its velocity
+        (:meth:`nudge`): another of the machine's chaotic runs, for ensembles."""
         cfg = self.config
         space = self.space
         self.chain = Chain(space, cfg.chain, cfg.solver, shapes=True,
                            wave_damping=self._wave_damping(cfg.apparatus.speed))
         self.apparatus = Apparatus(space, self.chain, cfg)
+        if cfg.initial.seed:  # a chaotic machine: a seed picks another of its runs
+            nudge_bodies(space, cfg.initial.seed)
         self.feed = self.apparatus  # type: ignore[assignment]
         self._start()
 

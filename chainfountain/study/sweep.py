@@ -4,7 +4,8 @@ A sweep file (TOML)::
 
     base = "paper_tall"          # a level name, or a path relative to the sweep file
     duration = 6.0               # simulated seconds per point (default: the level's)
-    seeds = [0, 1]               # optional: every point once per seed
+    seeds = [0, 1]               # optional: every point once per seed (an apparatus or
+                                 # beaker: a seed above 0 nudges the start by 1e-12)
     snapshots = false            # optional: each point's snapshot.png (0.3 s each)
     [grid]                       # every combination of these fields' values
     "feed.speed" = [5.0, 5.5, 6.0]
@@ -121,7 +122,8 @@ def load(path: str | Path) -> Sweep:
             or not all(s is None or (isinstance(s, int) and not isinstance(s, bool) and s >= 0)
                        for s in seeds)):
         _fail(where, "seeds", f"{seeds!r}; allowed: a non-empty list of integers >= 0")
-    seeded = base.sim.kind == "feed" or (base.sim.kind == "scene" and base.sim.scene.jitter > 0)
+    seeded = base.sim.kind in ("feed", "apparatus", "beaker") or (
+        base.sim.kind == "scene" and base.sim.scene.jitter > 0)
     if not seeded and seeds != [None]:
         _fail(where, "seeds", f"{seeds!r} has no effect on {base.meta.name!r} (kind "
               f"{base.sim.kind!r}" + (", scene.jitter 0" if base.sim.kind == "scene" else "")

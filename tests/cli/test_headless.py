@@ -73,14 +73,32 @@ def test_cli_run_and_bad_flags(tmp_path, quick_level):
     assert r.returncode == 2 and "no such file" in r.stderr and "Traceback" not in r.stderr
 
 
-def test_cli_seed_on_an_apparatus_level_is_refused(tmp_path):
-    """An apparatus lays its own chain: ``--seed`` would change nothing, so it is refused
-    (one line, status 2, nothing written) instead of silently ignored."""
-    r = _cli("run", "apparatus_special", "--seed", "3", "--out", str(tmp_path / "o"))
-    assert r.returncode == 2 and "Traceback" not in r.stderr
-    assert len(r.stderr.strip().splitlines()) == 1
-    assert "--seed: 3 has no effect" in r.stderr and "apparatus.speed" in r.stderr
-    assert not (tmp_path / "o").exists()
+def test_a_seed_nudges_an_apparatus_start_and_repeats_it() -> None:
+    """``initial.seed`` above 0 (``run --seed``, a sweep's ``seeds``) nudges an apparatus's
+    start by 1e-12 as :meth:`Simulation.nudge` does: another run of the chaotic machine,
+    the same one for the same seed; 0 leaves the level's own start."""
+    import dataclasses
+
+    import numpy as np
+
+    from chainfountain.level import io as level_io
+    from chainfountain.sim import Simulation
+
+    base = level_io.load(Path(__file__).resolve().parents[2] / "levels"
+                         / "apparatus_special.toml").sim
+
+    def velocities(seed: int, nudge: int | None = None) -> np.ndarray:
+        cfg = dataclasses.replace(base, initial=dataclasses.replace(base.initial, seed=seed))
+        sim = Simulation(cfg)
+        if nudge is not None:
+            sim.nudge(nudge)
+        return sim.state().velocity
+
+    plain, one, again = velocities(0), velocities(1), velocities(1)
+    assert np.array_equal(one, again)
+    assert np.array_equal(one, velocities(0, nudge=1))
+    d = np.abs(one - plain)
+    assert 0 < d.max() < 1e-10 * (np.abs(plain).max() + 1.0)
 
 
 def test_default_duration_of_a_table_sized_apparatus_is_its_own() -> None:

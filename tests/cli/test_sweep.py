@@ -69,7 +69,7 @@ def test_sweep_runs_records_refusals_and_resumes(tmp_path):
     ('base = "wide_low"\n[grid]\n"feed.sped" = [4.0]\n', ["feed.sped", "unknown key"]),
     ('base = "wide_low"\n[grid]\n"feed.speed" = 4.0\n', ["grid.feed.speed", "non-empty list"]),
     ('base = "wide_low"\nduration = -1\n[grid]\n"feed.speed" = [4.0]\n', ["duration", "-1"]),
-    ('base = "apparatus_floor"\nseeds = [1]\n[grid]\n"apparatus.speed" = [3.0]\n',
+    ('base = "falling_chain"\nseeds = [1]\n[grid]\n"scene.length" = [1.0]\n',
      ["seeds", "no effect"]),
     ('base = "wide_low"\n[grid\n', ["not valid TOML"]),
 ])

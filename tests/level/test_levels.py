@@ -134,7 +134,6 @@ def test_level_name_resolves_even_if_a_folder_has_that_name(tmp_path, monkeypatc
 
 
 APPARATUS_BAD = [  # (key, new line, field, shown, allowed) in a copy of apparatus_special
-    ("seed", "seed = 3", "initial.seed", "3", "allowed: 0"),
     ("jitter", "jitter = 0.01", "initial.jitter", "0.01", "allowed: 0.001"),
     ("mode", 'mode = "stub"', "apparatus.fold_roller", "'contact'",
      "allowed: fold_roller = 'gripped'"),
