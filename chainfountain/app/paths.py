@@ -5,13 +5,14 @@ from __future__ import annotations
 import tomllib
 from pathlib import Path
 
+from chainfountain.level.library import DEFAULT_LEVEL_NAME, safe_name
 from chainfountain.level.library import home_dir as user_home
-from chainfountain.level.library import safe_name
 from chainfountain.level.library import shipped_dir as builtin_levels_dir
 from chainfountain.level.library import user_dir as user_levels_dir
 
-__all__ = ["builtin_levels_dir", "captures_dir", "level_description", "list_levels",
-           "safe_name", "user_home", "user_levels_dir"]
+__all__ = ["FORMING", "HEADING_TEXT", "LAID", "SAVED", "builtin_levels_dir", "captures_dir",
+           "forms_from_rest", "level_description", "list_levels", "safe_name", "user_home",
+           "user_levels_dir"]
 
 
 def captures_dir(create: bool = False) -> Path:
@@ -31,6 +32,14 @@ def _is_scene(path: Path) -> bool:
         return False
 
 
+def _read(path: Path) -> dict:
+    """A level file's TOML as written (not validated), or ``{}`` when it cannot be read."""
+    try:
+        return tomllib.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return {}
+
+
 def level_description(path: Path) -> str:
     """A level file's ``meta.description`` as written (not validated: the picker shows it
     before the level is opened), or a line saying why it cannot be read."""
@@ -42,13 +51,49 @@ def level_description(path: Path) -> str:
     return text.strip() if isinstance(text, str) and text.strip() else "(no description)"
 
 
-def list_levels() -> list[tuple[str, Path]]:
-    """All level files the picker offers: ``(label, path)``, shipped first, then the user's;
-    scene levels are left out (``chainfountain run`` runs them)."""
-    out: list[tuple[str, Path]] = []
-    for label, folder in (("levels", builtin_levels_dir()), ("saved", user_levels_dir())):
-        if folder.is_dir():
-            for p in sorted(folder.glob("*.toml")):
-                if not _is_scene(p):
-                    out.append((f"{label}/{p.name}", p))
+def forms_from_rest(path: Path) -> bool:
+    """Whether a level starts at rest and forms its fountain (a beaker; a fed level or an
+    apparatus with ``initial.mode = "stub"``), rather than starting laid on its path,
+    moving, as the studies do."""
+    data = _read(path)
+    if data.get("kind") == "beaker":
+        return True
+    initial = data.get("initial")
+    return isinstance(initial, dict) and initial.get("mode") == "stub"
+
+
+FORMING, LAID, SAVED = ("-- these form from rest --", "-- these start on their path --",
+                        "-- your saved levels --")
+"""The picker's headings: shipped levels that start at rest and form their fountain (the
+demonstrations; the default first), shipped levels that start laid on their path, moving
+(studies of the steady state and of where the model and the paper disagree), and the
+user's saved levels."""
+
+HEADING_TEXT = {
+    FORMING: "The levels below start at rest and form their fountain: the demonstrations.",
+    LAID: "The levels below start laid on their path, already moving: studies of the "
+    "steady machine, and the arrangements where this model and the paper disagree. "
+    "Their descriptions say why each does not form from rest.",
+    SAVED: "The levels you saved (Ctrl+S), from your own folder.",
+}
+"""What the picker says when a heading is clicked."""
+
+
+def list_levels(default: str = DEFAULT_LEVEL_NAME) -> list[tuple[str, Path | None]]:
+    """The picker's rows: ``(label, path)``, ``path`` None for a heading
+    (:data:`FORMING`, :data:`LAID`, :data:`SAVED`). Shipped levels that form from rest
+    come first (``default`` at their head), then the shipped ones that start on their
+    path, then the user's; scene levels are left out (``chainfountain run`` runs them)."""
+    shipped = [p for p in sorted(builtin_levels_dir().glob("*.toml")) if not _is_scene(p)] \
+        if builtin_levels_dir().is_dir() else []
+    forming = sorted((p for p in shipped if forms_from_rest(p)), key=lambda p: p.stem != default)
+    laid = [p for p in shipped if not forms_from_rest(p)]
+    saved = [p for p in sorted(user_levels_dir().glob("*.toml")) if not _is_scene(p)] \
+        if user_levels_dir().is_dir() else []
+    out: list[tuple[str, Path | None]] = []
+    for heading, paths, label in ((FORMING, forming, "levels"), (LAID, laid, "levels"),
+                                  (SAVED, saved, "saved")):
+        if paths:
+            out.append((heading, None))
+            out += [(f"{label}/{p.name}", p) for p in paths]
     return out

@@ -409,13 +409,13 @@ class App(InputMixin, DrawMixin):
     def open_load_dialog(self) -> None:
         self.close_dialogs()
         items = paths.list_levels()
-        self._load_items = {label: p for label, p in items}
+        self._load_items = {label: p for label, p in items if p is not None}
         px = render.px
         w = min(px(780), self.size[0] - 20)
         r = pygame.Rect(0, 0, w, min(px(400), self.size[1] - 20))
         r.center = (self.size[0] // 2, self.size[1] // 2)
         win = UIWindow(r, self.ui, window_display_title="Open a level", always_on_top=True)
-        labels = list(self._load_items) or ["(no level files found)"]
+        labels = [label for label, _ in items] or ["(no level files found)"]
         list_w, list_h = px(300), r.h - px(100)
         self.load_list = UISelectionList(pygame.Rect(8, 6, list_w, list_h), labels, self.ui,
                                          container=win)
@@ -432,11 +432,18 @@ class App(InputMixin, DrawMixin):
 
     def describe_choice(self, label: str | None) -> None:
         """Show the picked level's description beside the picker's list."""
-        path = self._load_items.get(label or "")
-        if path is None or self.load_about is None:
+        if self.load_about is None:
             return
-        name = html.escape(path.stem)
-        self.load_about.set_text(f"{name}:<br>" + html.escape(paths.level_description(path)))
+        if label in paths.HEADING_TEXT:
+            self.load_about.set_text(html.escape(paths.HEADING_TEXT[label]))
+            return
+        path = self._load_items.get(label or "")
+        if path is None:
+            return
+        start = ("Starts at rest and forms its fountain." if paths.forms_from_rest(path)
+                 else "Starts laid on its path, already moving.")
+        self.load_about.set_text(f"{html.escape(path.stem)}: {start}<br>"
+                                 + html.escape(paths.level_description(path)))
 
     def close_dialogs(self) -> bool:
         closed = False

@@ -617,6 +617,38 @@ def test_the_picker_shows_what_each_level_shows(app):
     assert app.load_window is None and app.load_about is None
 
 
+def test_the_picker_lists_the_levels_that_form_first_under_headings(app):
+    """A teacher picks a demonstration: the shipped levels that start at rest and form come
+    first (the default at their head), then those that start on their path; a heading
+    says what its group is, and each level says how it starts."""
+    from chainfountain.app import paths
+
+    key(app, pygame.K_l)
+    assert app.load_list is not None
+    rows = [label for label, _ in paths.list_levels()]
+    assert rows[0] == paths.FORMING and rows[1] == "levels/beaker.toml"
+    laid = rows.index(paths.LAID)
+    assert all(paths.forms_from_rest(app._load_items[r]) for r in rows[1:laid])
+    assert not any(paths.forms_from_rest(app._load_items[r]) for r in rows[laid + 1:])
+    assert "levels/apparatus_fold_gripped.toml" in rows[1:laid]
+    assert "levels/apparatus_fold.toml" in rows[laid + 1:]
+    for r in rows[laid + 1:]:  # each says so, and why
+        text = paths.level_description(app._load_items[r])
+        assert "starts laid on its path" in text.lower() or "starts on the predicted curve" \
+            in text.lower(), r
+    app.describe_choice(paths.LAID)
+    app.run_frame()
+    assert "already moving" in app.load_about.html_text
+    app.describe_choice("levels/apparatus_special.toml")
+    app.run_frame()
+    assert "Starts laid on its path" in app.load_about.html_text
+    app.describe_choice("levels/beaker.toml")
+    app.run_frame()
+    assert "Starts at rest and forms" in app.load_about.html_text
+    assert not app.do_load(paths.FORMING)  # a heading opens nothing
+    assert app.session.messages[-1][1] == "pick a level first"
+
+
 def test_e_switches_the_readout_between_plain_words_and_symbols(app):
     assert not app.expert  # a class first: plain words
     key(app, pygame.K_e)
