@@ -207,6 +207,30 @@ def test_the_braked_gripped_folds_carts_span_where_it_keeps_running(
     assert "apparatus.fold_brake" not in {s.path for s in controls.control_fields(contact.sim)}
 
 
+@pytest.mark.parametrize("upper, lower, runs", [
+    (0.008, 0.296, False), (0.008, 0.301, False), (0.008, 0.306, True),
+    (0.013, 0.296, True), (0.013, 0.301, True), (0.019, 0.296, True),
+])
+def test_both_gripped_fold_carts_far_lighter_at_once_are_outside_the_spans(
+        upper: float, lower: float, runs: bool) -> None:
+    """Both carts much lighter than 19 / 311 g at once lost the chain (upper 8 g with lower
+    296 g or 301 g from one of two live starts, 296 g from both starts from rest;
+    laws.FOLLOW_LIGHT_CORNER), where each alone, and 8 g with 306 g or 13 g with 296 g,
+    kept it: the pair is outside the spans, and each slider's span follows the other's."""
+    from chainfountain.sim.apparatus.laws import fold_runs_on
+
+    lvl = io.load(library.resolve("apparatus_fold_gripped"))
+    cand = io.load(library.resolve("apparatus_fold_gripped"))
+    cand.sim.carts[0].mass, cand.sim.carts[1].mass = upper, lower
+    assert fold_runs_on(cand.sim, lvl.sim) is runs
+    cand.sim.carts[1].mass = 0.296  # the upper slider then starts at 13 g
+    lo, _ = spans.admissible(cand, _spec(cand, "carts[0].mass"), lvl.sim)
+    assert lo == pytest.approx(0.013, abs=1e-9)
+    cand.sim.carts[0].mass = 0.008  # the lower slider at 306 g
+    lo, _ = spans.admissible(cand, _spec(cand, "carts[1].mass"), lvl.sim)
+    assert lo == pytest.approx(0.306, abs=1e-9)
+
+
 def test_the_readout_gives_the_speed_a_braked_fold_selects() -> None:
     """``v = 2 (F_lc + lambda g H (1 - xi2 - xi3) - F_uc)/c`` with the preset's numbers
     (19 g and 311 g on 30-deg tracks, brake 1 N s/m): 2.961 m/s."""

@@ -187,23 +187,37 @@ neither (the speed swings until the fountain leaves the mouth). The speed then s
 2.8-3.3 m/s."""
 FOLLOW_PUSH_BAND = (-15.0 * _GRAM_AT_30, 30.0 * _GRAM_AT_30)
 """Band (N) of the net push ``dF_lc - FOLD_UPPER_WEIGHT*dF_uc`` with a following end
-guide: the single carts' bands of :data:`FOLLOW_CART_BAND` (both carts moved at once were
-not measured)."""
+guide: the single carts' bands of :data:`FOLLOW_CART_BAND`."""
+FOLLOW_LIGHT_CORNER = (2.0, -27.0 * _GRAM_AT_30)
+"""``(c, m)``: with a following end guide, both carts lighter at once must keep
+``dF_lc + c*dF_uc >= m`` (N): the two carts far below the level's together lose the
+chain. Measured on ``apparatus_fold_gripped`` (19 / 311 g), both carts set at once
+12 s after a start from rest (``python research/live_tuning.py apparatus_fold_gripped
+'carts[1].mass' 0.296 0.301 0.306 --also 'carts[0].mass=0.008' --at 12 --after 30
+--starts 2``, and ``=0.013`` with 0.296 0.301): upper 8 g with lower 296 g and with
+301 g held 1 of 2 starts each, with 306 g 2 of 2; upper 13 g with 296 and 301 g 2 of 2
+each. From rest with both carts set (``python research/fold_tuning.py``, two starts
+each) upper 8 g with 296 g held neither, and every pair inside the bands held both
+(docs/apparatus.md, "Tuning both carts")."""
 
 
-def _bands(cfg: SimConfig) -> tuple[tuple[tuple[float, float], tuple[float, float]],
-                                     tuple[float, float], float]:
-    """The fold machine's measured bands: each cart's, the net push's and the upper cart's
-    weight in it (:data:`FOLD_CART_BAND`, :data:`FOLD_PUSH_BAND`,
-    :data:`FOLD_UPPER_WEIGHT` for the contact fold; :data:`BRAKED_CART_BAND` and
-    :data:`BRAKED_PUSH_BAND` for a gripped fold with a brake; :data:`FOLLOW_CART_BAND` and
-    :data:`FOLLOW_PUSH_BAND` when its end guide also follows the landing)."""
+_Bands = tuple[tuple[tuple[float, float], tuple[float, float]], tuple[float, float], float,
+               tuple[float, float] | None]
+
+
+def _bands(cfg: SimConfig) -> _Bands:
+    """The fold machine's measured bands: each cart's, the net push's, the upper cart's
+    weight in it and the light corner's ``(c, m)`` or None (:data:`FOLD_CART_BAND`,
+    :data:`FOLD_PUSH_BAND`, :data:`FOLD_UPPER_WEIGHT` for the contact fold;
+    :data:`BRAKED_CART_BAND` and :data:`BRAKED_PUSH_BAND` for a gripped fold with a brake;
+    :data:`FOLLOW_CART_BAND`, :data:`FOLLOW_PUSH_BAND` and :data:`FOLLOW_LIGHT_CORNER`
+    when its end guide also follows the landing)."""
     a = cfg.apparatus
     if a.fold_roller == "gripped" and a.fold_brake > 0.0 and a.end_follow > 0.0:
-        return FOLLOW_CART_BAND, FOLLOW_PUSH_BAND, FOLD_UPPER_WEIGHT
+        return FOLLOW_CART_BAND, FOLLOW_PUSH_BAND, FOLD_UPPER_WEIGHT, FOLLOW_LIGHT_CORNER
     if a.fold_roller == "gripped" and a.fold_brake > 0.0:
-        return BRAKED_CART_BAND, BRAKED_PUSH_BAND, FOLD_UPPER_WEIGHT
-    return FOLD_CART_BAND, FOLD_PUSH_BAND, FOLD_UPPER_WEIGHT
+        return BRAKED_CART_BAND, BRAKED_PUSH_BAND, FOLD_UPPER_WEIGHT, None
+    return FOLD_CART_BAND, FOLD_PUSH_BAND, FOLD_UPPER_WEIGHT, None
 
 
 def _fold_offsets(cfg: SimConfig, balance: SimConfig) -> list[float]:
@@ -225,11 +239,13 @@ def fold_runs_on(cfg: SimConfig, balance: SimConfig) -> bool:
     as built), each, and their net push within its band (:func:`_bands`)."""
     if len(cfg.carts) < 2 or len(balance.carts) < 2:
         return True
-    carts, pushes, w = _bands(balance)
+    carts, pushes, w, corner = _bands(balance)
     df = _fold_offsets(cfg, balance)
     for (lo, hi), d in zip(carts, df, strict=True):
         if not lo - 1e-12 <= d <= hi + 1e-12:
             return False
+    if corner is not None and df[1] + corner[0] * df[0] < corner[1] - 1e-12:
+        return False
     push = df[1] - w * df[0]
     return pushes[0] - 1e-12 <= push <= pushes[1] + 1e-12
 
@@ -240,12 +256,15 @@ def fold_cart_span(cfg: SimConfig, balance: SimConfig, i: int) -> tuple[float, f
     far off that none does, or the cart's track is level (its mass pushes nothing) or
     tilted the other way (only a negative mass would run)."""
     df = _fold_offsets(cfg, balance)
-    carts, (a, b), w = _bands(balance)
+    carts, (a, b), w, corner = _bands(balance)
     lo, hi = carts[i]
     if i == 1:  # a <= d1 - w*d0 <= b
         lo, hi = max(lo, a + w * df[0]), min(hi, b + w * df[0])
     else:  # (d1 - b)/w <= d0 <= (d1 - a)/w
         lo, hi = max(lo, (df[1] - b) / w), min(hi, (df[1] - a) / w)
+    if corner is not None:  # d1 + c*d0 >= m
+        c, m = corner
+        lo = max(lo, m - c * df[0]) if i == 1 else max(lo, (m - df[1]) / c)
     cart = cfg.carts[i]
     per_kg = float(cfg.gravity) * math.sin(cart.incline)  # N of cart force per kg
     if lo > hi + 1e-12 or abs(per_kg) < 1e-9:  # none runs, or the mass moves no force
