@@ -51,6 +51,14 @@ PANEL_SHARE = 0.55
 text scale is capped for it)."""
 GUI_FONT = 14
 """pygame_gui's text size (pixels at text scale 1)."""
+FRAMEBUFFER_HINT = "SDL_FRAMEBUFFER_ACCELERATION"
+"""SDL's hint for how a window's pixels reach the screen; the window sets it to "0" unless
+the environment sets it: through the display's own framebuffer (X11: shared memory), not
+SDL's OpenGL texture. Without GPU drivers (Mesa's llvmpipe; Xvfb) the OpenGL path runs two
+rendering threads beside the physics on the same cores: ``apparatus_fold_gripped`` in a
+1280x760 window under Xvfb ran at 0.89-0.91x real time and 30-31 frames/s with it,
+0.97-0.98x and 42-44 frames/s without (``benchmarks/bench_app.py --window``, two runs
+each; docs/apparatus.md). Set ``SDL_FRAMEBUFFER_ACCELERATION=1`` to use it."""
 MIN_FPS = 30
 """The frame rate may drop to this before the simulation runs slower than requested."""
 FOLLOW_EVERY = 30
@@ -132,6 +140,7 @@ class App(InputMixin, DrawMixin):
 
     def __init__(self, session: Session, size: tuple[int, int] = DEFAULT_SIZE,
                  offscreen: bool = False, fps: int = 60, projector: bool = False) -> None:
+        os.environ.setdefault(FRAMEBUFFER_HINT, "0")
         pygame.display.init()
         pygame.font.init()
         flags = 0 if offscreen else pygame.RESIZABLE

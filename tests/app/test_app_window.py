@@ -724,3 +724,23 @@ def test_a_window_steps_its_physics_while_the_frame_goes_to_the_screen(tmp_path,
             a.run_frame(1.0 / 60.0)
     finally:
         a.finish()
+
+
+@pytest.mark.parametrize("preset, want", [(None, "0"), ("1", "1")])
+def test_the_window_uses_the_displays_framebuffer_unless_told_otherwise(
+        tmp_path, monkeypatch, preset, want) -> None:
+    """Without GPU drivers SDL's OpenGL path costs the physics two threads' worth of CPU
+    (window.FRAMEBUFFER_HINT): the window asks for the display's own framebuffer, and an
+    environment that says otherwise is obeyed."""
+    from chainfountain.app.window import FRAMEBUFFER_HINT
+
+    monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
+    monkeypatch.setenv("SDL_VIDEODRIVER", "dummy")
+    monkeypatch.delenv(FRAMEBUFFER_HINT, raising=False)
+    if preset is not None:
+        monkeypatch.setenv(FRAMEBUFFER_HINT, preset)
+    a = App(Session(small_level()), size=(640, 480), offscreen=True)
+    try:
+        assert os.environ[FRAMEBUFFER_HINT] == want
+    finally:
+        a.finish()
