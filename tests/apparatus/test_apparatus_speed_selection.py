@@ -1,18 +1,18 @@
 """Speed selection of the free-ended apparatus: a heavier upper cart, a slower chain.
 
-``levels/apparatus_floor_heavy.toml`` (15 g cart) against ``apparatus_floor``
-(9 g, about 2.93 m/s, ``tests/apparatus/test_apparatus_floor.py``). Paper (section
-"Generating Steady-State Chain Fountains", free end ``Tbar_E = 0``):
-``v**2 = (g*H*(1 - xi2) - G*F_uc/lambda)/p``. What is asserted is what the
-simulation does (``docs/apparatus.md``): the heavy cart selects a clearly lower
-speed, steady; the paper's ``p = 1/2, G = 1`` gives 1.98 m/s. The rig law for these
-links (:data:`~chainfountain.sim.apparatus.PICKUP_RIG_2CM`, ``CART_GAIN_2CM``) predicts
-2.876 +- 0.014 m/s and the chain runs at 2.752 (-4.3 %, a strict expected failure):
-the energy budget finds 0.0173 ``lambda v**3`` lost between the plate and the free end
-(the guide's arc 0.0092, the flight 0.0049, the grooves 0.0030); with it the law gives
-2.786 m/s, still 1.3 % (2.5 sigma) above the run (strict expected failure): the heavy
-preset's pick-up needs about 0.007 ``lambda v^2`` more than the rig's.
-The rig law read through biased contacts predicts 2.743, close by chance.
+``levels/apparatus_floor_heavy.toml`` (15 g cart, a 0.25 ms step) against
+``apparatus_floor`` (9 g, about 2.93 m/s, ``tests/apparatus/test_apparatus_floor.py``).
+Paper (section "Generating Steady-State Chain Fountains", free end ``Tbar_E = 0``):
+``v**2 = (g*H*(1 - xi2) - G*F_uc/lambda)/p``. What is asserted is what the simulation
+does (``docs/apparatus.md``): the heavy cart selects a clearly lower speed, steady; the
+paper's ``p = 1/2, G = 1`` gives 1.98 m/s. The rig law for these links
+(:data:`~chainfountain.sim.apparatus.PICKUP_RIG_2CM`, ``CART_GAIN_2CM``) predicts 2.876
++- 0.014 m/s and the chain runs at 2.78 (-3.4 %, a strict expected failure): the energy
+budget finds about 0.014 ``lambda v**3`` lost between the plate and the free end (the
+guide's arc, the flight, the grooves); with it the law gives 2.80-2.81 m/s, and the runs
+of three nudged starts lie 0.8-0.95 % (1.6-1.8 sigma) below it. At a 0.5 ms step the
+preset runs at 2.752, 2.5 sigma below, as if its pick-up needed more than the rig's: the
+step's error, which is why the preset steps at 0.25 ms.
 """
 
 from __future__ import annotations
@@ -34,20 +34,35 @@ pytestmark = pytest.mark.xdist_group("apparatus_speed_selection")
 """The module-scoped run is computed once, on one worker (``--dist loadgroup``)."""
 
 
+SEEDS = (0, 1, 2)
+"""Starts of the ensemble: 0 the level's own, above 0 nudged by 1e-12
+(``initial.seed``)."""
+
+
 @pytest.fixture(scope="module")
-def rep():
-    sim = Simulation(load_on_path(LEVEL).sim)
-    rec = Recorder(sim, profiles=False)
-    budget = EnergyBudget(sim, start=3.0, every=2)
-    sim.advance(RUN)
-    out = report(sim, rec, 3.0, RUN)
-    out["energy_budget"] = budget.result()
+def runs() -> list[dict]:
+    out = []
+    for seed in SEEDS:
+        level = load_on_path(LEVEL)
+        level.sim.initial.seed = seed
+        sim = Simulation(level.sim)
+        rec = Recorder(sim, profiles=False)
+        budget = EnergyBudget(sim, start=3.0, every=2)
+        sim.advance(RUN)
+        rep = report(sim, rec, 3.0, RUN)
+        rep["energy_budget"] = budget.result()
+        out.append(rep)
     return out
+
+
+@pytest.fixture(scope="module")
+def rep(runs):
+    return runs[0]
 
 
 def test_heavier_cart_selects_a_lower_speed(rep) -> None:
     sel = rep["speed_selection"]
-    assert sel["v_measured"] < 2.93 - 0.15  # light preset: 2.93 m/s; measured 2.73
+    assert sel["v_measured"] < 2.93 - 0.1  # light preset: 2.93 m/s; measured 2.78
     assert sel["v_measured"] > sel["v_paper_p_half"] * 1.2  # paper p = 1/2: far too slow
 
 
@@ -55,23 +70,25 @@ def test_heavy_cart_steady(rep) -> None:
     assert abs(rep["measured"]["speed_drift_per_s"]) <= 0.01
 
 
-@pytest.mark.xfail(strict=True, reason="measured 2.752 m/s against the rig law's 2.876 +- "
-                   "0.014 (-4.3 %): the law assumes an ideal guide; the energy budget finds "
-                   "0.0173 lambda v^3 lost in the discrete guide, grooves and flight (next "
+@pytest.mark.xfail(strict=True, reason="measured 2.78 m/s against the rig law's 2.876 +- "
+                   "0.014 (-3.4 %): the law assumes an ideal guide; the energy budget finds "
+                   "0.014 lambda v^3 lost in the discrete guide, grooves and flight (next "
                    "test); docs/apparatus.md, 'Energy budget'")
 def test_heavy_cart_within_two_sigma_of_the_rig_law(rep) -> None:
     sel = rep["speed_selection"]
     assert abs(sel["v_measured"] - sel["v_rig_2cm"]) <= 2.0 * sel["v_rig_2cm_sigma"]
 
 
-@pytest.mark.xfail(strict=True, reason="with the energy budget's losses (0.0173 lambda v^3: "
-                   "arc 0.0092, flight 0.0049, grooves 0.0030) the rig law gives 2.786 m/s; "
-                   "measured 2.751 (-1.3 %, 2.5 sigma): the heavy preset's pick-up needs about "
-                   "0.007 lambda v^2 more than the rig's; docs/apparatus.md, 'Energy budget'")
-def test_heavy_cart_within_two_sigma_of_the_rig_law_with_the_losses(rep) -> None:
-    sel, b = rep["speed_selection"], rep["energy_budget"]
-    v = rig_law_speed(load_on_path(LEVEL).sim, b.total)
-    assert abs(sel["v_measured"] - v) <= 2.0 * sel["v_rig_2cm_sigma"]
+def test_heavy_cart_within_two_sigma_of_the_rig_law_with_the_losses(runs) -> None:
+    """Over three starts the chain runs within 2 sigma of the rig law with the guide's
+    measured loss (measured: 1.6-1.8 sigma below, the starts within 0.1 sigma of each
+    other)."""
+    off = []
+    for r in runs:
+        sel, b = r["speed_selection"], r["energy_budget"]
+        v = rig_law_speed(load_on_path(LEVEL).sim, b.total)
+        off.append((sel["v_measured"] - v) / sel["v_rig_2cm_sigma"])
+    assert abs(sum(off) / len(off)) <= 2.0, off
 
 
 def test_heavy_cart_free_end(rep) -> None:
