@@ -176,9 +176,18 @@ class FieldSpec:
 
     # ---------------------------------------------------------------- range
     def allowed(self) -> str:
-        """What the schema allows, in schema units."""
-        return allowed_text({"min": self.lo, "max": self.hi, "min_inclusive": self.lo_incl,
-                             "max_inclusive": self.hi_incl, "unit": self.schema_unit})
+        """What the schema allows, in the units the panel shows (an angle in degrees, with
+        the level file's radians beside it)."""
+        if self.scale == 1.0:
+            return allowed_text({"min": self.lo, "max": self.hi, "min_inclusive": self.lo_incl,
+                                 "max_inclusive": self.hi_incl, "unit": self.unit})
+        shown = allowed_text({
+            "min": None if self.lo is None else float(self.fmt(self.lo * self.scale)),
+            "max": None if self.hi is None else float(self.fmt(self.hi * self.scale)),
+            "min_inclusive": self.lo_incl, "max_inclusive": self.hi_incl, "unit": self.unit})
+        in_file = allowed_text({"min": self.lo, "max": self.hi, "min_inclusive": self.lo_incl,
+                                "max_inclusive": self.hi_incl, "unit": self.schema_unit})
+        return f"{shown}; in the level file {in_file.removeprefix('a number in ')}"
 
     @property
     def shown_unit(self) -> str:

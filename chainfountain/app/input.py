@@ -129,6 +129,9 @@ class InputMixin:
             elif self.close_dialogs():
                 pass
             elif self._text_focused():
+                for row in self.rows:  # Esc drops the typed text: show the value again
+                    if row.entry.is_focused:
+                        self._show_value(row, slider=False)
                 self.release_keyboard()
             else:
                 self.request_quit()

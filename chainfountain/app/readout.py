@@ -143,7 +143,9 @@ def compute_readout(sim: Simulation, recorder: Recorder, history: History) -> Re
         if not v * v > g * H:
             # no fountain can reach the floor (k*H >= 1): nothing to compare, and tensions
             # scaled by lambda*v^2 of a chain this slow mean nothing to a reader
-            r.note = (f"no fountain: the chain moves at {v:.2f} m/s, slower than the "
+            moves = ("the floor takes the chain at" if sim.beaker is not None  # its speed
+                     else "the chain moves at")
+            r.note = (f"no fountain: {moves} {v:.2f} m/s, slower than the "
                       f"sqrt(g*H) = {math.sqrt(g * H):.2f} m/s a fountain over this drop needs")
             r.T0_bar = r.TE_bar = math.nan
         elif not h > 0.0:
@@ -257,6 +259,9 @@ def beaker_line(sim: Simulation) -> str:
     H = b.pickup[1] - b.floor_y
     if not (v > 0.0 and H > 0.0) or b.absorbed == 0:
         return "Biggins & Warner: the pile's push once the chain reaches the floor"
+    if v * v <= sim.g * H:  # no fountain yet: the relation reads a negative push
+        return ("Biggins & Warner: the pile's push once the floor takes the chain faster "
+                f"than sqrt(gH) = {math.sqrt(sim.g * H):.2f} m/s")
     a = alpha_from_speed(v, H, 0.0, sim.g)
     return (f"Biggins & Warner: the pile pushes with alpha = 1 - gH/v^2 = {a:.2f} "
             f"(H {H:.2f} m below the pick-up)")

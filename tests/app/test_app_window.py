@@ -485,6 +485,17 @@ def test_every_key_works_after_typing_in_any_field(app, end):
     assert not app.running
 
 
+def test_esc_in_a_field_drops_what_was_typed_and_shows_the_value_again(app):
+    """Esc leaves the field without applying it, so the field must not keep showing a
+    number that is not the value."""
+    row = next(r for r in app.rows if r.spec.path == "feed.speed")
+    before = app.session.value("feed.speed")
+    shown = row.entry.get_text()
+    _type_into(app, row, "3.3", pygame.K_ESCAPE)
+    assert app.session.value("feed.speed") == before
+    assert row.entry.get_text() == shown
+
+
 def test_play_button_says_what_it_does(app):
     button = app.buttons["play"]
     app.run_frame()

@@ -80,3 +80,16 @@ def test_the_what_to_watch_card_leaves_the_rising_fountain_in_view(tmp_path, mon
         assert app.about_visible and app._about_low
     finally:
         app.finish()
+
+
+def test_the_piles_push_is_not_read_before_a_fountain_stands():
+    """Just after the chain reaches the floor, the floor takes it slowly: Biggins and
+    Warner's ``alpha = 1 - gH/v^2`` would read a large negative push, so the line waits."""
+    from chainfountain.app.readout import beaker_line
+
+    sim = Simulation(_beaker().sim)
+    b = sim.beaker
+    b.absorbed, b._speed = 5, 0.04
+    assert "alpha" not in beaker_line(sim) and "sqrt(gH)" in beaker_line(sim)
+    b._speed = 4.4
+    assert "alpha = 1 - gH/v^2 = 0.5" in beaker_line(sim)
