@@ -235,7 +235,8 @@ class DrawMixin:
         pygame.draw.rect(scr, render.BG, rect)
         s = self.session
 
-        rows = readout_rows(ro, s.sim.config.chain.linear_density, self.expert)
+        rows = readout_rows(ro, s.sim.config.chain.linear_density, self.expert,
+                            stopped=s.stopped is not None)
         width = rect.w - 18  # the rows' font, measured: no line runs off the panel
         if ro.machine:
             rows += [Row(part) for part in render.wrap(render.font(19), ro.machine, width)[:2]]

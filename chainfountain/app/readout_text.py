@@ -63,10 +63,13 @@ def expert_rows(ro: Readout) -> list[Row]:
     ]
 
 
-def readout_rows(ro: Readout, lam: float, expert: bool) -> list[Row]:
-    """The rows above the plots: the numbers (plain or expert) and whether it is steady."""
+def readout_rows(ro: Readout, lam: float, expert: bool, stopped: bool = False) -> list[Row]:
+    """The rows above the plots: the numbers (plain or expert) and whether it is steady
+    (``stopped``: the run stopped itself, and the status says so instead)."""
     rows = expert_rows(ro) if expert else plain_rows(ro, lam)
-    if expert:
+    if stopped:
+        rows.append(Row("the run has stopped (R starts it again)", "warn"))
+    elif expert:
         rows.append(Row("steady" if ro.steady else "not steady (yet)",
                         "ok" if ro.steady else "warn"))
     else:

@@ -518,6 +518,15 @@ def test_a_run_that_stopped_itself_says_press_r(app, monkeypatch):
     assert s.paused and s.stopped and app.buttons["play"].text == "Play"
     key(app, pygame.K_SPACE)  # Space cannot run a stopped run: it says what to do
     assert s.paused and "press R to start again" in s.messages[-1][1]
+    from chainfountain.app import draw  # the readout's status line says so, too
+
+    real, shown = draw.readout_rows, []
+    monkeypatch.setattr(draw, "readout_rows",
+                        lambda *a, **k: shown.append(real(*a, **k)) or shown[-1])
+    app.run_frame()
+    texts = [r.text for r in shown[-1]]
+    assert "the run has stopped (R starts it again)" in texts
+    assert not any("steady" in t for t in texts)
     key(app, pygame.K_r)
     app.run_frame()
     assert s.stopped is None and not s.paused and s.sim.time > 0
