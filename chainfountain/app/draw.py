@@ -253,17 +253,22 @@ class DrawMixin:
         scr.blit(self._plot_cache, (rect.x, top))
 
     def _draw_rows(self, rows: list[Row], rect: pygame.Rect) -> int:
-        """The readout's rows at the top of ``rect``, each symbol right-aligned in dim;
-        returns the y below them."""
+        """The readout's rows at the top of ``rect``, each symbol right-aligned in dim, a
+        row too long for the panel (large text, projector mode) wrapped onto the next
+        line; returns the y below them."""
         f, sym_f = render.font(19), render.font(17)
         y = render.px(8)
         for row in rows:
-            self.screen.blit(render.text(f, row.text, True, ROW_COLOURS[row.colour]),
-                             (rect.x + 8, y))
+            room = rect.w - 18
             if row.symbol:
                 img = render.text(sym_f, row.symbol, True, render.DIM)
                 self.screen.blit(img, (rect.right - img.get_width() - 10, y + 1))
-            y += f.get_linesize() + 1
+                room -= img.get_width() + 10
+            fits = f.size(row.text)[0] <= room  # as written: its spacing kept
+            for part in [row.text] if fits else render.wrap(f, row.text, max(room, 40)):
+                self.screen.blit(render.text(f, part, True, ROW_COLOURS[row.colour]),
+                                 (rect.x + 8, y))
+                y += f.get_linesize() + 1
         return y
 
     def _render_plots(self, ro, area: pygame.Rect) -> pygame.Surface:

@@ -764,3 +764,19 @@ def test_the_window_uses_the_displays_framebuffer_unless_told_otherwise(
         assert os.environ[FRAMEBUFFER_HINT] == want
     finally:
         a.finish()
+
+
+def test_a_readout_row_too_long_for_the_panel_wraps_instead_of_running_off(app):
+    """In projector mode the expert readout's first row is wider than the panel: it goes
+    on onto a second line; a row that fits is drawn as written."""
+    from chainfountain.app.readout_text import Row
+
+    key(app, pygame.K_p, unicode="p")
+    f = render.font(19)
+    long = Row("Readout (measured); theory: catenary through the ends   (E: plain words)",
+               "dim")
+    assert f.size(long.text)[0] > app.right_rect.w - 18
+    one = app._draw_rows([Row("v  3.0 m/s")], app.right_rect)
+    two = app._draw_rows([long], app.right_rect)
+    top = render.px(8)
+    assert two - top == 2 * (one - top)
