@@ -395,29 +395,39 @@ def _draw_pot(surf: pygame.Surface, cam: Camera, outline: np.ndarray,
     pygame.draw.lines(surf, GLASS, False, cam.to_screen(outline).tolist(), 3)
 
 
-def _part_labels(surf: pygame.Surface, cam: Camera, sim: Simulation) -> None:
+def _part_labels(surf: pygame.Surface, cam: Camera, sim: Simulation) -> list[pygame.Rect]:
     """The machine's parts named beside them (:meth:`Simulation.part_labels`), each with a
-    short leader line to the part."""
+    short leader line to the part; a label that would cover one already placed moves a
+    row further out (a row down beside the part). Returns the labels' boxes."""
     f = font(16)
+    placed: list[pygame.Rect] = []
     for lb in sim.part_labels():
         ax, ay = cam.point(lb.x, lb.y)
         img = text(f, lb.text, True, LABEL)
         w, h = img.get_size()
-        out = (h + 4) * lb.tier
-        if lb.side == "above":
-            tx, ty, lx, ly = ax - w // 2, ay - 26 - h - out, ax, ay - 24 - out
-        elif lb.side == "below":
-            tx, ty, lx, ly = ax - w // 2, ay + 22 + out, ax, ay + 20 + out
-        elif lb.side == "left":
-            tx, ty, lx, ly = ax - 30 - w, ay - h // 2, ax - 26, ay
-        else:
-            tx, ty, lx, ly = ax + 30, ay - h // 2, ax + 26, ay
-        tx = max(cam.rect.left + 4, min(tx, cam.rect.right - w - 4))
+        tier = lb.tier
+        for _ in range(8):
+            out = (h + 4) * tier
+            if lb.side == "above":
+                tx, ty, lx, ly = ax - w // 2, ay - 26 - h - out, ax, ay - 24 - out
+            elif lb.side == "below":
+                tx, ty, lx, ly = ax - w // 2, ay + 22 + out, ax, ay + 20 + out
+            elif lb.side == "left":
+                tx, ty, lx, ly = ax - 30 - w, ay - h // 2 + out, ax - 26, ay + out
+            else:
+                tx, ty, lx, ly = ax + 30, ay - h // 2 + out, ax + 26, ay + out
+            tx = max(cam.rect.left + 4, min(tx, cam.rect.right - w - 4))
+            box = pygame.Rect(tx - 3, ty - 1, w + 6, h + 2)
+            if box.collidelist(placed) < 0:
+                break
+            tier += 1
+        placed.append(box)
         pygame.draw.line(surf, LABEL, (ax, ay), (lx, ly), 1)
         bg = pygame.Surface((w + 6, h + 2), pygame.SRCALPHA)
         bg.fill((0, 0, 0, 140))
         surf.blit(bg, (tx - 3, ty - 1))
         surf.blit(img, (tx, ty))
+    return placed
 
 
 def _height_marker(surf: pygame.Surface, cam: Camera, ro: Readout) -> None:

@@ -780,3 +780,21 @@ def test_a_readout_row_too_long_for_the_panel_wraps_instead_of_running_off(app):
     two = app._draw_rows([long], app.right_rect)
     top = render.px(8)
     assert two - top == 2 * (one - top)
+
+
+def test_part_labels_at_one_place_do_not_cover_each_other(app) -> None:
+    """Two names at one point on one side (as the starter's label lands on the pick-up
+    roller's in apparatus_fold_gripped) go a row apart: no two boxes overlap."""
+    from types import SimpleNamespace
+
+    from chainfountain.sim.part_labels import PartLabel
+
+    labels = [PartLabel("pick-up roller", 0.0, 0.0, side) for side in
+              ("above", "above", "left", "left", "below", "below", "right", "right")]
+    sim = SimpleNamespace(part_labels=lambda: labels)
+    surf = pygame.Surface((800, 600))
+    cam = render.Camera(pygame.Rect(0, 0, 800, 600))
+    boxes = render._part_labels(surf, cam, sim)
+    assert len(boxes) == len(labels)
+    for i, a in enumerate(boxes):
+        assert a.collidelist(boxes[i + 1:]) < 0, (i, a)
