@@ -23,21 +23,18 @@ def captures_dir(create: bool = False) -> Path:
     return p
 
 
-def _is_scene(path: Path) -> bool:
-    """Whether ``path`` is a scene level (they run headless only); an unreadable file is
-    offered, so that opening it says what is wrong."""
-    try:
-        return tomllib.loads(path.read_text(encoding="utf-8")).get("kind") == "scene"
-    except (OSError, ValueError):
-        return False
-
-
 def _read(path: Path) -> dict:
     """A level file's TOML as written (not validated), or ``{}`` when it cannot be read."""
     try:
         return tomllib.loads(path.read_text(encoding="utf-8"))
     except (OSError, ValueError):
         return {}
+
+
+def _is_scene(path: Path) -> bool:
+    """Whether ``path`` is a scene level (they run headless only); an unreadable file is
+    offered, so that opening it says what is wrong."""
+    return _read(path).get("kind") == "scene"
 
 
 def level_description(path: Path) -> str:
@@ -86,8 +83,9 @@ def list_levels(default: str = DEFAULT_LEVEL_NAME) -> list[tuple[str, Path | Non
     path, then the user's; scene levels are left out (``chainfountain run`` runs them)."""
     shipped = [p for p in sorted(builtin_levels_dir().glob("*.toml")) if not _is_scene(p)] \
         if builtin_levels_dir().is_dir() else []
-    forming = sorted((p for p in shipped if forms_from_rest(p)), key=lambda p: p.stem != default)
-    laid = [p for p in shipped if not forms_from_rest(p)]
+    forms = {p: forms_from_rest(p) for p in shipped}
+    forming = sorted((p for p in shipped if forms[p]), key=lambda p: p.stem != default)
+    laid = [p for p in shipped if not forms[p]]
     saved = [p for p in sorted(user_levels_dir().glob("*.toml")) if not _is_scene(p)] \
         if user_levels_dir().is_dir() else []
     out: list[tuple[str, Path | None]] = []
