@@ -351,7 +351,7 @@ class DrawMixin:
         # that machine, so a fed fountain may sit outside them
         motor = s.sim.config.kind == "feed" and s.sim.config.feed.drive == "motor"
         what = "end tensions" if ex else "pull at the ends / (lambda v^2)"
-        title = f"{what} (a motor feeds this chain)" if motor else f"{what} (0.1 s mean)"
+        title = f"{what}, motor-fed" if motor else f"{what} (0.1 s mean)"
         bands = (((0.5, 1.0, render.T0_COL, "paper's machine: Tbar_0 in (1/2, 1)"),
                   (0.0, 0.5, render.TE_COL, "paper's machine: Tbar_E in [0, 1/2)")) if ex else
                  ((0.5, 1.0, render.T0_COL, "the paper's machine: launch 1/2 to 1"),

@@ -546,6 +546,16 @@ def _downsample(x: np.ndarray, y: np.ndarray, n: int) -> tuple[np.ndarray, np.nd
     return x[idx], y[idx]
 
 
+def fit_text(f: pygame.font.Font, s: str, width: int) -> str:
+    """``s``, or as much of it as fits in ``width`` pixels in font ``f`` with "..." after
+    it."""
+    if f.size(s)[0] <= width:
+        return s
+    while s and f.size(s + "...")[0] > width:
+        s = s[:-1]
+    return s.rstrip() + "..."
+
+
 def draw_plot(surf: pygame.Surface, rect: pygame.Rect, title: str, xlabel: str,
               series: Sequence[Series], *, xlim: tuple[float, float] | None = None,
               ylim: tuple[float, float] | None = None,
@@ -556,6 +566,9 @@ def draw_plot(surf: pygame.Surface, rect: pygame.Rect, title: str, xlabel: str,
     """
     pygame.draw.rect(surf, (28, 34, 45), rect, 0, 4)
     f = font(16)
+    small = font(14)
+    legend = sum(small.size(s.label)[0] + 12 for s in series if s.label)
+    title = fit_text(f, title, rect.w - 6 - 8 - legend)  # never under the legend
     surf.blit(text(f, title, True, TEXT), (rect.x + 6, rect.y + px(4)))
     inner = pygame.Rect(rect.x + px(40), rect.y + px(22), rect.w - px(50), rect.h - px(44))
     if inner.w < 20 or inner.h < 20:
@@ -592,7 +605,6 @@ def draw_plot(surf: pygame.Surface, rect: pygame.Rect, title: str, xlabel: str,
                 img = text(font(14), label[0], True, col)
                 band_labels.append((img, (band.right - img.get_width() - 4, band.y + 3)))
     # axes and ticks
-    small = font(14)
     for val in _ticks(y0, y1, 4):
         yy = int(sy(val))
         pygame.draw.line(surf, GRID, (inner.x, yy), (inner.right, yy), 1)

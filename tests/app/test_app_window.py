@@ -798,3 +798,13 @@ def test_part_labels_at_one_place_do_not_cover_each_other(app) -> None:
     assert len(boxes) == len(labels)
     for i, a in enumerate(boxes):
         assert a.collidelist(boxes[i + 1:]) < 0, (i, a)
+
+
+def test_a_plot_title_never_runs_under_its_legend(app) -> None:
+    """A title too long for the room left of the legend ends in "..." (the fed levels'
+    end-tension plot once ran its title under "launch")."""
+    f = render.font(16)
+    long = "pull at the ends / (lambda v^2), and a great deal more said about it"
+    short = render.fit_text(f, long, 200)
+    assert short.endswith("...") and f.size(short)[0] <= 200
+    assert render.fit_text(f, "speed (m/s)", 200) == "speed (m/s)"
