@@ -178,16 +178,16 @@ class FieldSpec:
     def allowed(self) -> str:
         """What the schema allows, in the units the panel shows (an angle in degrees, with
         the level file's radians beside it)."""
+        def text(lo: float | None, hi: float | None, unit: str) -> str:
+            return allowed_text({"min": lo, "max": hi, "min_inclusive": self.lo_incl,
+                                 "max_inclusive": self.hi_incl, "unit": unit})
+
         if self.scale == 1.0:
-            return allowed_text({"min": self.lo, "max": self.hi, "min_inclusive": self.lo_incl,
-                                 "max_inclusive": self.hi_incl, "unit": self.unit})
-        shown = allowed_text({
-            "min": None if self.lo is None else float(self.fmt(self.lo * self.scale)),
-            "max": None if self.hi is None else float(self.fmt(self.hi * self.scale)),
-            "min_inclusive": self.lo_incl, "max_inclusive": self.hi_incl, "unit": self.unit})
-        in_file = allowed_text({"min": self.lo, "max": self.hi, "min_inclusive": self.lo_incl,
-                                "max_inclusive": self.hi_incl, "unit": self.schema_unit})
-        return f"{shown}; in the level file {in_file.removeprefix('a number in ')}"
+            return text(self.lo, self.hi, self.unit)
+        shown = [None if v is None else float(self.fmt(v * self.scale))
+                 for v in (self.lo, self.hi)]
+        return (f"{text(*shown, self.unit)}; in the level file "
+                f"{text(self.lo, self.hi, self.schema_unit)}")
 
     @property
     def shown_unit(self) -> str:

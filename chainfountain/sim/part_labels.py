@@ -73,12 +73,13 @@ def part_labels(sim: Simulation) -> list[PartLabel]:
         cart_y[i] = float(cy)
         out.append(PartLabel(f"{names[i]} {_grams(units[i].cart.mass)}",
                              float(cx), float(cy), "below", tier=1))
-    starter = ("" if not app.up_guide else
-               "starter motor: letting go" if getattr(app, "fading", False) else
-               "" if not getattr(app, "starting", False) else
-               "starter motor: threads the chain round the folding roller, then lets go"
-               if a.variant == "fold" else
-               "starter motor: runs the chain up, lets go once it has landed")
+    starter = ""
+    if app.up_guide and getattr(app, "fading", False):
+        starter = "starter motor: letting go"
+    elif app.up_guide and getattr(app, "starting", False):
+        starter = ("starter motor: threads the chain round the folding roller, then lets go"
+                   if a.variant == "fold" else
+                   "starter motor: runs the chain up, lets go once it has landed")
     if starter:
         (ax, ay), (bx, by) = app.up_guide[-1].a, app.up_guide[-1].b
         out.append(PartLabel(starter, 0.5 * (ax + bx), 0.5 * (ay + by), "left"))

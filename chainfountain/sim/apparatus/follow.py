@@ -65,13 +65,14 @@ class FollowingEnd:
         :meth:`sync_end_walls`)."""
         els, qs = self.guide, self._gq
         last = len(els) - 1
+        handle = fastbody.constraint_handle
         set_anchor = fastbody.set_slide_anchor_a
         set_ga, set_gb = fastbody.set_groove_a, fastbody.set_groove_b
         for k, (el, q) in enumerate(zip(els, qs, strict=True)):
             if el.kind == "arc":
                 el.a = el.b = c = (el.a[0] + dx, el.a[1])
                 for _, j in q:  # every arc joint is anchored at the arc's centre
-                    set_anchor(j._constraint, c)
+                    set_anchor(handle(j), c)
                 continue
             el.a = (el.a[0] + dx, el.a[1])
             if k == last:  # the lower plate: only its start moves (its grooves are along it)
@@ -79,7 +80,7 @@ class FollowingEnd:
             el.b = (el.b[0] + dx, el.b[1])
             ga, gb = el.groove_ends()
             for _, j in q:
-                h = j._constraint
+                h = handle(j)
                 set_ga(h, ga)
                 set_gb(h, gb)
         cx, cy = self.guide_centre
