@@ -44,19 +44,6 @@ apply_force_at_world_point = lib.cpBodyApplyForceAtWorldPoint
 apply_force_at_local_point = lib.cpBodyApplyForceAtLocalPoint
 """``apply_force_at_local_point(h, (fx, fy), (x, y))``."""
 
-set_slide_anchor_a = lib.cpSlideJointSetAnchorA
-"""``set_slide_anchor_a(c, (x, y))``: a slide joint's anchor on its first body (``c``:
-:func:`constraint_handle`)."""
-set_groove_a = lib.cpGrooveJointSetGrooveA
-"""``set_groove_a(c, (x, y))``: a groove joint's groove start."""
-set_groove_b = lib.cpGrooveJointSetGrooveB
-"""``set_groove_b(c, (x, y))``: a groove joint's groove end."""
-
-
-def constraint_handle(constraint: pymunk.Constraint) -> object:
-    """The chipmunk handle of ``constraint`` (valid while it lives)."""
-    return constraint._constraint
-
 
 def handle(body: pymunk.Body) -> object:
     """The chipmunk handle of ``body`` (valid while the body lives)."""

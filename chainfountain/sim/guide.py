@@ -225,6 +225,11 @@ class GuideElement:
     th0: float = 0.0
     th1: float = 0.0
     """Arc: polar angle (rad, about the centre) of the start and end points."""
+    carrier: pymunk.Body | None = field(default=None, repr=False)
+    """A kinematic body the element rides on (a following end guide,
+    :mod:`chainfountain.sim.apparatus.follow`): its joints are anchored on it and move
+    with it inside pymunk's step. ``a`` and ``b`` are the element's world coordinates,
+    kept by the owner; ``None``: fixed, its joints on the space's static body."""
 
     @property
     def ccw(self) -> bool:
@@ -270,16 +275,22 @@ class GuideElement:
             pymunk.Constraint:
         """A frictionless constraint holding the link centre on the element; an arc's
         limits start where the link is (no position kick) and close in later."""
+        base, ox, oy = space.static_body, 0.0, 0.0
+        if self.carrier is not None:
+            base = self.carrier
+            o = fastbody.pos(base)
+            ox, oy = o.x, o.y
         if self.kind == "arc":
-            p = body.position
+            p = fastbody.pos(body)
             d = math.hypot(p.x - self.a[0], p.y - self.a[1])
             j: pymunk.Constraint = ArcJoint(
-                space.static_body, body, self.a, (0.0, 0.0), min(self.R - PLAY, d),
-                max(self.R + PLAY, d))
+                base, body, (self.a[0] - ox, self.a[1] - oy), (0.0, 0.0),
+                min(self.R - PLAY, d), max(self.R + PLAY, d))
             j.error_bias = GUIDE_BIAS
         else:
-            ga, gb = self.groove_ends()
-            j = pymunk.GrooveJoint(space.static_body, body, ga, gb, (0.0, 0.0))
+            (ax, ay), (bx, by) = self.groove_ends()
+            j = pymunk.GrooveJoint(base, body, (ax - ox, ay - oy), (bx - ox, by - oy),
+                                   (0.0, 0.0))
             j.error_bias = error_bias
         space.add(j)
         return j

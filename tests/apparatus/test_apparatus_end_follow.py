@@ -75,24 +75,35 @@ def test_a_fixed_end_guide_loses_the_same_fountain(seed: int) -> None:
 
 
 def test_the_guide_moves_as_one_piece() -> None:
+    """The slide carries the moving elements' joints (pymunk moves them); the bookkeeping
+    brings the elements' coordinates, the plate's start, the end and the drawn walls to
+    where it is."""
     sim = Simulation(laid_on_path(io.load(LEVEL)).sim)
     app = sim.apparatus
     sim.advance(0.2)
     el0, plate = app.guide[0], app.guide[-1]
     c0, p0 = el0.a, plate.a
-    held = [j.anchor_a.x for _, j in app.fold_held[0]]
+    carrier = app.end_carrier
+
+    def anchors() -> list[float]:
+        return [j.a.local_to_world(j.anchor_a).x for _, j in app.fold_held[0]]
+
+    held = anchors()
+    assert held == pytest.approx([c0[0]] * len(held), abs=1e-12)  # on the turn's centre
     sim.guide_geometry_segments()  # the drawn walls where the guide is now
     walls = [s.a.x for s in app.end_walls]
     end0, shift0 = app.end[0], app.end_shift
-    app._shift_end_guide(0.05)
+    carrier.position = (carrier.position.x + 0.05, carrier.position.y)
+    app._sync_end_guide()
     assert el0.a[0] == pytest.approx(c0[0] + 0.05) and el0.a[1] == c0[1]
     assert plate.a[0] == pytest.approx(p0[0] + 0.05) and plate.b == app.guide[-1].b
-    assert [j.anchor_a.x for _, j in app.fold_held[0]] == pytest.approx([x + 0.05 for x in held])
+    assert anchors() == pytest.approx([x + 0.05 for x in held])
     sim.guide_geometry_segments()  # the drawn walls follow when read
     assert [s.a.x for s in app.end_walls] == pytest.approx([x + 0.05 for x in walls])
     assert app.end[0] == pytest.approx(end0 + 0.05)
     assert app.end_shift == pytest.approx(shift0 + 0.05)
     sim.advance(0.2)  # the held links follow their anchors and the run goes on
+    assert [el.carrier for el in app.guide] == [carrier] * (len(app.guide) - 1) + [None]
 
 
 @pytest.mark.parametrize("level, changes", [

@@ -345,6 +345,8 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Gri
         the floor; move links along the grooves and joint guides."""
         if self._plates_collide:
             self.sync_plates()
+        if self.end_carrier is not None:
+            self._sync_end_guide()
         self._check_table()
         self._feed_resting_links()
         # downstream end: absorb at the floor height / drop links that lie at rest

@@ -5,13 +5,15 @@ The paper's carts and offsets choose the fountain, and with it where the fountai
 about 2 cm per gram of the upper cart in ``apparatus_fold_gripped``. A fixed end guide
 catches the chain only within a few centimetres of its turn's radius, so changing a cart by
 more than a few grams lost the chain. Here the end guide's turn, rise and second turn ride
-on a horizontal slide: every bookkeeping step they move by ``-end_follow * dr * dt``,
-``dr`` being the offset from the first turn's radius of the links it catches (> 0
-outside, i.e. landed short), averaged over :data:`FOLLOW_TAU`, at most
-:data:`FOLLOW_SPEED` and :data:`FOLLOW_TRAVEL` from where the level put them. The links
-held in the moving elements follow their joints' anchors (at most 50 um a step). The
-heights do not change, so neither do the paper's laws (``xi3*H`` is the same); only the
-fountain's span is free, as it is in the paper's laws.
+on a horizontal slide: they move at ``-end_follow * dr``, ``dr`` being the offset from
+the first turn's radius of the links it catches (> 0 outside, i.e. landed short),
+averaged over :data:`FOLLOW_TAU`, at most :data:`FOLLOW_SPEED` and
+:data:`FOLLOW_TRAVEL` from where the level put them. The slide is a kinematic pymunk
+body (:attr:`~FollowingEnd.end_carrier`) that carries the moving elements' joints, so
+pymunk moves them in every step; the bookkeeping sets its velocity and keeps the
+elements' coordinates in step with it. The heights do not change, so neither do the
+paper's laws (``xi3*H`` is the same); only the fountain's span is free, as it is in the
+paper's laws.
 
 A following guide also has a wide mouth (:data:`~.tuning.FOLLOW_CAPTURE`, closing in at
 :data:`~.tuning.FOLLOW_CLOSE_RATE`): the guide follows the landing's mean, the mouth
@@ -19,6 +21,8 @@ takes its swing. Measured (docs/apparatus.md, "An end guide that follows the lan
 """
 
 from __future__ import annotations
+
+import pymunk
 
 from chainfountain.sim import fastbody
 from chainfountain.sim.apparatus.tuning import FOLLOW_SPEED, FOLLOW_TAU, FOLLOW_TRAVEL
@@ -36,6 +40,14 @@ class FollowingEnd:
         self._follow_seen: float | None = None
         self._walls_shift = 0.0
         """How far the drawn walls have been moved (:meth:`sync_end_walls`)."""
+        self.end_carrier: pymunk.Body | None = None
+        """The kinematic slide carrying the end guide's turn, rise and second turn (their
+        joints are anchored on it); ``None`` when the end guide stays put."""
+        if self.end_follow:
+            self.end_carrier = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
+            self.space.add(self.end_carrier)
+            for el in self.guide[:-1]:  # the lower plate's grooves run along it: fixed
+                el.carrier = self.end_carrier
 
     @property
     def landing_offset(self) -> float:
@@ -53,36 +65,30 @@ class FollowingEnd:
             self._follow_dr += (self._mouth_dr - self._follow_dr) * w
 
     def _follow_landing(self, dt: float) -> None:
-        """Move the end guide toward where the fountain lands (every bookkeeping step)."""
+        """Set the slide's velocity toward where the fountain lands, for the next
+        bookkeeping step of ``dt`` (every bookkeeping step)."""
         u = max(-FOLLOW_SPEED, min(FOLLOW_SPEED, -self.end_follow * self._follow_dr))
         dx = max(-FOLLOW_TRAVEL - self.end_shift, min(FOLLOW_TRAVEL - self.end_shift, u * dt))
+        self.end_carrier.velocity = (dx / dt, 0.0)
+
+    def _sync_end_guide(self) -> None:
+        """Bring the end guide's coordinates to where the slide has carried it (first in
+        every bookkeeping step)."""
+        dx = fastbody.pos(self.end_carrier).x - self.end_shift
         if dx:
             self._shift_end_guide(dx)
 
     def _shift_end_guide(self, dx: float) -> None:
-        """Move the end guide's turn, rise and second turn, their held links' joints and
-        the lower plate's start by ``dx`` along x (the drawn walls follow when read,
+        """Move the coordinates of the end guide's turn, rise and second turn, the lower
+        plate's start and the guide's centre and end by ``dx`` along x (their joints ride
+        on :attr:`end_carrier`; the drawn walls follow when read,
         :meth:`sync_end_walls`)."""
-        els, qs = self.guide, self._gq
-        last = len(els) - 1
-        handle = fastbody.constraint_handle
-        set_anchor = fastbody.set_slide_anchor_a
-        set_ga, set_gb = fastbody.set_groove_a, fastbody.set_groove_b
-        for k, (el, q) in enumerate(zip(els, qs, strict=True)):
-            if el.kind == "arc":
-                el.a = el.b = c = (el.a[0] + dx, el.a[1])
-                for _, j in q:  # every arc joint is anchored at the arc's centre
-                    set_anchor(handle(j), c)
-                continue
+        els = self.guide
+        for el in els[:-1]:
             el.a = (el.a[0] + dx, el.a[1])
-            if k == last:  # the lower plate: only its start moves (its grooves are along it)
-                continue
             el.b = (el.b[0] + dx, el.b[1])
-            ga, gb = el.groove_ends()
-            for _, j in q:
-                h = handle(j)
-                set_ga(h, ga)
-                set_gb(h, gb)
+        last = els[-1]  # the lower plate: only its start moves (its grooves are along it)
+        last.a = (last.a[0] + dx, last.a[1])
         cx, cy = self.guide_centre
         self.guide_centre = (cx + dx, cy)
         self.x_plate_lo_start += dx
