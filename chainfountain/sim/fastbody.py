@@ -76,7 +76,18 @@ def _pivot_layout_ok() -> bool:
 
 
 PIVOT_LAYOUT_OK = _pivot_layout_ok()
-"""Checked once at import: :func:`pivot_impulse` refuses to read otherwise."""
+"""Checked once at import: :func:`pivot_impulse` and :func:`set_pivot_impulse` refuse
+otherwise."""
+
+
+def _check_layout() -> None:
+    """Refuse to touch a pivot joint's impulse unless :data:`PIVOT_LAYOUT_OK`."""
+    if not PIVOT_LAYOUT_OK:
+        raise RuntimeError(
+            f"this pymunk build ({pymunk.version}) does not lay out its pivot joints as "
+            "chainfountain reads them (chainfountain.sim.fastbody.PIVOT_JACC), so the "
+            "apparatus's treadmills and gripped folding roller cannot run; use pymunk 7 "
+            "on a 64-bit Python")
 
 
 def pivot_impulse(joint: pymunk.PivotJoint) -> tuple[float, float]:
@@ -88,11 +99,16 @@ def pivot_impulse(joint: pymunk.PivotJoint) -> tuple[float, float]:
     joint force rings: at the folding roller it rings at the laying rate ``v/(2L)`` and its
     harmonics, more at smaller steps and more solver iterations, and the ringing's size
     outgrows the mean (docs/apparatus.md, "The gripped folding roller")."""
-    if not PIVOT_LAYOUT_OK:
-        raise RuntimeError(
-            f"this pymunk build ({pymunk.version}) does not lay out its pivot joints as "
-            "chainfountain reads them (chainfountain.sim.fastbody.PIVOT_JACC), so the "
-            "gripped folding roller's tensions cannot be read; use pymunk 7 on a 64-bit "
-            "Python")
+    _check_layout()
     p = ffi.cast("double *", joint._constraint)
     return float(p[PIVOT_JACC]), float(p[PIVOT_JACC + 1])
+
+
+def set_pivot_impulse(joint: pymunk.PivotJoint, impulse: tuple[float, float]) -> None:
+    """Start ``joint`` warm: its accumulated impulse (as :func:`pivot_impulse` reads it),
+    which pymunk's next step applies as the joint's warm start before it iterates. A new
+    joint put into a chain under tension, given its predecessor's impulse, starts where
+    the predecessor would have."""
+    _check_layout()
+    p = ffi.cast("double *", joint._constraint)
+    p[PIVOT_JACC], p[PIVOT_JACC + 1] = impulse

@@ -45,15 +45,20 @@ LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_special.toml
 pytestmark = pytest.mark.xdist_group("apparatus_long_run")
 
 
+UNDAMPED_RUN = 40.0
+"""The undamped run's longest time (s): its fold failed at 19.3-27.9 s in three starts."""
+
+
 @pytest.fixture(scope="module")
 def long_run() -> tuple[np.ndarray, np.ndarray, str | None]:
-    """Strand speed every 0.01 s until the run ends (at most 25 s) and the message."""
+    """Strand speed every 0.01 s until the run ends (at most :data:`UNDAMPED_RUN`) and the
+    message."""
     sim = Simulation(load_undamped(LEVEL).sim)
     app = sim.apparatus
     t, v = [], []
     message = None
     try:
-        while sim.time < 25.0 - 1e-9:
+        while sim.time < UNDAMPED_RUN - 1e-9:
             sim.advance(0.01)
             t.append(sim.time)
             v.append(app.strand_speed)
@@ -95,16 +100,18 @@ def test_special_preset_holds_its_described_speed_for_8_seconds(long_run) -> Non
 
 def test_special_landing_swing_grows(long_run) -> None:
     t, v, _ = long_run
-    # measured +-0.042 m/s over 0.5-3.5 s and +-0.132 m/s over 9.5-12.5 s (walls: 0.089,
-    # 0.259); a bounded swing (what the paper's steady fountain implies) would fail this
-    early, late = _swing(t, v, 0.5, 3.5), _swing(t, v, 9.5, 12.5)
+    # measured: +-0.064 m/s over 0.5-3.5 s, +-0.164 m/s in the largest later 4-s window
+    # (nudged starts: 0.073 -> 0.190, 0.073 -> 0.173); a bounded swing (what the paper's
+    # steady fountain implies) would fail this
+    early = _swing(t, v, 0.5, 3.5)
+    late = max(_swing(t, v, a, a + 4.0) for a in np.arange(8.5, t[-1] - 3.99, 4.0))
     assert late > 2.0 * early
 
 
 def test_special_late_collapse_names_the_swing_not_the_cart(long_run) -> None:
     t, _, message = long_run
-    # measured: the folding roller lost the chain at 18.27 s (walls: 15.53 s)
-    assert message is not None and 10.0 < t[-1] < 25.0
+    # measured: the folding roller lost the chain at 27.95 s (nudged starts: 20.85, 19.25 s)
+    assert message is not None and 10.0 < t[-1] < UNDAMPED_RUN
     assert "after holding it at v/2 for" in message and "landing swing" in message
     assert "raise the lower cart mass" not in message
     held = float(message.split("for ")[1].split(" s")[0])

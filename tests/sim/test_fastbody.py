@@ -86,3 +86,40 @@ def test_pivot_impulse_is_the_joint_impulse_as_a_vector() -> None:
     jx, jy = fastbody.pivot_impulse(joint)
     assert jx > 0.0 and abs(jy) < 1e-9 * jx
     assert math.hypot(jx, jy) == pytest.approx(joint.impulse, rel=1e-12)
+
+
+def test_a_joint_given_its_predecessors_impulse_starts_warm() -> None:
+    """A chain hanging at rest (two solver iterations): a joint replaced by a new one
+    given the old one's impulse (:func:`fastbody.set_pivot_impulse`) leaves the chain at
+    rest, as the old joint does; a cold new joint lets it drop (about 1 cm/s in one
+    step), which is what the treadmills' new joints must not do."""
+    def replaced_joint_speed(mode: str) -> float:
+        space = pymunk.Space()
+        space.gravity, space.iterations = (0.0, -9.81), 2
+        L, prev, anchor, bodies, joints = 0.02, space.static_body, (0.0, 0.0), [], []
+        for i in range(10):
+            b = pymunk.Body(0.001, 1e-7)
+            b.position, b.angle = (0.0, -(i + 0.5) * L), -0.5 * math.pi
+            j = pymunk.PivotJoint(prev, b, anchor, (-0.5 * L, 0.0))
+            space.add(b, j)
+            bodies.append(b)
+            joints.append(j)
+            prev, anchor = b, (0.5 * L, 0.0)
+        for _ in range(2000):  # settle at rest (the velocities damped away)
+            space.step(1e-3)
+            for b in bodies:
+                b.velocity, b.angular_velocity = 0.99 * b.velocity, 0.99 * b.angular_velocity
+        old = joints[5]
+        if mode != "old":
+            new = pymunk.PivotJoint(old.a, old.b, old.anchor_a, old.anchor_b)
+            if mode == "warm":
+                fastbody.set_pivot_impulse(new, fastbody.pivot_impulse(old))
+            space.remove(old)
+            space.add(new)
+        space.step(1e-3)
+        return max(b.velocity.length for b in bodies)
+
+    old, warm, cold = (replaced_joint_speed(m) for m in ("old", "warm", "cold"))
+    assert old < 1e-6
+    assert warm == pytest.approx(old, abs=1e-12)
+    assert cold > 1e-3

@@ -301,14 +301,12 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Gri
 
     # ------------------------------------------------------------------ stepping
     def before_step(self) -> None:
-        """Before each pymunk step: the end pull ('open'), the treadmill's fading joint
-        preloads and the starter. (The cart forces, the bearing drag and the swing damper
-        are pymunk springs, :meth:`set_losses`.)"""
+        """Before each pymunk step: the end pull ('open') and the starter. (The cart
+        forces, the bearing drag and the swing damper are pymunk springs,
+        :meth:`set_losses`.)"""
         if self.end_pull:
             self.chain.links[0].body.apply_force_at_world_point(
                 (self.end_pull, 0.0), self.chain.links[0].body.position)
-        if self._preload:
-            self._apply_preload()
         if self.starting:
             self._drive_starter()
         elif self.fading:

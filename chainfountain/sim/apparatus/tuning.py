@@ -104,11 +104,6 @@ times ``apparatus.speed``. A following end guide's wide mouth takes links landin
 it too, so a lost fountain can run away while links still enter; no fountain this machine
 catches is that fast (the landing moves about 1.5 cm per 1 % of speed, the guide at most
 :data:`FOLLOW_TRAVEL`)."""
-PRELOAD_STEPS = 40
-"""Treadmill: a joint made in the tensioned plate strand starts with the tension of the
-joint it replaces as an internal force pair, faded out over this many steps (the
-solver's warm start then carries it; in 'fold' trials a cold joint in a plate strand
-every 13 steps made the lower turn yield sooner)."""
 UP_RELEASE = 0.5
 """Upper joint guide: a link leaves the guide's straight once its centre is this many
 link lengths short of the fountain start, i.e. once its front joint has left the guide,
