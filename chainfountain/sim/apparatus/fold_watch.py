@@ -186,7 +186,6 @@ class FoldWatch:
                     "(docs/apparatus.md).")
         return ("in this model the landing swing (period 2-3 s) grows until the fold fails. "
                 "A lower cart a few grams lighter or heavier, a start 2 % faster or slower, a "
-                "stiffer catch or longer strands only move the failure (5.5-18.3 s for "
-                "apparatus_special at a pymunk step of 0.5 ms, 6.7-22.5 s with the upper "
-                "channel's walls); a swing damper between the carriages "
-                "(apparatus.swing_damper = 0.5) holds it down (docs/apparatus.md).")
+                "stiffer catch or longer strands only move the failure by seconds; a swing "
+                "damper between the carriages (apparatus.swing_damper = 0.5) holds it down "
+                "(docs/apparatus.md, 'The landing swing').")
