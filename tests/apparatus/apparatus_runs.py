@@ -65,7 +65,7 @@ step, ``substeps = 2``; docs/apparatus.md, "Step and bookkeeping")."""
 def load_undamped(path: Path) -> Level:
     """The fold level at ``path`` without its swing damper (``apparatus.swing_damper = 0``)
     at :data:`STUDY_STEP`: the contact fold's own behaviour, whose landing swing grows until
-    the fold fails (``apparatus_special`` at about 18 s; docs/apparatus.md, "The landing
+    the fold fails (``apparatus_special`` at 19-28 s; docs/apparatus.md, "The landing
     swing"), which the tests of the fold's laws read."""
     return with_changes(io.load(path), {"apparatus.swing_damper": 0.0, **STUDY_STEP})
 
