@@ -61,14 +61,20 @@ def main() -> int:
         import pygame
 
         clock = pygame.time.Clock()
+        work = phys = 0.0
         while time.perf_counter() - clock_t0 < args.seconds:
             app.run_frame(clock.tick(fps) / 1000.0)
             frames += 1
+            work += app.work_time
+            phys += app.physics_time
         wall = time.perf_counter() - clock_t0
         app.finish()
         print(f"level {level.meta.name}: {links} links, dt {sess.sim.dt * 1e3:g} ms (window)")
-        rtf = (sess.sim.time - sim0) / wall
-        print(f"  {frames / wall:.1f} frames/s, real-time factor {rtf:.2f}")
+        simulated = sess.sim.time - sim0
+        print(f"  {frames / wall:.1f} frames/s, real-time factor {simulated / wall:.2f}")
+        print(f"  per frame: events, GUI and drawing {work / frames * 1e3:.1f} ms, physics "
+              f"{phys / frames * 1e3:.1f} ms (during the copy to the screen); the physics "
+              f"costs {phys / max(simulated, 1e-9):.2f} s per simulated second")
         return 0
 
     warm = int(args.warmup * fps)

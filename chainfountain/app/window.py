@@ -170,6 +170,9 @@ class App(InputMixin, DrawMixin):
         """Smoothed wall time of a frame before its physics (events, GUI, drawing; the flip to
         the screen overlaps the physics)."""
         self.physics_time = 0.0
+        """Wall time of the last frame's physics (s)."""
+        self.work_time = 0.0
+        """Wall time of the last frame before its physics (s; :attr:`overhead` unsmoothed)."""
         self.fps_measured = float(fps)
         self.clip: ClipRecorder | None = None
         self._still_rect: pygame.Rect | None = None
@@ -627,7 +630,7 @@ class App(InputMixin, DrawMixin):
             self.handle(ev)
         self.update(wall_dt)
         self.draw()  # the clip takes its frame while drawing
-        work = time.perf_counter() - t0 - self.physics_time
+        work = self.work_time = time.perf_counter() - t0 - self.physics_time
         if not self.offscreen:
             self._physics_during_flip(wall_dt)  # the flip overlaps the physics
         self.frame += 1
