@@ -142,19 +142,27 @@ class DrawMixin:
         return card_rows(render.font(18), text, self._about_width() - 20,
                          int(self.scene_rect.h * ABOUT_SHARE) - render.px(34))
 
+    def about_box(self) -> pygame.Rect | None:
+        """Where the level's description card goes at the top of the view (``None``: the
+        level has no description)."""
+        text = self.session.level.meta.description.strip()
+        if not text:
+            return None
+        lh = render.font(18).get_linesize()
+        return pygame.Rect(self.scene_rect.x + 10, render.px(72), self._about_width(),
+                           render.px(34) + lh * len(self.about_rows(text)))
+
     def _draw_about(self) -> None:
         """The level's description (what it shows and what to watch) on a card at the top
         of the view, under the time line, or at its bottom when that hides less of the
         chain (a fountain forming rises into the top); I hides it."""
-        text = self.session.level.meta.description.strip()
-        if not text:
+        box = self.about_box()
+        if box is None:
             return
         rect = self.scene_rect
-        width = self._about_width()
         head, body = render.font(19), render.font(18)
         lh = body.get_linesize()
-        rows = self.about_rows(text)
-        box = pygame.Rect(rect.x + 10, render.px(72), width, render.px(34) + lh * len(rows))
+        rows = self.about_rows(self.session.level.meta.description.strip())
         low = box.move(0, rect.bottom - render.px(40) - box.bottom)
         if low.top > box.bottom:  # room for both: the one hiding less, without flicker
             at_top, at_low = self._chain_under((box, low))

@@ -170,12 +170,15 @@ class Camera:
         return (self.cx + (sx - self.rect.centerx) / self.scale,
                 self.cy - (sy - self.rect.centery) / self.scale)
 
-    def fit(self, x0: float, y0: float, x1: float, y1: float, margin: float = 0.08) -> None:
-        """Show the world box ``[x0, x1] x [y0, y1]`` with a margin."""
+    def fit(self, x0: float, y0: float, x1: float, y1: float, margin: float = 0.08,
+            top: int = 0) -> None:
+        """Show the world box ``[x0, x1] x [y0, y1]`` with a margin, below the view's top
+        ``top`` pixels (kept free for a card over the view)."""
         w = max(x1 - x0, 1e-3) * (1 + 2 * margin)
         h = max(y1 - y0, 1e-3) * (1 + 2 * margin)
-        self.scale = max(1e-3, min(self.rect.w / w, self.rect.h / h))
-        self.cx, self.cy = 0.5 * (x0 + x1), 0.5 * (y0 + y1)
+        top = min(max(top, 0), self.rect.h // 2)
+        self.scale = max(1e-3, min(self.rect.w / w, (self.rect.h - top) / h))
+        self.cx, self.cy = 0.5 * (x0 + x1), 0.5 * (y0 + y1) + 0.5 * top / self.scale
 
     def zoom(self, factor: float, about: tuple[float, float]) -> None:
         """Zoom by ``factor`` keeping the screen point ``about`` fixed."""

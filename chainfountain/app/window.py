@@ -159,6 +159,8 @@ class App(InputMixin, DrawMixin):
         unless I pinned it."""
         self._about_low = False
         """The level's card is at the bottom of the view (:meth:`_draw_about`)."""
+        self._fit_top = 0
+        """Pixels the last fit kept free at the view's top for the description card."""
         self.about_pinned = False
         """I showed the description: it stays until I hides it."""
         self.show_theory = True
@@ -291,8 +293,13 @@ class App(InputMixin, DrawMixin):
         row.entry.set_text(row.spec.fmt(row.spec.to_display(v)))
 
     def fit_view(self) -> None:
-        """Fit the camera to the scene, and follow the fountain from now on."""
-        self.camera.fit(*render.scene_bounds(self.session.sim, self.session.readout()))
+        """Fit the camera to the scene, below the level's description card while it shows,
+        and follow the fountain from now on."""
+        box = self.about_box() if self.about_visible else None
+        top = box.bottom - self.scene_rect.top if box is not None else 0
+        self.camera.fit(*render.scene_bounds(self.session.sim, self.session.readout()),
+                        top=top)
+        self._fit_top = top
         self.follow = True
 
     def follow_view(self) -> None:
@@ -548,6 +555,8 @@ class App(InputMixin, DrawMixin):
     # ------------------------------------------------------------------ frame
     def update(self, wall_dt: float) -> None:
         """Apply debounced rebuilds, run the physics for one frame, follow the fountain."""
+        if self.follow and self._fit_top and not self.about_visible:
+            self.fit_view()  # the card has gone: the scene takes the whole view again
         if self.follow and self.frame % FOLLOW_EVERY == 0 and self._drag_mode is None:
             self.follow_view()
         now = time.perf_counter()

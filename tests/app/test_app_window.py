@@ -615,6 +615,25 @@ def test_the_level_says_what_to_watch_until_i_hides_it(app, tmp_path):
     assert not app.about_visible  # it made room for the fountain
 
 
+def test_the_scene_opens_below_the_card_and_takes_the_view_when_it_goes(tmp_path, monkeypatch):
+    """The beaker's pot sits at the top of its scene: the first fit keeps the card's band
+    free, so the card covers none of the scene; once the card has gone the view refits to
+    the whole view."""
+    monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
+    a = App(Session(io.load(library.resolve("beaker"))), size=(1280, 760), offscreen=True)
+    try:
+        box = a.about_box()
+        x0, y0, x1, y1 = render.scene_bounds(a.session.sim, a.session.readout())
+        (_, top), (_, bottom) = a.camera.to_screen(np.array([[x0, y1], [x1, y0]]))
+        assert a.about_visible and top > box.bottom and bottom <= a.scene_rect.bottom + 1
+        scale = a.camera.scale
+        a.session.sim.advance(ABOUT_SECONDS)
+        a.run_frame()
+        assert not a.about_visible and a.camera.scale > 1.05 * scale
+    finally:
+        a.finish()
+
+
 def test_every_shipped_level_says_all_of_what_to_watch_at_the_default_size(app):
     """At 1280x760 every shipped level's description fits its card whole; a longer one
     is cut to the card's share of the view and says where the rest is."""
