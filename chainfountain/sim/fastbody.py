@@ -35,12 +35,6 @@ get_velocity = lib.cpBodyGetVelocity
 """``get_velocity(h)``: the velocity (struct with ``.x``, ``.y``) of handle ``h``."""
 set_velocity = lib.cpBodySetVelocity
 """``set_velocity(h, (vx, vy))``."""
-get_angle = lib.cpBodyGetAngle
-"""``get_angle(h)``: the angle (rad) of handle ``h``."""
-local_to_world = lib.cpBodyLocalToWorld
-"""``local_to_world(h, (x, y))``: a body-local point in world coordinates (struct)."""
-apply_force_at_world_point = lib.cpBodyApplyForceAtWorldPoint
-"""``apply_force_at_world_point(h, (fx, fy), point)``; ``point`` a struct or tuple."""
 apply_force_at_local_point = lib.cpBodyApplyForceAtLocalPoint
 """``apply_force_at_local_point(h, (fx, fy), (x, y))``."""
 
