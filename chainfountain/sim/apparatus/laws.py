@@ -176,29 +176,24 @@ two more grams off the lower one did not (upper 21 g against lower 309 g), as in
 contact fold (:data:`FOLD_UPPER_WEIGHT`). Both carts moved at once were not measured."""
 
 FOLLOW_CART_BAND = ((-11.0 * _GRAM_AT_30, 8.0 * _GRAM_AT_30),
-                    (-15.0 * _GRAM_AT_30, 30.0 * _GRAM_AT_30))
+                    (-5.0 * _GRAM_AT_30, 30.0 * _GRAM_AT_30))
 """As :data:`BRAKED_CART_BAND`, with an end guide that follows the landing
 (``apparatus.end_follow``): the catch no longer sets the band, the landing swing does.
-Measured on ``apparatus_fold_gripped`` (19 / 311 g, ``end_follow = 2``; ``python
-research/live_tuning.py apparatus_fold_gripped 'carts[i].mass' VALUES --laid --at 5
---after 40 --starts 2``): upper 8, 10 and 27 g and lower 296, 301, 321, 331 and 341 g held 40 s
-from both starts; upper 30 g from one of two, upper 4 and 36 g and lower 291 g from
-neither (the speed swings until the fountain leaves the mouth). The speed then spans
-2.8-3.3 m/s."""
+Measured on ``apparatus_fold_gripped`` (19 / 311 g, ``end_follow = 2``), each pair of
+carts set in the level and started from rest, 30 s (``python research/fold_tuning.py``,
+two starts each; docs/apparatus.md, "Tuning both carts"): every pair these bands allow
+held both starts (18 pairs, lower carts 306-341 g); outside them, with lower carts of
+296-306 g, 7 of 24 starts lost the chain 10-25 s in. The speed then spans 2.9-3.3 m/s."""
 FOLLOW_PUSH_BAND = (-15.0 * _GRAM_AT_30, 30.0 * _GRAM_AT_30)
 """Band (N) of the net push ``dF_lc - FOLD_UPPER_WEIGHT*dF_uc`` with a following end
-guide: the single carts' bands of :data:`FOLLOW_CART_BAND`."""
-FOLLOW_LIGHT_CORNER = (2.0, -27.0 * _GRAM_AT_30)
+guide (upper 27 g with lower 306 g, outside it, held all 5 measured starts from rest)."""
+FOLLOW_LIGHT_CORNER = (2.0, -22.0 * _GRAM_AT_30)
 """``(c, m)``: with a following end guide, both carts lighter at once must keep
 ``dF_lc + c*dF_uc >= m`` (N): the two carts far below the level's together lose the
-chain. Measured on ``apparatus_fold_gripped`` (19 / 311 g), both carts set at once
-12 s after a start from rest (``python research/live_tuning.py apparatus_fold_gripped
-'carts[1].mass' 0.296 0.301 0.306 --also 'carts[0].mass=0.008' --at 12 --after 30
---starts 2``, and ``=0.013`` with 0.296 0.301): upper 8 g with lower 296 g and with
-301 g held 1 of 2 starts each, with 306 g 2 of 2; upper 13 g with 296 and 301 g 2 of 2
-each. From rest with both carts set (``python research/fold_tuning.py``, two starts
-each) upper 8 g with 296 g held neither, and every pair inside the bands held both
-(docs/apparatus.md, "Tuning both carts")."""
+chain. Measured on ``apparatus_fold_gripped`` (19 / 311 g) from rest
+(``python research/fold_tuning.py``, two starts each): upper 8 g with lower 306 g held
+one start of two, with 311 g both, and 13 g with 306 g both; so with the upper cart at
+8 g the lower slider starts at 311 g."""
 
 
 _Bands = tuple[tuple[tuple[float, float], tuple[float, float]], tuple[float, float], float,
