@@ -268,17 +268,51 @@ def flatten(summary: dict[str, Any]) -> dict[str, Any]:
 
 
 def pending(sweep: Sweep, out: Path, retry_failed: bool = False) -> tuple[list[Point], int]:
-    """The points still to run and how many are already recorded."""
+    """The points still to run and how many are already recorded.
+
+    A point is recorded under its place in the grid (``p00003``), so a folder that holds
+    the runs of another sweep (another base, duration, grid or seeds) would be read as this
+    one's: :class:`~chainfountain.errors.UserError` says so instead."""
+    _check_same_sweep(sweep, out)
     todo, done = [], 0
     for pt in sweep.points():
         rec = out / "points" / pt.id / "point.json"
         if rec.is_file():
-            status = json.loads(rec.read_text()).get("status")
-            if not (retry_failed and status == "failed"):
+            row = json.loads(rec.read_text())
+            _check_same_point(pt, row, out)
+            if not (retry_failed and row.get("status") == "failed"):
                 done += 1
                 continue
         todo.append(pt)
     return todo, done
+
+
+def _another_sweep(out: Path, what: str) -> UserError:
+    return UserError(f"{out}: holds the runs of another sweep ({what}); use another --out, "
+                     "or remove that folder to run this sweep there")
+
+
+def _check_same_sweep(sweep: Sweep, out: Path) -> None:
+    """Refuse ``out`` when the sweep file recorded there has another base or duration."""
+    rec = out / "sweep.toml"
+    if not rec.is_file():
+        return
+    try:
+        old = tomllib.loads(rec.read_text(encoding="utf-8"))
+        new = tomllib.loads(sweep.path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+        return  # the points' own records are checked one by one
+    for key in ("base", "duration"):
+        if old.get(key) != new.get(key):
+            raise _another_sweep(out, f"{key} = {old.get(key)!r} there, {new.get(key)!r} here")
+
+
+def _check_same_point(pt: Point, row: dict[str, Any], out: Path) -> None:
+    """Refuse a recorded point run with other field values or another seed than ``pt``."""
+    for key, value in {**pt.values, "seed": pt.seed}.items():
+        if row.get(key, value) != value:
+            raise _another_sweep(out, f"point {pt.id} was run with {key} = {row.get(key)!r}, "
+                                      f"this sweep's has {value!r}")
 
 
 def execute(sweep: Sweep, out: Path, jobs: int = 1, *, retry_failed: bool = False,
@@ -289,9 +323,9 @@ def execute(sweep: Sweep, out: Path, jobs: int = 1, *, retry_failed: bool = Fals
     ``progress(done, total, seconds_left)`` after each point. Returns the rows."""
     from joblib import Parallel, delayed
 
+    todo, done = pending(sweep, out, retry_failed)
     out.mkdir(parents=True, exist_ok=True)
     atomic.write_text(out / "sweep.toml", sweep.path.read_text(encoding="utf-8"))
-    todo, done = pending(sweep, out, retry_failed)
     total = done + len(todo)
     t0 = time.perf_counter()
     if todo:

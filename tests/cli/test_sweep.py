@@ -62,6 +62,28 @@ def test_sweep_runs_records_refusals_and_resumes(tmp_path):
     assert list(csv.DictReader((tmp_path / "out" / "results.csv").open())) == rows
 
 
+def test_a_sweep_never_resumes_into_another_sweeps_runs(tmp_path):
+    """Points are recorded by their place in the grid: a changed grid (or duration) run
+    into the same folder would read the old runs as its own. It is refused with one line,
+    and the folder is left as it was."""
+    (tmp_path / "s.toml").write_text(
+        'base = "wide_low"\nduration = 0.2\n[grid]\n"feed.speed" = [4.0, 4.5]\n')
+    assert _cli("sweep", "s.toml", "--out", "out", "--quiet", cwd=tmp_path).returncode == 0
+    table = (tmp_path / "out" / "results.csv").read_text()
+    (tmp_path / "s.toml").write_text(
+        'base = "wide_low"\nduration = 0.2\n[grid]\n"feed.speed" = [4.2, 4.5]\n')
+    r = _cli("sweep", "s.toml", "--out", "out", "--quiet", cwd=tmp_path)
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+    msg = r.stderr.strip().splitlines()[-1]
+    for w in ("another sweep", "p00000", "feed.speed", "4.0", "4.2", "--out"):
+        assert w in msg, (w, msg)
+    assert (tmp_path / "out" / "results.csv").read_text() == table
+    (tmp_path / "s.toml").write_text(
+        'base = "wide_low"\nduration = 0.3\n[grid]\n"feed.speed" = [4.0, 4.5]\n')
+    r = _cli("sweep", "s.toml", "--out", "out", "--quiet", cwd=tmp_path)
+    assert r.returncode == 2 and "duration = 0.2 there, 0.3 here" in r.stderr
+
+
 @pytest.mark.parametrize("text, words", [
     ('base = "wide_low"\n', ["grid", "missing or empty"]),
     ('base = "wide_low"\nspeed = 3\n[grid]\n"feed.speed" = [4.0]\n', ["speed", "unknown key"]),
