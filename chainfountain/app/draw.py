@@ -142,27 +142,34 @@ class DrawMixin:
         return card_rows(render.font(18), text, self._about_width() - 20,
                          int(self.scene_rect.h * ABOUT_SHARE) - render.px(34))
 
-    def about_box(self) -> pygame.Rect | None:
-        """Where the level's description card goes at the top of the view (``None``: the
-        level has no description)."""
+    def _about_card(self) -> tuple[pygame.Rect, list[str]] | None:
+        """The level's description card at the top of the view: its box and its rows
+        (``None``: the level has no description)."""
         text = self.session.level.meta.description.strip()
         if not text:
             return None
+        rows = self.about_rows(text)
         lh = render.font(18).get_linesize()
         return pygame.Rect(self.scene_rect.x + 10, render.px(72), self._about_width(),
-                           render.px(34) + lh * len(self.about_rows(text)))
+                           render.px(34) + lh * len(rows)), rows
+
+    def about_box(self) -> pygame.Rect | None:
+        """Where the level's description card goes at the top of the view (``None``: the
+        level has no description)."""
+        card = self._about_card()
+        return None if card is None else card[0]
 
     def _draw_about(self) -> None:
         """The level's description (what it shows and what to watch) on a card at the top
         of the view, under the time line, or at its bottom when that hides less of the
         chain (a fountain forming rises into the top); I hides it."""
-        box = self.about_box()
-        if box is None:
+        card = self._about_card()
+        if card is None:
             return
+        box, rows = card
         rect = self.scene_rect
         head, body = render.font(19), render.font(18)
         lh = body.get_linesize()
-        rows = self.about_rows(self.session.level.meta.description.strip())
         low = box.move(0, rect.bottom - render.px(40) - box.bottom)
         if low.top > box.bottom:  # room for both: the one hiding less, without flicker
             at_top, at_low = self._chain_under((box, low))
