@@ -63,7 +63,7 @@ def main() -> int:
         clock = pygame.time.Clock()
         work = phys = 0.0
         while time.perf_counter() - clock_t0 < args.seconds:
-            app.run_frame(clock.tick(fps) / 1000.0)
+            app.run_frame(clock.tick(app.target_fps()) / 1000.0)
             frames += 1
             work += app.work_time
             phys += app.physics_time

@@ -61,6 +61,10 @@ rendering threads beside the physics on the same cores: ``apparatus_fold_gripped
 each; docs/apparatus.md). Set ``SDL_FRAMEBUFFER_ACCELERATION=1`` to use it."""
 MIN_FPS = 30
 """The frame rate may drop to this before the simulation runs slower than requested."""
+HEADROOM = 0.9
+"""Share of one core the window's own work (the physics of real time and the drawing of
+every frame) may take before it draws fewer frames (:meth:`App.target_fps`); the rest is
+for the display and the system."""
 FOLLOW_EVERY = 30
 """Frames between checks that the view still shows the fountain (0.5 s at 60 frames/s)."""
 REBUILD_DELAY = 0.35
@@ -173,6 +177,8 @@ class App(InputMixin, DrawMixin):
         the screen overlaps the physics)."""
         self.physics_time = 0.0
         """Wall time of the last frame's physics (s)."""
+        self.physics_cost = 0.0
+        """Smoothed wall seconds the physics takes per simulated second (window only)."""
         self.work_time = 0.0
         """Wall time of the last frame before its physics (s; :attr:`overhead` unsmoothed)."""
         self.fps_measured = float(fps)
@@ -592,9 +598,26 @@ class App(InputMixin, DrawMixin):
             if not s.paused:
                 s.advance(s.speed_factor / self.fps)
                 s.rtf = s.speed_factor
-        else:
-            s.tick(wall_dt, self.physics_budget())
+            self.physics_time = time.perf_counter() - t0
+            return
+        steps = s.tick(wall_dt, self.physics_budget())
         self.physics_time = time.perf_counter() - t0
+        if steps:
+            cost = self.physics_time / (steps * s.sim.dt)
+            self.physics_cost += 0.1 * (cost - self.physics_cost)
+
+    def target_fps(self) -> float:
+        """The frame rate to aim for: :attr:`fps` while the physics leaves room, fewer
+        frames (down to :data:`MIN_FPS`) when the physics of real time and the drawing
+        of every frame would take more than :data:`HEADROOM` of the core. Every frame
+        drawn costs :attr:`overhead` (5-7 ms), time the physics needs: at 0.7 s of
+        physics per simulated second (``apparatus_fold_gripped``) 60 frames/s would
+        leave too little for real time, 40 leave enough."""
+        s = self.session
+        if s.paused or self.offscreen:
+            return float(self.fps)
+        spare = HEADROOM - self.physics_cost * s.speed_factor
+        return max(float(MIN_FPS), min(float(self.fps), spare / max(self.overhead, 1e-4)))
 
     def _physics_during_flip(self, wall_dt: float) -> None:
         """Run :meth:`physics` while the drawn frame goes to the screen. Copying a frame
@@ -654,7 +677,7 @@ class App(InputMixin, DrawMixin):
                     clock.tick()
                     wall_dt = 1.0 / self.fps
                 else:
-                    wall_dt = clock.tick(self.fps) / 1000.0
+                    wall_dt = clock.tick(self.target_fps()) / 1000.0
                 if wall_dt > 0:
                     self.fps_measured += 0.05 * (1.0 / max(wall_dt, 1e-3) - self.fps_measured)
                 self.run_frame(wall_dt)

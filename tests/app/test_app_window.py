@@ -765,6 +765,31 @@ def test_a_window_steps_its_physics_while_the_frame_goes_to_the_screen(tmp_path,
         a.finish()
 
 
+def test_a_window_draws_fewer_frames_when_its_physics_needs_the_core(tmp_path, monkeypatch):
+    """The frame rate gives way to the physics: a light physics keeps the full rate, a
+    heavy one (the gripped folds) sinks it toward MIN_FPS so that drawing does not take
+    the time real time needs; the physics' cost is measured from the frames it ran."""
+    from chainfountain.app.window import HEADROOM, MIN_FPS
+
+    monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
+    a = App(Session(small_level()), size=(1280, 760), offscreen=False, fps=60)
+    try:
+        for _ in range(5):
+            a.run_frame(1.0 / 60.0)
+        assert a.physics_cost > 0.0  # measured from the frames' steps
+        a.overhead = 0.005
+        a.physics_cost = 0.2
+        assert a.target_fps() == 60.0
+        a.physics_cost = HEADROOM - 40 * 0.005
+        assert a.target_fps() == pytest.approx(40.0)
+        a.physics_cost = 0.95
+        assert a.target_fps() == MIN_FPS
+        a.session.paused = True
+        assert a.target_fps() == 60.0
+    finally:
+        a.finish()
+
+
 @pytest.mark.parametrize("preset, want", [(None, "0"), ("1", "1")])
 def test_the_window_uses_the_displays_framebuffer_unless_told_otherwise(
         tmp_path, monkeypatch, preset, want) -> None:
