@@ -9,12 +9,12 @@ the preset (treadmills, swing damper, 100-mm gripped folding roller, brake
 2-5 s (10-ms samples):
 
 - at half the pymunk step (0.25 ms) the speed is the same within 1 % (the issue's
-  target): 2.9994 / 3.0182 m/s (+0.63 %; nudged starts +0.47 and +0.55 %; over 600 s from
-  two starts +0.76 %); the special case built this way, ``apparatus_special_gripped``
-  (19 / 328 g): 2.9787 / 2.9968 m/s (+0.61 %; nudged +0.44 and +0.57 %; 600 s: +0.67 %);
-- the lower cart sets the speed: 5 g more or less (0.0245 N) moves it by +0.036 / -0.039
-  m/s, together 0.76 of the paper's ``4*dF/c`` (0.67-0.68 from two starts with the end
-  guide fixed; the paper's laws with the brake,
+  target): 3.0016 / 3.0210 m/s (+0.65 %; nudged starts +0.50 and +0.65 %; over 600 s from
+  rest +0.87 %); the special case built this way, ``apparatus_special_gripped``
+  (19 / 328 g): 2.9847 / 2.9982 m/s (+0.45 %; nudged +0.50 and +0.52 %; 600 s: +0.71 %);
+- the lower cart sets the speed: 5 g more or less (0.0245 N) moves it by +0.040 / -0.040
+  m/s, together 0.82 of the paper's ``4*dF/c`` (0.80-0.81 from three nudged starts;
+  0.64-0.65 from two starts with the end guide fixed; the paper's laws with the brake,
   :func:`~chainfountain.sim.apparatus.laws.braked_fold_speed`; docs/apparatus.md),
   asserted within 0.5-0.85;
 - a cart that takes the fountain out of the end guide's catch ends the run within

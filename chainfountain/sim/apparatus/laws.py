@@ -182,8 +182,8 @@ FOLLOW_CART_BAND = ((-11.0 * _GRAM_AT_30, 8.0 * _GRAM_AT_30),
 Measured on ``apparatus_fold_gripped`` (19 / 311 g, ``end_follow = 2``), each pair of
 carts set in the level and started from rest, 30 s (``python research/fold_tuning.py``,
 two starts each; docs/apparatus.md, "Tuning both carts"): every pair these bands allow
-held both starts (18 pairs, lower carts 306-341 g); outside them, with lower carts of
-296-306 g, 7 of 24 starts lost the chain 10-25 s in. The speed then spans 2.9-3.3 m/s."""
+held both starts (15 pairs, lower carts 306-341 g); outside them, with lower carts of
+296-301 g, 8 of 20 starts lost the chain 2-25 s in. The speed then spans 2.9-3.3 m/s."""
 FOLLOW_PUSH_BAND = (-15.0 * _GRAM_AT_30, 30.0 * _GRAM_AT_30)
 """Band (N) of the net push ``dF_lc - FOLD_UPPER_WEIGHT*dF_uc`` with a following end
 guide (upper 27 g with lower 306 g, outside it, held all 5 measured starts from rest)."""
