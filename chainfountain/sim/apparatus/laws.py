@@ -122,9 +122,9 @@ the contact floor machine runs on: near the fountain's end (1) its speed falls e
 further below the law and the chain stops. Measured from ``apparatus_floor`` (9 g, law
 3.071 m/s, 0.52) with the upper cart changed live at 8 s, speeds 5-30 s after: 15 g
 (0.59; the shipped ``apparatus_floor_heavy``, 600 s held) steady; 20 g (0.67) wandering
-2.37-2.58 m/s; 25 g (0.77) and 28 g stopped within 8 s, 30 g within 5 s (from the laid
-start changed at 1 s, 25 g ran on 20 s at 2.33 m/s: near the end it depends on the state;
-28 and 30 g stopped). A bearing drag agrees: 0.02 N s/m (0.59) held 30 s 4-5 % below the
+2.45-2.58 m/s; 25 g (0.77) stopped within 7 s, 28 g within 6 s, 30 g within 5 s (from the
+laid start changed at 1 s, 25 g ran at 2.29-2.37 m/s and stopped at 19.2 s, 28 and 30 g at
+7.5 and 6.0 s). A bearing drag agrees: 0.02 N s/m (0.59) held 30 s 4-5 % below the
 law, 0.05 (0.72) and 0.1 stopped (``docs/apparatus.md``, "Declared losses";
 ``tests/apparatus/test_apparatus_live_cart.py``)."""
 
@@ -165,10 +165,10 @@ BRAKED_CART_BAND = ((-2.0 * _GRAM_AT_30, _GRAM_AT_30), (-2.0 * _GRAM_AT_30, 5.0 
 (``apparatus.fold_brake``) can each move from the balance the level was built with and
 the fountain still land in the end guide: ``(lo, hi)`` in N of cart force. The brake holds
 the speed; the catch sets the band (docs/apparatus.md, "A brake that selects the speed").
-Measured on ``apparatus_fold_gripped`` (19 / 311 g; ``python research/live_tuning.py
-apparatus_fold_gripped 'carts[i].mass' VALUES --at 5 --after 30``, one start each): upper
-17-20 g and lower 309-316 g held 30 s; upper 21 g and lower 308 g lost the catch 7 and 14 s
-after the change."""
+Measured on a copy of ``apparatus_fold_gripped`` (19 / 311 g) with ``end_follow = 0``,
+laid on its path (``python research/live_tuning.py COPY 'carts[i].mass' VALUES --laid --at 5
+--after 30``, one start each): upper 17-20 g and lower 308-316 g held 30 s; upper 21 g and
+lower 306 g lost the catch at 12.8 and 14.1 s."""
 BRAKED_PUSH_BAND = (-2.0 * _GRAM_AT_30, 5.0 * _GRAM_AT_30)
 """Band (N) of a braked gripped fold's net push from its balance,
 ``dF_lc - FOLD_UPPER_WEIGHT*dF_uc``: a gram more on the upper cart lost the catch where
