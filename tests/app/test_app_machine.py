@@ -116,14 +116,15 @@ def test_the_contact_floor_machines_sliders_span_where_its_chain_runs_on() -> No
 
 
 def test_the_contact_fold_machines_carts_span_their_measured_band() -> None:
-    """``apparatus_special`` and ``apparatus_fold``: each cart spans the part of its
-    balance that held every time it was changed live, with the other cart as it is
+    """``apparatus_special`` and ``apparatus_fold``: each cart spans the part of its balance
+    that held every time it was changed live, with the other cart as it is
     (``laws.FOLD_CART_BAND`` and the net push ``FOLD_PUSH_BAND``: at the build, upper
     17-18.83 g, lower 57-59 g and 40-42 g; the upper cart 1 g heavier takes the lower's
-    span's bottom to 0.5 g below the build, by the net push); the bearing drag and the inclines span where the carts' push stays
-    in its band; a span's ends are where ``fold_runs_on`` stops holding; a cart so
-    far off that the other has no span leaves it the span of the level as built; the
-    limit case (no lower cart) keeps the schema's slider."""
+    span's bottom to 0.5 g below the build, by the net push); the bearing drag and the
+    inclines span where the carts' push stays in its band; a span's ends are where
+    ``fold_runs_on`` stops holding; a cart so far off that the other has no span leaves it
+    the span of the level as built; the limit case (no lower cart) keeps the schema's
+    slider."""
     from chainfountain.sim.apparatus.laws import fold_runs_on
 
     for name, lower in (("apparatus_special", (0.057, 0.059)),
