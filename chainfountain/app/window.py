@@ -594,13 +594,13 @@ class App(InputMixin, DrawMixin):
         window what real time asks for within :meth:`physics_budget`."""
         s = self.session
         t0 = time.perf_counter()
+        steps = 0  # real-time steps (window only): they measure the physics' cost
         if self.offscreen:
             if not s.paused:
                 s.advance(s.speed_factor / self.fps)
                 s.rtf = s.speed_factor
-            self.physics_time = time.perf_counter() - t0
-            return
-        steps = s.tick(wall_dt, self.physics_budget())
+        else:
+            steps = s.tick(wall_dt, self.physics_budget())
         self.physics_time = time.perf_counter() - t0
         if steps:
             cost = self.physics_time / (steps * s.sim.dt)

@@ -186,14 +186,16 @@ held both starts (15 pairs, lower carts 306-341 g); outside them, with lower car
 296-301 g, 8 of 20 starts lost the chain 2-25 s in. The speed then spans 2.9-3.3 m/s."""
 FOLLOW_PUSH_BAND = (-15.0 * _GRAM_AT_30, 30.0 * _GRAM_AT_30)
 """Band (N) of the net push ``dF_lc - FOLD_UPPER_WEIGHT*dF_uc`` with a following end
-guide (upper 27 g with lower 306 g, outside it, held all 5 measured starts from rest)."""
+guide (upper 27 g with lower 306 g, outside it, held both starts from rest of
+``research/fold_tuning.py``)."""
 FOLLOW_LIGHT_CORNER = (2.0, -22.0 * _GRAM_AT_30)
 """``(c, m)``: with a following end guide, both carts lighter at once must keep
 ``dF_lc + c*dF_uc >= m`` (N): the two carts far below the level's together lose the
 chain. Measured on ``apparatus_fold_gripped`` (19 / 311 g) from rest
-(``python research/fold_tuning.py``, two starts each): upper 8 g with lower 306 g held
-one start of two, with 311 g both, and 13 g with 306 g both; so with the upper cart at
-8 g the lower slider starts at 311 g."""
+(``python research/fold_tuning.py``, two starts each): upper 8 g with lower 296 g held
+one start of two, with 301 g neither, with 306 and 311 g both; 13 g with 296 g neither,
+with 301 g both. With the upper cart at 8 g the lower slider starts at 311 g, one grid
+step inside the lightest pair that held."""
 
 
 _Bands = tuple[tuple[tuple[float, float], tuple[float, float]], tuple[float, float], float,
