@@ -29,6 +29,7 @@ from __future__ import annotations
 import math
 
 from chainfountain.errors import RunEnded
+from chainfountain.sim import fastbody
 
 RAMP = 0.5
 """Time (s) over which the starter runs the chain up from rest to ``apparatus.speed``."""
@@ -61,22 +62,25 @@ LAND_WITHIN = 10.0
 def run_along(guide: list, queues: list, v: float) -> None:
     """Set the links held in a joint guide (``guide``'s elements, ``queues`` their held
     ``(link, joint)`` pairs) moving along it at ``v``: along a straight's line, on a bend
-    along its tangent."""
+    along its tangent. (Before every pymunk step while the starter runs, over every held
+    link: it reads and writes through :mod:`~chainfountain.sim.fastbody`.)"""
+    get_p, set_v, handle = fastbody.get_position, fastbody.set_velocity, fastbody.handle
     for el, q in zip(guide, queues, strict=True):
         if el.kind == "line":
             (ax, ay), (bx, by) = el.a, el.b
             ln = math.hypot(bx - ax, by - ay)
             vel = (v * (bx - ax) / ln, v * (by - ay) / ln)
             for link, _ in q:
-                link.body.velocity = vel
+                set_v(handle(link.body), vel)
             continue
         cx, cy = el.a
         turn = 1.0 if el.ccw else -1.0
         for link, _ in q:
-            p = link.body.position
+            h = handle(link.body)
+            p = get_p(h)
             dx, dy = p.x - cx, p.y - cy
             d = math.hypot(dx, dy) or 1.0
-            link.body.velocity = (-turn * v * dy / d, turn * v * dx / d)
+            set_v(h, (-turn * v * dy / d, turn * v * dx / d))
 
 
 class StarterFailed(RunEnded):
