@@ -95,38 +95,45 @@ def overhead(only: str = "", steps: int = 4000, warmup: int = 500) -> None:
         _acc[0] += time.perf_counter() - t
 
     fold.keep_on_arcs = upper_guide.keep_on_arcs = timed_keep
-    for path in sorted((ROOT / "levels").glob("apparatus_*.toml")):
-        if only not in path.stem:
-            continue
-        lvl = io.load(path)
-        sim = Simulation(laid_on_path(lvl).sim)
-        k = int(lvl.sim.solver.substeps)
-        sim.advance(warmup * sim.h)
-        inner = [0.0]
-        projection[0] = 0.0
-        space_step = sim.space.step
+    try:
+        for path in sorted((ROOT / "levels").glob("apparatus_*.toml")):
+            if only in path.stem:
+                _overhead_row(path, steps, warmup, projection)
+    finally:
+        fold.keep_on_arcs = upper_guide.keep_on_arcs = keep
 
-        def timed(dt: float, _step=space_step, _acc=inner) -> None:
-            t = time.perf_counter()
-            _step(dt)
-            _acc[0] += time.perf_counter() - t
 
-        sim.space.step = timed  # type: ignore[method-assign]
-        n = min(steps // k, int(round(default_duration(lvl) / sim.dt)) - warmup // k)
-        t0 = time.perf_counter()
-        done, note = 0, ""
-        try:
-            for _ in range(n):
-                sim.step()
-                done += 1
-        except RunEnded:  # apparatus_limit's fold: timed up to its end
-            note = f" (its run ends at {sim.time:.2f} s)"
-        total = time.perf_counter() - t0
-        m = max(done, 1) * k
-        print(f"| {path.stem}{note} | {sim.n_links} | {k} | {total / m * 1e6:.0f} | "
-              f"{inner[0] / m * 1e6:.0f} | {projection[0] / m * 1e6:.0f} | "
-              f"{total / inner[0]:.2f} |", flush=True)
-    fold.keep_on_arcs = upper_guide.keep_on_arcs = keep
+def _overhead_row(path: Path, steps: int, warmup: int, projection: list[float]) -> None:
+    """One row of :func:`overhead`: the preset at ``path``, ``projection[0]`` accumulating
+    the arc projection's wall time."""
+    lvl = io.load(path)
+    sim = Simulation(laid_on_path(lvl).sim)
+    k = int(lvl.sim.solver.substeps)
+    sim.advance(warmup * sim.h)
+    inner = [0.0]
+    projection[0] = 0.0
+    space_step = sim.space.step
+
+    def timed(dt: float, _step=space_step, _acc=inner) -> None:
+        t = time.perf_counter()
+        _step(dt)
+        _acc[0] += time.perf_counter() - t
+
+    sim.space.step = timed  # type: ignore[method-assign]
+    n = min(steps // k, int(round(default_duration(lvl) / sim.dt)) - warmup // k)
+    t0 = time.perf_counter()
+    done, note = 0, ""
+    try:
+        for _ in range(n):
+            sim.step()
+            done += 1
+    except RunEnded:  # apparatus_limit's fold: timed up to its end
+        note = f" (its run ends at {sim.time:.2f} s)"
+    total = time.perf_counter() - t0
+    m = max(done, 1) * k
+    print(f"| {path.stem}{note} | {sim.n_links} | {k} | {total / m * 1e6:.0f} | "
+          f"{inner[0] / m * 1e6:.0f} | {projection[0] / m * 1e6:.0f} | "
+          f"{total / inner[0]:.2f} |", flush=True)
 
 
 def figure(out: Path) -> None:

@@ -1,5 +1,6 @@
 """Direct chipmunk reads and writes of a body's position and velocity, for the
-per-step loops over held links (:func:`chainfountain.sim.apparatus.joints.keep_on_arcs`).
+per-step loops over held links (:func:`chainfountain.sim.apparatus.joints.keep_on_arcs`,
+:func:`chainfountain.sim.apparatus.starter.run_along`).
 
 pymunk 7's :attr:`pymunk.Body.position` builds a :class:`pymunk.Vec2d` on every
 read: 1.8 us per read or write of a position or velocity on this machine
