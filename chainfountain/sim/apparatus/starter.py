@@ -75,8 +75,8 @@ def run_along(guide: list, queues: list, v: float) -> None:
             continue
         cx, cy = el.a
         turn = 1.0 if el.ccw else -1.0
-        for link, _ in q:
-            h = handle(link.body)
+        for _, j in q:  # an arc's joint caches the held body's handle (guide.ArcJoint)
+            h = j.handle
             p = get_p(h)
             dx, dy = p.x - cx, p.y - cy
             d = math.hypot(dx, dy) or 1.0
