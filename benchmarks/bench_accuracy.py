@@ -20,9 +20,10 @@ import argparse
 import copy
 import math
 import sys
-from pathlib import Path
 
-LEVELS = Path(__file__).resolve().parents[1] / "levels"
+from chainfountain.level.library import shipped_dir
+
+LEVELS = shipped_dir()
 SETTINGS: dict[str, list[tuple[str, float, float, int]]] = {
     # level: (label, link length m, step s, iterations); the level's own are read from it
     "classroom": [("hand-set", 0.02, 2.5e-4, 10)],

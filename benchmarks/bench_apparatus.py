@@ -34,6 +34,7 @@ import numpy as np
 from chainfountain.errors import RunEnded
 from chainfountain.headless import default_duration
 from chainfountain.level import io
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import catenary_through, report
 from chainfountain.study.changes import laid_on_path
@@ -52,7 +53,7 @@ def bench(seconds: float, repeat: int = 1, only: str = "",
     print("| preset | upper guide | links (start/end) | steps/s (best) "
           "| real-time factor best / median |")
     print("|---|---|---|---|---|")
-    for path in sorted((ROOT / "levels").glob("apparatus_*.toml")):
+    for path in sorted((shipped_dir()).glob("apparatus_*.toml")):
         if only not in path.stem:
             continue
         lvl = io.load(path)
@@ -96,7 +97,7 @@ def overhead(only: str = "", steps: int = 4000, warmup: int = 500) -> None:
 
     fold.keep_on_arcs = upper_guide.keep_on_arcs = timed_keep
     try:
-        for path in sorted((ROOT / "levels").glob("apparatus_*.toml")):
+        for path in sorted((shipped_dir()).glob("apparatus_*.toml")):
             if only in path.stem:
                 _overhead_row(path, steps, warmup, projection)
     finally:
@@ -148,7 +149,7 @@ def figure(out: Path) -> None:
     runs = (("apparatus_floor", 6.0, "C0", None), ("apparatus_floor_heavy", 5.0, "C3", None),
             ("apparatus_floor", 6.0, "C0", 3.1))
     for name, T, col, v0 in runs:
-        lvl = laid_on_path(io.load(ROOT / "levels" / f"{name}.toml"))
+        lvl = laid_on_path(io.load(shipped_dir() / f"{name}.toml"))
         if v0 is not None:  # same level started faster: it relaxes toward its speed
             lvl.sim.apparatus.speed = v0
             sim = Simulation(lvl.sim)
@@ -221,7 +222,7 @@ def main() -> None:
     args = ap.parse_args()
     if args.repeat < 1:
         ap.error(f"--repeat: {args.repeat} is not a number of runs; allowed: 1 or more")
-    names = [p.stem for p in sorted((ROOT / "levels").glob("apparatus_*.toml"))]
+    names = [p.stem for p in sorted((shipped_dir()).glob("apparatus_*.toml"))]
     if not any(args.only in n for n in names):
         ap.error(f"--only: {args.only!r} matches no apparatus preset; allowed: part of one of "
                  f"{', '.join(names)}")

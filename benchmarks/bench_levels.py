@@ -23,7 +23,9 @@ import tempfile
 import time
 from pathlib import Path
 
-LEVELS = Path(__file__).resolve().parents[1] / "levels"
+from chainfountain.level.library import shipped_dir
+
+LEVELS = shipped_dir()
 
 
 def run_one(name: str) -> dict:

@@ -32,6 +32,8 @@ from pathlib import Path
 
 import numpy as np
 
+from chainfountain.level.library import shipped_dir
+
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from gripped_fold import _value  # noqa: E402
@@ -42,7 +44,7 @@ from chainfountain.sim import Recorder, Simulation, guide
 from chainfountain.sim.apparatus import fold, joints, upper_guide
 from chainfountain.study.changes import laid_on_path, with_changes
 
-LEVELS = Path(__file__).resolve().parents[1] / "levels"
+LEVELS = shipped_dir()
 ORIG_KEEP = joints.keep_on_arcs
 
 

@@ -17,14 +17,14 @@ About 20 s for three seeds on one core.
 from __future__ import annotations
 
 import argparse
-from pathlib import Path
 
 from chainfountain.level import io
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import report
 from chainfountain.study.changes import laid_on_path, with_changes
 
-LEVELS = Path(__file__).resolve().parents[1] / "levels"
+LEVELS = shipped_dir()
 
 
 def one(name: str, substeps: int, seed: int) -> dict:

@@ -25,11 +25,12 @@ from pathlib import Path
 
 from chainfountain.level import io
 from chainfountain.level.io import LevelError
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim.apparatus import CART_GAIN_2CM, RunEnded
 from chainfountain.sim.cart_step import CartStep, cart_step
 from chainfountain.study.changes import laid_on_path
 
-LEVELS = Path(__file__).resolve().parents[1] / "levels"
+LEVELS = shipped_dir()
 
 
 def _positive(text: str) -> float:

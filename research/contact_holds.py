@@ -18,11 +18,12 @@ from __future__ import annotations
 import argparse
 import json
 import time
-from pathlib import Path
 
 import numpy as np
 
-LEVELS = Path(__file__).resolve().parents[1] / "levels"
+from chainfountain.level.library import shipped_dir
+
+LEVELS = shipped_dir()
 
 
 def _value(text: str) -> int | float | str:

@@ -23,6 +23,8 @@ from pathlib import Path
 
 import numpy as np
 
+from chainfountain.level.library import shipped_dir
+
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from gripped_fold import _value  # noqa: E402
@@ -32,7 +34,7 @@ from chainfountain.level import io
 from chainfountain.sim.apparatus import Apparatus
 from chainfountain.study.changes import laid_on_path, with_changes
 
-LEVELS = Path(__file__).resolve().parents[1] / "levels"
+LEVELS = shipped_dir()
 
 
 def main() -> None:

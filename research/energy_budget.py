@@ -25,14 +25,14 @@ import argparse
 import dataclasses
 import sys
 import time
-from pathlib import Path
 
 from chainfountain.level import io
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Simulation
 from chainfountain.sim.budget import REGIONS, EnergyBudget, open_windows, rig_law_speed
 from chainfountain.study.changes import laid_on_path
 
-LEVELS = Path(__file__).resolve().parents[1] / "levels"
+LEVELS = shipped_dir()
 PRESETS = {"9g": "apparatus_floor", "15g": "apparatus_floor_heavy"}
 OPEN_WINDOW = (0.2, 2.2)
 """Default window (s) of the 'open' run: the fountain leaves the catch at about 2 s."""

@@ -20,9 +20,10 @@ from __future__ import annotations
 
 import argparse
 from concurrent.futures import ProcessPoolExecutor
-from pathlib import Path
 
-LEVELS = Path(__file__).resolve().parents[1] / "levels"
+from chainfountain.level.library import shipped_dir
+
+LEVELS = shipped_dir()
 
 
 def run(level: str, clearance: float, cart_g: float, dt_ms: float, seed: int,

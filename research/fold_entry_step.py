@@ -22,11 +22,11 @@ from __future__ import annotations
 
 import argparse
 import time
-from pathlib import Path
 
 import numpy as np
 
 from chainfountain.level import io
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Simulation
 from chainfountain.sim.fastbody import PIVOT_JACC as JACC
 from chainfountain.sim.fastbody import pivot_impulse
@@ -44,7 +44,7 @@ def laid_run(h: float, changes: list[str], level: str = "apparatus_fold") -> Sim
     """``level`` at pymunk step ``h`` with ``key=value`` ``changes``, laid on its path and
     run 1 s (the start of fold_entry_check.py and fold_entry_spectrum.py)."""
     ch = {k: parse_val(v) for k, v in (a.split("=", 1) for a in changes)}
-    lvl = io.load(Path(__file__).resolve().parents[1] / "levels" / f"{level}.toml")
+    lvl = io.load(shipped_dir() / f"{level}.toml")
     ch["solver.dt"] = h * lvl.sim.solver.substeps
     sim = Simulation(laid_on_path(with_changes(lvl, ch)).sim)
     sim.advance(1.0)
@@ -89,7 +89,7 @@ def apply_patches(patches: dict) -> None:
 
 def run(level: str, h: float, sets: dict, patches: dict, t0: float, t1: float,
         dt_keep: bool = False) -> dict:
-    lvl = io.load(Path("levels") / f"{level}.toml")
+    lvl = io.load(shipped_dir() / f"{level}.toml")
     ch = dict(sets)
     sub = lvl.sim.solver.substeps if "solver.substeps" not in ch else ch["solver.substeps"]
     ch["solver.dt"] = h * sub

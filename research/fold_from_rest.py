@@ -20,11 +20,12 @@ import argparse
 import json
 import math
 import time
-from pathlib import Path
 
 import numpy as np
 
-LEVELS = Path(__file__).resolve().parents[1] / "levels"
+from chainfountain.level.library import shipped_dir
+
+LEVELS = shipped_dir()
 
 
 def run(name: str, seconds: float, seed: int, dt_factor: float, window: float,

@@ -40,6 +40,7 @@ from pathlib import Path
 
 from chainfountain.errors import RunEnded
 from chainfountain.level import io
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import report
 from chainfountain.sim.config import ChainConfig, SimConfig, SolverConfig
@@ -78,7 +79,7 @@ def fold_config(level: str, dt: float, clearance: float | None = None,
     with the study's changes (``None``: as in the level) and the swing damper ``damper``
     (N s/m; 0 by default: these studies read the fold's own behaviour, not the shipped
     presets' damped one). A missing, bad or non-fold level stops the script with one line."""
-    path = Path(level) if level.endswith(".toml") else ROOT / "levels" / f"{level}.toml"
+    path = Path(level) if level.endswith(".toml") else shipped_dir() / f"{level}.toml"
     try:
         cfg = io.load(path).sim
     except io.LevelError as exc:

@@ -35,6 +35,8 @@ from ideal_tuning import (  # sibling script (research/ on sys.path)
     tuning_args,
 )
 
+from chainfountain.level.library import shipped_dir
+
 UPPER = (0.008, 0.013, 0.019, 0.024, 0.027)
 LOWER = (0.296, 0.301, 0.306, 0.311, 0.326, 0.341)
 LEVEL = "apparatus_fold_gripped"
@@ -46,7 +48,7 @@ def _allowed(m_up: float, m_lo: float) -> bool:
     from chainfountain.level import io
     from chainfountain.sim.apparatus.laws import fold_runs_on
 
-    base = io.load(ROOT / "levels" / f"{LEVEL}.toml").sim
+    base = io.load(shipped_dir() / f"{LEVEL}.toml").sim
     cfg = copy.deepcopy(base)
     cfg.carts[0].mass, cfg.carts[1].mass = m_up, m_lo
     return fold_runs_on(cfg, base)

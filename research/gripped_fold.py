@@ -27,17 +27,17 @@ from __future__ import annotations
 
 import argparse
 import time
-from pathlib import Path
 
 import numpy as np
 
 from chainfountain.errors import RunEnded
 from chainfountain.level import io
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Simulation
 from chainfountain.sim.fastbody import pivot_impulse
 from chainfountain.study.changes import laid_on_path, with_changes
 
-LEVELS = Path(__file__).resolve().parents[1] / "levels"
+LEVELS = shipped_dir()
 GRIPPED = {"apparatus.fold_roller": "gripped", "apparatus.fold_roller_radius": 0.1}
 
 

@@ -23,18 +23,18 @@ from __future__ import annotations
 
 import argparse
 import math
-from pathlib import Path
 
 import numpy as np
 from scipy.optimize import brentq
 
 from chainfountain.errors import RunEnded
 from chainfountain.level import io
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Simulation
 from chainfountain.sim.apparatus import Apparatus, starter
 from chainfountain.study.changes import laid_on_path, with_changes
 
-LEVELS = Path(__file__).resolve().parents[1] / "levels"
+LEVELS = shipped_dir()
 
 
 def hanging_path(xe: float, ye: float, slack: float, n: int = 400) -> np.ndarray:

@@ -21,11 +21,12 @@ from __future__ import annotations
 import argparse
 import math
 import sys
-from pathlib import Path
 
 import numpy as np
 
-LEVEL = Path(__file__).resolve().parents[1] / "levels" / "ideal_floor.toml"
+from chainfountain.level.library import shipped_dir
+
+LEVEL = shipped_dir() / "ideal_floor.toml"
 
 
 def main(argv: list[str] | None = None) -> int:

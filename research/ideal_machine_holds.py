@@ -35,7 +35,9 @@ from pathlib import Path
 
 import numpy as np
 
-LEVELS = Path(__file__).resolve().parents[1] / "levels"
+from chainfountain.level.library import shipped_dir
+
+LEVELS = shipped_dir()
 IDEAL = ("ideal_floor", "ideal_special", "ideal_fold", "ideal_limit")
 
 

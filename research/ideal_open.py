@@ -25,11 +25,12 @@ from __future__ import annotations
 import argparse
 import math
 from concurrent.futures import ProcessPoolExecutor
-from pathlib import Path
 
 import numpy as np
 
-LEVEL = Path(__file__).resolve().parents[1] / "levels" / "ideal_open.toml"
+from chainfountain.level.library import shipped_dir
+
+LEVEL = shipped_dir() / "ideal_open.toml"
 
 
 def run(dt_factor: float, duration: float, from_fountain: bool) -> dict:

@@ -22,6 +22,8 @@ from pathlib import Path
 
 import numpy as np
 
+from chainfountain.level.library import shipped_dir
+
 ROOT = Path(__file__).resolve().parents[1]
 LOWER = (0.14, 0.17, 0.2, 0.23, 0.26)
 XI2 = (0.15, 0.25, 0.35)
@@ -50,7 +52,7 @@ def run_grid(level: str, grid: dict[str, tuple[float, ...]], a: argparse.Namespa
     sweep_file = a.out / "tuning.toml"
     lines = "".join(f'"{k}" = {list(v)}\n' for k, v in grid.items())
     seeded = f"seeds = {list(seeds)}\n" if seeds else ""
-    sweep_file.write_text(f'base = "{ROOT / "levels" / f"{level}.toml"}"\n'
+    sweep_file.write_text(f'base = "{shipped_dir() / f"{level}.toml"}"\n'
                           f"duration = {a.duration}\n{seeded}[grid]\n{lines}")
     from chainfountain.study import sweep
 

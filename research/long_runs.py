@@ -34,7 +34,9 @@ import time
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
-LEVELS = Path(__file__).resolve().parents[1] / "levels"
+from chainfountain.level.library import shipped_dir
+
+LEVELS = shipped_dir()
 ORDINARY = ("classroom", "paper_tall", "paper_tall_fine", "wide_low")
 FIGURES = ("vertex_y", "vertex_x", "landing_x", "spread", "stretch")
 LIMITS = {"vertex_y": 0.005, "vertex_x": 0.01, "landing_x": 0.01, "spread": 0.002,

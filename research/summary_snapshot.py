@@ -27,7 +27,9 @@ import sys
 import tempfile
 from pathlib import Path
 
-LEVELS = Path(__file__).resolve().parents[1] / "levels"
+from chainfountain.level.library import shipped_dir
+
+LEVELS = shipped_dir()
 VOLATILE = {"wall_s", "realtime_factor", "outputs"}
 """Keys that differ between identical runs (timing) or name files."""
 

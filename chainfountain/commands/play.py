@@ -32,7 +32,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         help="open the interactive window on a level (default: the built-in level)",
         description=(
             "Open the chain fountain window on LEVEL (a .toml file, or the name of a level "
-            "in levels/ or in the user folder). Without a display it runs the level headless. "
+            "shipped or in the user folder). Without a display it runs the level headless. "
             "--frames N renders N frames off-screen (SDL dummy driver, 1/60 s of simulated "
             "time each) and exits; --screenshot FILE saves the last one as PNG."
         ),
@@ -55,7 +55,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 def resolve_level(text: str) -> Path:
-    """A level file path from a path or a level name (``levels/`` or the user folder)."""
+    """A level file path from a path or a level name (shipped or in the user folder)."""
     from chainfountain.level import library
 
     return library.resolve(text)

@@ -20,7 +20,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "run",
         help="run a level headless and write summary.json, CSVs and a snapshot",
-        description="Run LEVEL (a .toml path or a level name from levels/) without a window. "
+        description="Run LEVEL (a .toml path or a shipped level name) without a window. "
         "Writes summary.json, tensions.csv, speed.csv and snapshot.png into --out (apparatus "
         "levels also apparatus.csv; the 'open' arrangement reaction.png; a scene level "
         "summary.json, probe_<name>.csv per probe and scene.png). " + EXIT_HELP,

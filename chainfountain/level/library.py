@@ -1,4 +1,5 @@
-"""Where levels live: the shipped ``levels/`` folder, the user's folder, the built-in default."""
+"""Where levels live: the shipped ``chainfountain/levels/`` folder (inside the package, so
+every install has it), the user's folder, the built-in default."""
 
 from __future__ import annotations
 
@@ -12,8 +13,8 @@ DEFAULT_LEVEL_NAME = "beaker"
 
 
 def shipped_dir() -> Path:
-    """The repository's ``levels/`` folder (next to the package in a checkout)."""
-    return Path(__file__).resolve().parents[2] / "levels"
+    """The package's ``chainfountain/levels/`` folder (shipped inside the wheel)."""
+    return Path(__file__).resolve().parents[1] / "levels"
 
 
 def home_dir() -> Path:
@@ -87,7 +88,8 @@ def twin(name: str) -> str | None:
 
 
 def default_level() -> io.Level:
-    """The built-in default level (``levels/beaker.toml``; the code defaults if absent)."""
+    """The built-in default level (``chainfountain/levels/beaker.toml``; the code defaults if
+    absent)."""
     path = shipped_dir() / f"{DEFAULT_LEVEL_NAME}.toml"
     if path.exists():
         return io.load(path)

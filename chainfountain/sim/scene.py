@@ -6,7 +6,7 @@ floor, steps in pymunk sub-steps and reads positions, speeds, tensions, pin forc
 the floor's force. Scene levels (``kind = "scene"``) run on it
 (:mod:`chainfountain.sim.scene_sim`), among them the validation problems with closed
 forms: the folded chain falling with one end fixed and the chain dropped onto a scale
-(``levels/falling_chain.toml``, ``levels/chain_on_scale.toml``,
+(``chainfountain/levels/falling_chain.toml``, ``chainfountain/levels/chain_on_scale.toml``,
 ``tests/sim/test_scene_levels.py``).
 
 Its default solver (:data:`SCENE_SOLVER`) keeps the energy of fast folds: the energy a

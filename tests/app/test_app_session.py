@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -11,6 +10,7 @@ import pytest
 from chainfountain.app import controls
 from chainfountain.app.session import Session
 from chainfountain.level import io
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim.config import CartConfig, SimConfig
 
 
@@ -164,9 +164,8 @@ def test_drag_a_link():
 
 
 def test_used_up_apparatus_table_pauses_with_a_message() -> None:
-    from pathlib import Path
 
-    lvl = io.load(Path(__file__).resolve().parents[2] / "levels" / "apparatus_floor.toml")
+    lvl = io.load(shipped_dir() / "apparatus_floor.toml")
     lvl.sim.apparatus.plate_links = 0  # the real geometry, sized for a 0.2-s run
     lvl.sim.apparatus.duration = 0.2
     s = Session(lvl)
@@ -195,9 +194,8 @@ def test_fold_clearance_control_lowers_the_lower_table() -> None:
     """The collapse message at a small step advises apparatus.fold_clearance = 0.002; the
     window offers it (a linear slider over 0-5 mm) and the rebuilt scene has the lower
     table that much lower."""
-    from pathlib import Path
 
-    lvl = io.load(Path(__file__).resolve().parents[2] / "levels" / "apparatus_special.toml")
+    lvl = io.load(shipped_dir() / "apparatus_special.toml")
     s = Session(lvl)
     spec = controls.spec_for(s.level.sim, "apparatus.fold_clearance")
     assert not spec.log and spec.slider_lo == 0.0 and spec.slider_hi == 0.005
@@ -210,9 +208,8 @@ def test_fold_clearance_control_lowers_the_lower_table() -> None:
 
 
 def test_floor_depth_control_rebuilds_and_refuses() -> None:
-    from pathlib import Path
 
-    lvl = io.load(Path(__file__).resolve().parents[2] / "levels" / "apparatus_floor.toml")
+    lvl = io.load(shipped_dir() / "apparatus_floor.toml")
     s = Session(lvl)
     H = s.sim.apparatus.H
     r = s.set_field("apparatus.floor_depth", 0.1)
@@ -229,9 +226,8 @@ def test_collapsed_fold_pauses_and_keeps_the_reason(capsys) -> None:
     session pauses and keeps why until the scene is rebuilt: in the window one plain
     sentence with what to do (here: open the ideal twin), on the terminal the full
     explanation (push, catch) that a headless run also gives."""
-    from pathlib import Path
 
-    lvl = io.load(Path(__file__).resolve().parents[2] / "levels" / "apparatus_limit.toml")
+    lvl = io.load(shipped_dir() / "apparatus_limit.toml")
     s = Session(lvl)
     s.advance(2.0)  # no exception escapes
     assert s.paused and 0.5 < s.sim.time < 2.0
@@ -241,12 +237,12 @@ def test_collapsed_fold_pauses_and_keeps_the_reason(capsys) -> None:
     assert "[[carts]]" not in shown and "docs/" not in shown  # nothing a window cannot do
     err = capsys.readouterr().err
     assert "folding roller rolls backwards" in err and "lambda*v^2" in err
-    s.load_path(Path(__file__).resolve().parents[2] / "levels" / "ideal_limit.toml")
+    s.load_path(shipped_dir() / "ideal_limit.toml")
     assert s.stopped is None and not s.paused  # M after the stop: the twin runs
     s.load_level(lvl)
     assert not s.paused
     s.toggle_pause()
-    s.load_path(Path(__file__).resolve().parents[2] / "levels" / "ideal_limit.toml")
+    s.load_path(shipped_dir() / "ideal_limit.toml")
     assert s.paused  # a pause the user chose stays
     s.reset()
     assert s.stopped is None and s.sim.time == 0.0
@@ -255,7 +251,7 @@ def test_collapsed_fold_pauses_and_keeps_the_reason(capsys) -> None:
 def test_apparatus_history_has_the_roller_speeds() -> None:
     """The speed plot's pick-up and fold lines (twice each roller's speed) are in the
     history for a fold level, and absent (nan) for a feed level."""
-    lvl = io.load(Path(__file__).resolve().parents[2] / "levels" / "apparatus_special.toml")
+    lvl = io.load(shipped_dir() / "apparatus_special.toml")
     s = Session(lvl)
     s.advance(0.6)
     h = s.history.arrays()
@@ -271,7 +267,7 @@ def test_apparatus_history_has_the_roller_speeds() -> None:
 
 
 def test_setting_link_length_by_hand_turns_the_accuracy_off():
-    lvl = io.load(Path(__file__).resolve().parents[2] / "levels" / "wide_low.toml")
+    lvl = io.load(shipped_dir() / "wide_low.toml")
     assert lvl.sim.solver.accuracy > 0
     s = Session(lvl)
     r = s.set_field("chain.link_length", 0.03)
@@ -284,7 +280,7 @@ def test_setting_link_length_by_hand_turns_the_accuracy_off():
 
 
 def test_a_changed_level_is_saved_with_a_description_of_its_changes(tmp_path):
-    lvl = io.load(Path(__file__).resolve().parents[2] / "levels" / "wide_low.toml")
+    lvl = io.load(shipped_dir() / "wide_low.toml")
     s = Session(lvl)
     path = s.save("same", tmp_path)
     assert io.load(path).meta.description == lvl.meta.description  # unchanged: as it was
@@ -298,7 +294,7 @@ def test_a_stalled_chain_pauses_with_a_sentence_and_no_nonsense_readout() -> Non
     """A 30 g upper cart stalls apparatus_floor's chain once its starter lets go: the window
     pauses with the stall's sentence, and the readout says there is no fountain instead of
     fitting a catenary (Tbar_E -19.6) and scaling tensions by a vanishing lambda*v^2."""
-    lvl = io.load(Path(__file__).resolve().parents[2] / "levels" / "apparatus_floor.toml")
+    lvl = io.load(shipped_dir() / "apparatus_floor.toml")
     lvl.sim.carts[0].mass = 0.03
     s = Session(lvl)
     s.advance(12.0)
@@ -315,7 +311,7 @@ def test_while_the_starter_runs_the_readout_names_it_and_reads_no_pull(t: float)
     names the starter and shows no pull; at 0.6 s the head flies at 1.87 m/s, slower than a
     fountain over the drop needs, and the readout names the starter, not a missing
     fountain."""
-    s = Session(io.load(Path(__file__).resolve().parents[2] / "levels"
+    s = Session(io.load(shipped_dir()
                         / "apparatus_fold_gripped.toml"))
     s.advance(t)
     assert s.sim.apparatus.starting
@@ -332,7 +328,7 @@ def test_window_keeps_a_fed_fountain_at_real_time():
     per simulated second) may grow to 1.5 times its own cost."""
     from chainfountain.app import budget
 
-    root = Path(__file__).resolve().parents[2] / "levels"
+    root = shipped_dir()
     s = Session(io.load(root / "classroom.toml"))
     r = s.set_field("feed.speed", 30.0)
     assert r.ok and 8.0 < r.value < 30.0
@@ -350,7 +346,7 @@ def test_window_keeps_a_fed_fountain_at_real_time():
 
 
 def test_pure_numbers_show_no_unit():
-    s = Session(io.load(Path(__file__).resolve().parents[2] / "levels" / "classroom.toml"))
+    s = Session(io.load(shipped_dir() / "classroom.toml"))
     r = s.set_field("chain.friction", 0.5)
     assert r.ok and r.message.startswith("friction = 0.5") and " 1 " not in r.message + " "
 
@@ -385,7 +381,7 @@ def test_window_keeps_an_apparatus_at_real_time() -> None:
     from chainfountain.sim import Simulation
     from chainfountain.study.changes import laid_on_path
 
-    root = Path(__file__).resolve().parents[2] / "levels"
+    root = shipped_dir()
     for name in ("apparatus_floor", "apparatus_special", "apparatus_fold"):
         lvl = laid_on_path(io.load(root / f"{name}.toml"))
         built = len(Simulation(lvl.sim).chain.links)
@@ -423,7 +419,7 @@ def test_level_files_and_run_accept_what_the_window_refuses(tmp_path) -> None:
     from chainfountain.app import budget
     from chainfountain.study.changes import with_changes
 
-    lvl = io.load(Path(__file__).resolve().parents[2] / "levels" / "classroom.toml")
+    lvl = io.load(shipped_dir() / "classroom.toml")
     changes = {"feed.speed": 30.0, "solver.accuracy": 0.0}  # its own link length and step
     fast = with_changes(lvl, changes)
     assert budget.over_budget(fast.sim, lvl.sim) is not None
@@ -434,9 +430,8 @@ def test_level_files_and_run_accept_what_the_window_refuses(tmp_path) -> None:
 def test_a_run_that_stops_within_a_frame_steps_no_further(capsys) -> None:
     """A window frame asks for many physics steps; when the machine stops itself in one
     of them the frame ends there (it said why once, and the clock stays at the stop)."""
-    from pathlib import Path
 
-    lvl = io.load(Path(__file__).resolve().parents[2] / "levels" / "apparatus_limit.toml")
+    lvl = io.load(shipped_dir() / "apparatus_limit.toml")
     s = Session(lvl)
     s.advance(0.9)
     assert s.stopped is None
@@ -458,11 +453,10 @@ def test_floor_machine_readout_says_what_its_cart_selects() -> None:
     ``v**2 = (g*H*(1 - xi2) - F_uc/lambda)/(1/2)`` (``Tbar_0 = 1/2 + Tbar_uc + xi2*k*H``
     meeting the free-ended fountain's ``Tbar_0 = k*H``)."""
     import math
-    from pathlib import Path
 
     from chainfountain.sim.apparatus.laws import floor_speeds
 
-    lvl = io.load(Path(__file__).resolve().parents[2] / "levels" / "apparatus_floor.toml")
+    lvl = io.load(shipped_dir() / "apparatus_floor.toml")
     s = Session(lvl)
 
     def paper_speed() -> float:

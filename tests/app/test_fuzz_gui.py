@@ -19,7 +19,8 @@ from __future__ import annotations
 
 import math
 import os
-from pathlib import Path
+
+from chainfountain.level.library import shipped_dir
 
 os.environ["SDL_VIDEODRIVER"] = "dummy"
 os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
@@ -31,7 +32,7 @@ from chainfountain.app.session import Session  # noqa: E402
 from chainfountain.app.window import App  # noqa: E402
 from chainfountain.level import io  # noqa: E402
 
-LEVELS = Path(__file__).resolve().parents[2] / "levels"
+LEVELS = shipped_dir()
 
 NUMBERS = [math.nan, math.inf, -math.inf, 1e308, -1e308, 0.0, -0.0, -1.0, -1e-9, 5e-324,
            1e-300, 1e9]

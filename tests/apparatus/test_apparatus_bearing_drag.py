@@ -13,15 +13,14 @@ measured.
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import pytest
 from apparatus_runs import load_on_path
 
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import report
 
-LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_floor.toml"
+LEVEL = shipped_dir() / "apparatus_floor.toml"
 RUN, STEADY = 8.0, (4.0, 8.0)
 
 pytestmark = pytest.mark.xdist_group("apparatus_bearing_drag")

@@ -28,19 +28,19 @@ docs/apparatus.md, "The gripped folding roller".
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import pytest
 
 from chainfountain.errors import RunEnded
 from chainfountain.level import io
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus.laws import braked_fold_speed
 from chainfountain.sim.apparatus.tuning import CATCH_STOP
 from chainfountain.sim.apparatus_report import report
 from chainfountain.study.changes import laid_on_path, with_changes
 
-LEVELS = Path(__file__).resolve().parents[2] / "levels"
+LEVELS = shipped_dir()
 WINDOW = (2.0, 5.0)
 pytestmark = pytest.mark.xdist_group("apparatus_braked")
 

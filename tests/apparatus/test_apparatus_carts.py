@@ -40,15 +40,15 @@ below assert what holds in every start, with bounds that take in both outcomes.
 from __future__ import annotations
 
 import dataclasses
-from pathlib import Path
 
 import pytest
 from apparatus_runs import load_on_path, load_undamped
 
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim.apparatus import CART_GAIN_2CM
 from chainfountain.sim.cart_step import CartStep, cart_step
 
-LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_floor.toml"
+LEVEL = shipped_dir() / "apparatus_floor.toml"
 T_SWITCH, WINDOW, HEAVY = 1.0, 0.6, 0.06
 
 pytestmark = pytest.mark.xdist_group("apparatus_carts")

@@ -5,15 +5,15 @@ cart, the bearing drag, the fold's brake or the swing damper reaches the springs
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import pytest
 
 from chainfountain.level import io
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Simulation
 from chainfountain.sim.apparatus.parts import RollerUnit
 
-LEVELS = Path(__file__).resolve().parents[2] / "levels"
+LEVELS = shipped_dir()
 
 
 def _drive_force(unit: RollerUnit) -> float:

@@ -21,18 +21,17 @@ docs/apparatus.md, "An end guide that follows the landing".
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 import pytest
 
 from chainfountain.errors import RunEnded
 from chainfountain.level import io
+from chainfountain.level.library import shipped_dir
 from chainfountain.level.model import LevelError
 from chainfountain.sim import Simulation
 from chainfountain.study.changes import laid_on_path, with_changes
 
-LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_fold_gripped.toml"
+LEVEL = shipped_dir() / "apparatus_fold_gripped.toml"
 SEEDS = (0, 1)
 CHANGE_AT, END = 2.0, 12.0
 DM = 0.008

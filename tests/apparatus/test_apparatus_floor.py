@@ -30,7 +30,6 @@ from __future__ import annotations
 
 import json
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -38,12 +37,13 @@ from apparatus_runs import load_on_path
 
 from chainfountain.headless import run_level
 from chainfountain.level import io
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import report
 from chainfountain.sim.budget import EnergyBudget, rig_law_speed
 from chainfountain.sim.guide import PLAY
 
-LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_floor.toml"
+LEVEL = shipped_dir() / "apparatus_floor.toml"
 RUN = 6.0
 STEADY = (3.0, RUN)
 REST = (6.0, 16.0)

@@ -29,12 +29,12 @@ holds to the end of the run (3 s).
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import pytest
 from apparatus_runs import load_real_geometry, run_fold
 
-LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_fold.toml"
+from chainfountain.level.library import shipped_dir
+
+LEVEL = shipped_dir() / "apparatus_fold.toml"
 CLEAN = (0.2, 2.5)
 RUN = 3.0
 WINDOWS = [(0.5 * i, 0.5 * i + 0.5) for i in range(1, 6)]

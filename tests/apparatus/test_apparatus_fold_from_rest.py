@@ -21,17 +21,16 @@ docs/apparatus.md, "Starting the gripped folds from rest".
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 import pytest
 
 from chainfountain.level import io
+from chainfountain.level.library import shipped_dir
 from chainfountain.level.model import LevelError
 from chainfountain.sim import Simulation
 from chainfountain.study.changes import with_changes
 
-LEVELS = Path(__file__).resolve().parents[2] / "levels"
+LEVELS = shipped_dir()
 HELD_SPEED = {"apparatus_fold_gripped": 2.9838, "apparatus_special_gripped": 2.9656}
 """Mean speed (m/s) of each preset over 600 s from rest at its step (10-s windows after
 the first; docs/apparatus.md, "Starting the gripped folds from rest")."""

@@ -38,17 +38,17 @@ grows there instead of staying bounded.
 from __future__ import annotations
 
 import dataclasses
-from pathlib import Path
 
 import pytest
 from apparatus_runs import load_undamped
 
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus import FoldCollapsed
 from chainfountain.sim.apparatus_report import report
 from chainfountain.sim.config import SimConfig
 
-LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_special.toml"
+LEVEL = shipped_dir() / "apparatus_special.toml"
 pytestmark = pytest.mark.xdist_group("apparatus_fold_step")
 
 

@@ -25,17 +25,17 @@ from 2.6 to 3.2 m/s; the roller rolls back from about 0.95 s.
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import pytest
 from apparatus_runs import DESIGN_RIG_2CM, design_pickup
 
 from chainfountain.level import io
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus import FoldCollapsed
 from chainfountain.sim.apparatus_report import report
 
-LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_limit.toml"
+LEVEL = shipped_dir() / "apparatus_limit.toml"
 RUN = 2.0
 EARLY = (0.05, 0.5)
 """Window before the catch is lost (the roller rolls back from about 0.95 s)."""

@@ -16,18 +16,18 @@ within 5 s, saying so.
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
 from apparatus_runs import load_on_path
 
 from chainfountain.errors import RunEnded
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Simulation
 from chainfountain.sim.apparatus.laws import FLOOR_KH_MAX, floor_runs_on, floor_speeds
 from chainfountain.sim.apparatus.stall_watch import ChainStalled
 
-LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_floor.toml"
+LEVEL = shipped_dir() / "apparatus_floor.toml"
 
 
 def heaviest_running_cart(cfg) -> float:

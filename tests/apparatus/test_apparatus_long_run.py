@@ -25,17 +25,17 @@ and 2) failed at 20.85 and 19.25 s, their swing growing from +-0.073 to +-0.190 
 from __future__ import annotations
 
 import re
-from pathlib import Path
 
 import numpy as np
 import pytest
 from apparatus_runs import load_undamped
 
 from chainfountain.level import io
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Simulation
 from chainfountain.sim.apparatus import FoldCollapsed
 
-LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_special.toml"
+LEVEL = shipped_dir() / "apparatus_special.toml"
 pytestmark = pytest.mark.xdist_group("apparatus_long_run")
 
 

@@ -31,18 +31,18 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
 from apparatus_runs import load_on_path
 
 from chainfountain.level import io
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import report
 from chainfountain.sim.budget import open_windows
 
-LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_open.toml"
+LEVEL = shipped_dir() / "apparatus_open.toml"
 FLOOR = LEVEL.with_name("apparatus_floor.toml")
 RUN = 2.2
 FLOOR_SPEED = 2.929

@@ -4,15 +4,14 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import pytest
 from apparatus_runs import load_undamped
 
 from chainfountain.level import io
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Simulation
 
-LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_special.toml"
+LEVEL = shipped_dir() / "apparatus_special.toml"
 
 
 def _resting(sim: Simulation) -> tuple[int, int]:

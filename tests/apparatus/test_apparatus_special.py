@@ -32,15 +32,14 @@ or 2e-6 faster or slower stayed within the spread of the same runs at 20 iterati
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 import pytest
 from apparatus_runs import load_undamped, run_fold
 
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim.apparatus_report import pivot_offset
 
-LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_special.toml"
+LEVEL = shipped_dir() / "apparatus_special.toml"
 CLEAN = (0.2, 6.0)
 WINDOWS = [(0.5 * i, 0.5 * i + 0.5) for i in range(1, 12)]
 

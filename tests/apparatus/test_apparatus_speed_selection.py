@@ -17,16 +17,15 @@ step's error, which is why the preset steps at 0.25 ms.
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import pytest
 from apparatus_runs import load_on_path
 
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import report
 from chainfountain.sim.budget import EnergyBudget, rig_law_speed
 
-LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_floor_heavy.toml"
+LEVEL = shipped_dir() / "apparatus_floor_heavy.toml"
 RUN = 5.0
 
 

@@ -16,19 +16,18 @@ gives."""
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 import pytest
 from apparatus_runs import load_on_path
 
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import report
 from chainfountain.sim.budget import EnergyBudget
 from chainfountain.sim.cart_step import run as cart_step_run
 from chainfountain.study.changes import with_changes
 
-LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_floor.toml"
+LEVEL = shipped_dir() / "apparatus_floor.toml"
 
 pytestmark = pytest.mark.xdist_group("apparatus_substeps")
 

@@ -22,7 +22,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from pathlib import Path
 
 import numpy as np
 import pymunk
@@ -30,11 +29,12 @@ import pytest
 from apparatus_runs import load_on_path, load_real_geometry
 
 from chainfountain.level import io
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus import TableUsedUp
 from chainfountain.sim.apparatus_report import report
 
-LEVEL = Path(__file__).resolve().parents[2] / "levels" / "apparatus_floor.toml"
+LEVEL = shipped_dir() / "apparatus_floor.toml"
 FOLD = LEVEL.with_name("apparatus_fold.toml")
 RUN = 1.5
 FOLD_RUN = 2.5

@@ -18,10 +18,11 @@ import pytest
 from chainfountain import atomic, headless
 from chainfountain.headless import exit_status, run_level
 from chainfountain.level import io, library
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Simulation
 from chainfountain.sim.watchdog import CHECK_INTERVAL, Diverged
 
-LEVELS = Path(__file__).resolve().parents[2] / "levels"
+LEVELS = shipped_dir()
 
 
 def _cli(*args: str, **kw) -> subprocess.CompletedProcess:

@@ -4,12 +4,12 @@ import csv
 import json
 import subprocess
 import sys
-from pathlib import Path
 
 import pytest
 
 from chainfountain.headless import run_level
 from chainfountain.level import io
+from chainfountain.level.library import shipped_dir
 
 KEYS = ["level", "duration_s", "steps", "links", "wall_s", "realtime_factor", "steady_since_s",
         "speed_mean", "speed_cv", "max_stretch", "vertex", "start", "end", "h", "l", "H",
@@ -84,7 +84,7 @@ def test_a_seed_nudges_an_apparatus_start_and_repeats_it() -> None:
     from chainfountain.level import io as level_io
     from chainfountain.sim import Simulation
 
-    base = level_io.load(Path(__file__).resolve().parents[2] / "levels"
+    base = level_io.load(shipped_dir()
                          / "apparatus_special.toml").sim
 
     def velocities(seed: int, nudge: int | None = None) -> np.ndarray:
@@ -105,7 +105,7 @@ def test_default_duration_of_a_table_sized_apparatus_is_its_own() -> None:
     from chainfountain.headless import DEFAULT_DURATION, FORMING_DURATION, default_duration
     from chainfountain.level import io as level_io
 
-    levels = Path(__file__).resolve().parents[2] / "levels"
+    levels = shipped_dir()
     fold = level_io.load(levels / "apparatus_limit.toml")
     assert fold.sim.apparatus.plate_links == 0
     assert default_duration(fold) == fold.sim.apparatus.duration  # the table is sized for it
@@ -122,7 +122,7 @@ def test_demo_fed_levels_form_from_a_stub_and_run_long_enough_to_be_averaged() -
     from chainfountain.headless import FORMING_DURATION, default_duration
     from chainfountain.level import io as level_io
 
-    levels = Path(__file__).resolve().parents[2] / "levels"
+    levels = shipped_dir()
     for name in ("classroom", "paper_tall", "paper_tall_fine", "wide_low"):
         lvl = level_io.load(levels / f"{name}.toml")
         assert lvl.sim.initial.mode == "stub", name
@@ -137,7 +137,7 @@ def test_ideal_machines_from_a_stub_run_long_enough_to_settle() -> None:
     from chainfountain.headless import MACHINE_FORMING_DURATION, default_duration
     from chainfountain.level import io as level_io
 
-    levels = Path(__file__).resolve().parents[2] / "levels"
+    levels = shipped_dir()
     for name in ("ideal_floor", "ideal_fold", "ideal_special", "ideal_limit", "ideal_open"):
         lvl = level_io.load(levels / f"{name}.toml")
         assert lvl.sim.initial.mode == "stub" and lvl.sim.feed.starter > 0, name

@@ -44,9 +44,10 @@ from hypothesis import strategies as st
 from chainfountain.errors import RunEnded
 from chainfountain.fields import tuple_item_type
 from chainfountain.level import io
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim.config import CartConfig, RollerConfig, SimConfig
 
-LEVELS_DIR = Path(__file__).resolve().parents[2] / "levels"
+LEVELS_DIR = shipped_dir()
 SHIPPED: dict[str, str] = {p.stem: p.read_text(encoding="utf-8")
                            for p in sorted(LEVELS_DIR.glob("*.toml"))}
 """Text of every shipped level, by name."""

@@ -9,9 +9,10 @@ from pathlib import Path
 import pytest
 
 from chainfountain.level import io
+from chainfountain.level.library import shipped_dir
 
 ROOT = Path(__file__).resolve().parents[2]
-LEVELS = sorted((ROOT / "levels").glob("*.toml"))
+LEVELS = sorted(shipped_dir().glob("*.toml"))
 
 
 def test_round_trip_exact(tmp_path):
@@ -151,7 +152,7 @@ def test_apparatus_bad_files_one_clear_line(tmp_path, key, new, field, shown, al
     """The apparatus lays its own chain, so ``[initial]`` settings would be silently
     ignored there: they are refused instead; ``fold_clearance`` and ``upper_guide = "joints"``
     only where they apply, the swing damper only in 'fold'."""
-    text = (ROOT / "levels" / "apparatus_special.toml").read_text()
+    text = (shipped_dir() / "apparatus_special.toml").read_text()
     if key == "fold_clearance":  # the preset leaves it at its default, 0
         text = _replace_key(text, "plate_links", "plate_links = 20\nfold_clearance = 0.002")
     if key in ("plate", "upper_guide"):  # no treadmill: a contact plate may have none

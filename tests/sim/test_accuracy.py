@@ -11,17 +11,17 @@ error on these runs is 0.01-0.04 % (four block means), far below the bounds' mar
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import pytest
 
 from chainfountain.level import io
+from chainfountain.level.library import shipped_dir
 from chainfountain.level.model import LevelError
 from chainfountain.refine import measure
 from chainfountain.sim import accuracy
 from chainfountain.sim.reference import LaunchReference
 
-LEVELS = Path(__file__).resolve().parents[2] / "levels"
+LEVELS = shipped_dir()
 
 WIDE_LOW = LaunchReference.from_launch(4.0, math.radians(60.0), 0.5)
 PULL = LaunchReference.from_launch(5.0, math.radians(75.0), 1.0, TE_bar=0.15)

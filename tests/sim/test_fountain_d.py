@@ -16,17 +16,17 @@ against ``k H`` = 0.8601, vertex +0.55 %, landing +0.07 %, speed 4.7750 m/s
 from __future__ import annotations
 
 import dataclasses
-from pathlib import Path
 
 import pytest
 
 from chainfountain.design_level import design_sim_config
 from chainfountain.level import io
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.theory import Fountain
 from chainfountain.theory.design import design
 
-LEVELS = Path(__file__).resolve().parents[2] / "levels"
+LEVELS = shipped_dir()
 L_D, H_D, H = 0.33, 0.28, 2.0  # the paper's fountain D: l = kappa*H, h = xi*H
 SETTLE, WINDOW = 0.5, 1.0
 

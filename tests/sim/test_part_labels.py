@@ -3,14 +3,13 @@ them beside the apparatus)."""
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import pytest
 
 from chainfountain.level import io
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Simulation
 
-LEVELS = Path(__file__).resolve().parents[2] / "levels"
+LEVELS = shipped_dir()
 
 
 @pytest.fixture(scope="module")
