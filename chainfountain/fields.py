@@ -112,3 +112,20 @@ def tuple_item_type(tp: Any) -> Any | None:
         if len(args) == 2 and args[1] is Ellipsis:
             return args[0]
     return None
+
+
+def iter_numeric_fields(obj: Any, prefix: str = "") -> typing.Iterator[tuple[str, Any, dict]]:
+    """``(path, python type, metadata)`` of every int/float leaf of a config instance."""
+    hints = typing.get_type_hints(type(obj))
+    for f in dataclasses.fields(obj):
+        val = getattr(obj, f.name)
+        tp = hints[f.name]
+        path = prefix + f.name
+        if dataclasses.is_dataclass(val):
+            yield from iter_numeric_fields(val, path + ".")
+        elif isinstance(val, tuple) and tuple_item_type(tp) is not None:
+            for i, item in enumerate(val):
+                if dataclasses.is_dataclass(item):
+                    yield from iter_numeric_fields(item, f"{path}[{i}].")
+        elif tp in (int, float):
+            yield path, tp, dict(f.metadata)

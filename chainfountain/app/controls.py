@@ -11,14 +11,12 @@ outside the declared range is clamped by :meth:`FieldSpec.clamp`, which says so.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 import re
-import typing
 from dataclasses import dataclass
 from typing import Any
 
-from chainfountain.fields import allowed_text, tuple_item_type
+from chainfountain.fields import allowed_text, iter_numeric_fields
 
 CONTROL_PATTERNS: tuple[str, ...] = (
     r"(feed|apparatus)\.speed",
@@ -128,23 +126,6 @@ def set_value(config: Any, path: str, value: Any) -> None:
     """Set a dotted field path in a (mutable) config dataclass in place."""
     obj, name = _owner(config, path)
     setattr(obj, name, value)
-
-
-def iter_numeric_fields(obj: Any, prefix: str = "") -> typing.Iterator[tuple[str, Any, dict]]:
-    """``(path, python type, metadata)`` of every int/float leaf of a config instance."""
-    hints = typing.get_type_hints(type(obj))
-    for f in dataclasses.fields(obj):
-        val = getattr(obj, f.name)
-        tp = hints[f.name]
-        path = prefix + f.name
-        if dataclasses.is_dataclass(val):
-            yield from iter_numeric_fields(val, path + ".")
-        elif isinstance(val, tuple) and tuple_item_type(tp) is not None:
-            for i, item in enumerate(val):
-                if dataclasses.is_dataclass(item):
-                    yield from iter_numeric_fields(item, f"{path}[{i}].")
-        elif tp in (int, float):
-            yield path, tp, dict(f.metadata)
 
 
 @dataclass(frozen=True)

@@ -7,6 +7,7 @@ import dataclasses
 import math
 from typing import TYPE_CHECKING
 
+from chainfountain.fields import iter_numeric_fields
 from chainfountain.level.model import Level, _fail
 from chainfountain.sim.config import KINDS, FeedConfig, InitialConfig, SimConfig
 
@@ -40,6 +41,19 @@ def check_consistency(level: Level, where: str) -> None:
 
         check_beaker(level, where, MAX_LINKS)
     _check_accuracy_scope(sim, where)
+    _check_controls(level, where)
+
+
+def _check_controls(level: Level, where: str) -> None:
+    """``meta.controls`` names numeric fields this level has (each becomes a slider)."""
+    other = tuple(f"{k}." for k in KINDS if k != level.sim.kind)
+    known = [path for path, _, _ in iter_numeric_fields(level.sim)
+             if not path.startswith(other)]
+    for path in level.meta.control_paths():
+        if path not in known:
+            shown = ", ".join(known[:6])
+            _fail(where, "meta.controls", f"{path!r} is not a number field of this level; "
+                  f"allowed: its number fields, separated by commas (such as {shown})")
 
 
 def _check_other_kind(sim: SimConfig, where: str) -> None:

@@ -26,10 +26,27 @@ class LevelError(UserError):
 class Meta:
     """Name and description of a level."""
 
-    name: str = param(REQUIRED, unit="", doc="Short name of the level (shown in the picker)")
+    name: str = param(REQUIRED, unit="", doc="Short name of the level (its file name's stem "
+                      "for a shipped level; `chainfountain run NAME` runs it)")
+    title: str = param("", unit="", doc="The level's title as the window and the picker show "
+                       "it (default: the name)")
     description: str = param(
-        "", unit="", doc="What the level shows and what the user should see"
+        "", unit="", doc="What the level shows and what to try, in at most three sentences "
+        "(the window's card and the picker show it)"
     )
+    controls: str = param("", unit="", doc="The sliders the window's student view shows, as "
+                          "field paths separated by commas (e.g. \"carts[0].mass, "
+                          "apparatus.xi2\"); empty: the kind's usual ones. The expert view "
+                          "(E) shows every field")
+
+    @property
+    def shown_title(self) -> str:
+        """The title, or the name when the level has none."""
+        return self.title.strip() or self.name
+
+    def control_paths(self) -> list[str]:
+        """:attr:`controls` as a list of field paths (empty: none named)."""
+        return [p.strip() for p in self.controls.split(",") if p.strip()]
 
 
 @dataclass
