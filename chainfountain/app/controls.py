@@ -11,6 +11,7 @@ outside the declared range is clamped by :meth:`FieldSpec.clamp`, which says so.
 
 from __future__ import annotations
 
+import bisect
 import math
 import re
 from dataclasses import dataclass
@@ -81,12 +82,72 @@ LABELS: dict[str, str] = {
     "chain.friction": "friction",
 }
 
+STUDENT_LABELS: dict[str, str] = {
+    "feed.speed": "launch speed",
+    "apparatus.speed": "start speed",
+    "feed.launch_angle": "launch angle",
+    "apparatus.launch_angle": "launch angle",
+    "feed.drop": "drop to the floor",
+    "apparatus.drop": "drop to the end",
+    "beaker.drop": "drop from the rim",
+    "beaker.pile_depth": "pile below the rim",
+    "carts[0].mass": "upper cart",
+    "carts[1].mass": "lower cart",
+    "carts[0].incline": "upper ramp's slope",
+    "carts[1].incline": "lower ramp's slope",
+    "feed.cart_force": "upper cart's pull",
+    "feed.lower_cart_force": "lower cart's pull",
+    "feed.xi2": "upper table, x drop below",
+    "apparatus.xi2": "upper table, x drop below",
+    "feed.xi3": "lower table, x drop above",
+    "apparatus.xi3": "lower table, x drop above",
+    "feed.bearing_drag": "friction in the bearings",
+    "apparatus.bearing_drag": "friction in the bearings",
+    "apparatus.fold_brake": "folding roller's brake",
+    "apparatus.swing_damper": "swing damper",
+    "feed.turn_drop": "drop onto the plate",
+    "chain.friction": "chain's friction",
+    "chain.bending_stiffness": "chain's stiffness",
+    "chain.bend_limit": "chain's largest bend",
+    "chain.link_length": "link length",
+}
+"""The student view's names of the fields (plain words; the expert view shows
+:data:`LABELS`, with the paper's symbols)."""
+
+STUDENT_DEFAULTS: dict[str, tuple[str, ...]] = {
+    "beaker": ("beaker.drop", "beaker.pile_depth", "chain.friction"),
+    "motor": ("feed.speed", "feed.launch_angle", "feed.drop"),
+    "ideal_fold": ("feed.cart_force", "feed.lower_cart_force", "feed.xi2", "feed.xi3"),
+    "ideal_floor": ("feed.cart_force", "feed.xi2"),
+    "ideal_open": ("feed.cart_force", "feed.xi2", "feed.turn_drop"),
+    "fold": ("carts[0].mass", "carts[1].mass"),
+    "floor": ("carts[0].mass", "apparatus.xi2"),
+    "open": ("carts[0].mass", "apparatus.xi2"),
+}
+"""The student view's sliders of a level that names none (``meta.controls``), by its
+kind, feed drive or apparatus variant."""
+
+
+def student_paths(level: Any) -> list[str]:
+    """The field paths the student view shows for ``level`` (a
+    :class:`~chainfountain.level.model.Level`): its ``meta.controls``, else
+    :data:`STUDENT_DEFAULTS` for its kind, in that order, each only where the expert view
+    has a slider for it."""
+    sim = level.sim
+    named = level.meta.control_paths()
+    if not named:
+        kind = sim.kind
+        key = (sim.feed.drive if kind == "feed" else
+               sim.apparatus.variant if kind == "apparatus" else kind)
+        named = list(STUDENT_DEFAULTS.get(key, ()))
+    offered = {spec.path for spec in control_fields(sim)}
+    return [p for p in named if p in offered]
+
+
 LINEAR: frozenset[str] = frozenset({"apparatus.fold_clearance"})
 """Fields whose slider stays linear although their range starts at zero (a gap of a few
 millimetres: a logarithmic slider would spend most of its travel below a micrometre)."""
 
-SLIDER_STEPS = 1000
-"""Slider positions 0 .. SLIDER_STEPS map onto a field's range (linear or logarithmic)."""
 
 _TOKEN = re.compile(r"([A-Za-z_][A-Za-z0-9_]*)(?:\[(\d+)\])?")
 
@@ -154,6 +215,9 @@ class FieldSpec:
     narrowed: bool = False
     """The slider spans only where the machine keeps running
     (:func:`chainfountain.app.spans.narrowed`), inside what the schema allows."""
+    file_unit: str = ""
+    """The unit in the level file when the panel shows another (``rad`` for ``deg``,
+    ``kg`` for ``g``); empty when they are the same."""
 
     # ---------------------------------------------------------------- range
     def allowed(self) -> str:
@@ -178,7 +242,7 @@ class FieldSpec:
 
     @property
     def schema_unit(self) -> str:
-        return "rad" if self.scale != 1.0 else self.unit
+        return self.file_unit or self.unit
 
     def clamp(self, value: Any) -> tuple[float, str | None]:
         """Nearest allowed value (schema units) and a message when it differs from ``value``."""
@@ -226,32 +290,81 @@ class FieldSpec:
     def from_display(self, display_value: float) -> float:
         return float(display_value) / self.scale
 
+    def ladder(self) -> list[float]:
+        """The slider's positions as display values: the span's ends and the round
+        values between them, a round step apart (:func:`slider_step`; a logarithmic
+        slider: 1, 2, 5 in each decade after its lower end). The arrows move one rung."""
+        key = (self.slider_lo, self.slider_hi, self.log, self.log_floor, self.integer)
+        rungs = _LADDERS.get(key)
+        if rungs is None:
+            rungs = _ladder(*key)
+            if len(_LADDERS) > 512:
+                _LADDERS.clear()
+            _LADDERS[key] = rungs
+        return rungs
+
+    @property
+    def positions(self) -> int:
+        """The slider's highest position (its lowest is 0)."""
+        return len(self.ladder()) - 1
+
     def to_slider(self, value: float) -> int:
-        """Slider position of a schema value."""
+        """Slider position of a schema value (the nearest rung)."""
         d = self.to_display(value)
-        lo, hi = self.slider_lo, self.slider_hi
-        if self.log:
-            if d <= self.log_floor:
-                return 0
-            f = math.log(d / self.log_floor) / math.log(hi / self.log_floor)
-            return int(round(1 + f * (SLIDER_STEPS - 1)))
-        f = (d - lo) / (hi - lo) if hi > lo else 0.0
-        return int(round(min(max(f, 0.0), 1.0) * SLIDER_STEPS))
+        rungs = self.ladder()
+        if not math.isfinite(d):
+            return 0
+        i = bisect.bisect_left(rungs, d)
+        if i <= 0:
+            return 0
+        if i >= len(rungs):
+            return len(rungs) - 1
+        return i if rungs[i] - d < d - rungs[i - 1] else i - 1
 
     def from_slider(self, pos: float) -> float:
-        """Schema value at a slider position."""
-        pos = min(max(float(pos), 0.0), SLIDER_STEPS)
-        lo, hi = self.slider_lo, self.slider_hi
-        if self.log:
-            if pos < 0.5:
-                d = lo
-            else:
-                f = (pos - 1) / (SLIDER_STEPS - 1)
-                d = self.log_floor * (hi / self.log_floor) ** max(f, 0.0)
-        else:
-            d = lo + (hi - lo) * pos / SLIDER_STEPS
-        v, _ = self.clamp(self.from_display(d))
+        """Schema value at a slider position (its rung)."""
+        rungs = self.ladder()
+        p = float(pos)
+        i = 0 if not math.isfinite(p) else int(round(min(max(p, 0.0), len(rungs) - 1)))
+        v, _ = self.clamp(self.from_display(rungs[i]))
         return v
+
+
+_LADDERS: dict[tuple, list[float]] = {}
+
+SLIDER_RUNGS = 40
+"""About how many round steps a linear slider's span is cut into."""
+
+
+def slider_step(span: float, integer: bool = False) -> float:
+    """A round step (1, 2 or 5 times a power of ten) cutting ``span`` into about
+    :data:`SLIDER_RUNGS` parts; at least 1 for a whole-number field."""
+    if not (math.isfinite(span) and span > 0):
+        return 1.0
+    raw = span / SLIDER_RUNGS
+    mag = 10.0 ** math.floor(math.log10(raw))
+    step = next(m * mag for m in (1, 2, 5, 10) if m * mag >= raw * 0.999)
+    return max(step, 1.0) if integer else step
+
+
+def _ladder(lo: float, hi: float, log: bool, floor: float, integer: bool) -> list[float]:
+    if not (math.isfinite(lo) and math.isfinite(hi)) or hi <= lo:
+        return [lo]
+    if log and floor > 0:
+        out = [lo]
+        e = math.floor(math.log10(floor))
+        while 10.0 ** e <= hi * 1.0001:
+            for m in (1, 2, 5):
+                v = float(f"{m * 10.0 ** e:.12g}")
+                if floor * 0.9999 <= v < hi * 0.9999 and v > out[-1]:
+                    out.append(v)
+            e += 1
+        return out + [hi]
+    step = slider_step(hi - lo, integer)
+    k0, k1 = math.floor(lo / step) + 1, math.ceil(hi / step) - 1
+    inner = [float(f"{k * step:.12g}") for k in range(k0, k1 + 1)]
+    tol = 1e-9 * (hi - lo)
+    return [lo] + [v for v in inner if lo + tol < v < hi - tol] + [hi]
 
 
 def _above(x: float) -> float:
@@ -262,18 +375,35 @@ def _below(x: float) -> float:
     return math.nextafter(x, -math.inf) if x == 0 else x - 1e-9 * abs(x)
 
 
+SPAN_AROUND = 4.0
+"""A schema range wider than this many times a field's value gets a slider up to three
+times the value (the text field takes the rest)."""
+
+
+def _round_up(x: float) -> float:
+    """``x`` rounded up to 1, 1.5, 2, 3 or 5 times a power of ten."""
+    mag = 10.0 ** math.floor(math.log10(x))
+    up = next(m * mag for m in (1, 1.5, 2, 3, 5, 10) if m * mag >= x * 0.999)
+    return float(f"{up:.12g}")
+
+
 def make_spec(path: str, tp: Any, meta: dict, current: float) -> FieldSpec:
     """A :class:`FieldSpec` from a field's schema metadata and its current value."""
     unit = meta.get("unit") or ""
     scale = 1.0
+    file_unit = ""
     if unit == "rad":
-        scale, unit = 180.0 / math.pi, "deg"
-    elif unit == "rad/s":
-        unit = "rad/s"
+        scale, unit, file_unit = 180.0 / math.pi, "deg", "rad"
+    elif unit == "kg" and path.startswith("carts["):  # a cart's mass: grams read better
+        scale, unit, file_unit = 1000.0, "g", "kg"
     lo, hi = meta.get("min"), meta.get("max")
     cur = abs(float(current))
     if lo is not None and hi is not None:
         s_lo, s_hi = lo * scale, hi * scale
+        if cur > 0 and lo >= 0 and s_hi - s_lo > SPAN_AROUND * cur * scale and unit != "deg":
+            # a schema range of many times the value (a drop of 1 m in 0.05-20 m): the
+            # slider spans up to three times it, in round steps; typing goes further
+            s_hi = min(s_hi, _round_up(3.0 * cur * scale))
     elif lo is not None:
         s_lo = lo * scale
         s_hi = max(10.0 * cur, 1.0) * scale + s_lo
@@ -302,7 +432,7 @@ def make_spec(path: str, tp: Any, meta: dict, current: float) -> FieldSpec:
         lo=lo, hi=hi, lo_incl=bool(meta.get("min_inclusive", True)),
         hi_incl=bool(meta.get("max_inclusive", True)), live=bool(meta.get("live")),
         integer=tp is int, scale=scale, slider_lo=float(s_lo), slider_hi=float(s_hi),
-        log=log, log_floor=float(floor),
+        log=log, log_floor=float(floor), file_unit=file_unit,
     )
 
 

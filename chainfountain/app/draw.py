@@ -1,6 +1,7 @@
 """Drawing the window (:class:`DrawMixin`, part of :class:`chainfountain.app.window.App`):
-the scene with the theory overlaid, the readout, the plots and the help; it only reads the
-session."""
+the scene and its overlays (time, the level's card, messages, the time controls, the
+tools), the panel's readout, the graphs, the picker, the help and the quit prompt. It only
+reads the session."""
 
 from __future__ import annotations
 
@@ -11,39 +12,40 @@ from collections.abc import Callable
 import numpy as np
 import pygame
 
-from chainfountain.app import render
+from chainfountain.app import palette as pal
+from chainfountain.app import plots, text
 from chainfountain.app.readout_text import Row, readout_rows
 from chainfountain.app.session import paused_message
+from chainfountain.app.shade import shade
+from chainfountain.app.text import blit_in, font, px
+from chainfountain.app.widgets import TextButton, text_button_width
 from chainfountain.theory.apparatus import plate_reaction
 from chainfountain.theory.tension import tension_bar
 
-ROW_COLOURS = {"text": render.TEXT, "dim": render.DIM, "t0": render.T0_COL,
-               "te": render.TE_COL, "ok": render.OK, "warn": render.WARN}
+ROW_COLOURS = {"text": pal.TEXT, "dim": pal.DIM, "t0": pal.T0_COL, "te": pal.TE_COL,
+               "ok": pal.OK, "warn": pal.WARN}
 """Colours of the readout rows' colour names (:class:`~chainfountain.app.readout_text.Row`)."""
 PLOT_EVERY = 4
 """Redraw the live plots every this many frames (15 Hz at 60 frames/s)."""
-ABOUT_SHARE = 0.45
-"""Largest share of the view's height the level's description card takes
-(:meth:`DrawMixin._draw_about`); a longer description ends with :data:`ABOUT_MORE`."""
-ABOUT_MORE = "... the rest: the level picker (L) shows it all"
-"""Last row of a description card cut to fit the view."""
-ABOUT_SWITCH = 5
-"""Link ends the level's card must hide fewer of at the other end of the view to move
-there (so that it does not flicker between the top and the bottom)."""
-ABOUT_SECONDS = 6.0
-"""Simulated seconds the level's description stays on the view unless I pins it."""
+ABOUT_SECONDS = 8.0
+"""Simulated seconds the level's card stays on the view unless I pins it."""
 STOP_ROWS = 12
 """Rows of the view kept for why a run stopped (the status text over the chain)."""
+TOOLS = (("ruler", "ruler (U)"), ("stopwatch", "stopwatch (W)"))
+
+
+def readout_font(expert: bool) -> pygame.font.Font:
+    """The panel readout's font (smaller in the expert view, which has more rows)."""
+    return font(18) if expert else font(20)
 
 
 def status_rows(msgs: list[str], stopped: str | None,
                 wrap: Callable[[str], list[str]]) -> list[str]:
-    """Rows of status text over the view: the newest messages' last 6 rows; or, while a
+    """Rows of status text over the view: the newest messages' last 4 rows; or, while a
     run that stopped itself is paused (``stopped``: why), that reason whole from its head
-    (up to :data:`STOP_ROWS`; a fold's collapse runs to 8-10 rows) and the newest other
-    message's first 2 rows below it."""
+    (up to :data:`STOP_ROWS`) and the newest other message's first 2 rows below it."""
     if not stopped:
-        return [ln for m in msgs for ln in wrap(m)][-6:]
+        return [ln for m in msgs for ln in wrap(m)][-4:]
     others = [m for m in msgs if not m.startswith(stopped.rstrip("."))][-1:]
     rows = wrap(paused_message(stopped))[:STOP_ROWS]
     return rows + [ln for m in others for ln in wrap(m)][:2]
@@ -51,26 +53,25 @@ def status_rows(msgs: list[str], stopped: str | None,
 
 KEYS: tuple[tuple[str, str], ...] = (
     ("Space", "play / pause"),
-    ("Right  or  .", "single step (1/60 s of simulated time)"),
-    ("Shift+Right", "one physics step dt"),
-    ("S", "slow motion: 1 -> 1/2 -> 1/4 -> 1"),
-    ("R", "reset the scene (t = 0)"),
-    ("F", "fit the view to the fountain and follow it again"),
-    ("T", "theory overlay on / off"),
-    ("Mouse wheel", "zoom about the pointer"),
-    ("Drag (empty space)", "pan; right or middle drag also pans"),
-    ("Drag (on the chain)", "pull a link"),
-    ("Ctrl+S", "save the setup as a level (name prompt)"),
-    ("Ctrl+O  or  L", "open a level (picker)"),
-    ("M", "switch a machine preset between the contact and the ideal machine"),
-    ("F12  (Shift: with the plots)", "picture of the scene (PNG, full resolution)"),
-    ("G  (Shift: with the plots)", "start / stop a clip of the scene, in simulated time"),
-    ("I", "what this level shows and what to watch (on / off; shown as a level opens)"),
-    ("E", "readout in plain words / in the paper's symbols"),
-    ("P", "projector mode: larger text (it also grows with the window)"),
+    ("Right  or  .", "one step (1/60 s); Shift+Right: one physics step"),
+    ("S", "speed: normal, slow (1/2), slower (1/4)"),
+    ("R", "restart the scene with these settings"),
+    ("Shift+R", "reset all: the level as it was opened"),
+    ("F", "fit the view to the fountain and follow it"),
+    ("T", "the paper's curve on / off"),
+    ("Wheel, drag", "zoom; pan (on the chain: pull a link)"),
+    ("U, W", "ruler (drag its ends), stopwatch"),
+    ("L  or  Ctrl+O", "open a level"),
+    ("M", "the same machine with ideal or contact rollers (M again: back)"),
+    ("Ctrl+S", "save the setup as a level"),
+    ("F12, G", "a picture, a clip of the scene (Shift: with the graphs)"),
+    ("I", "the level's card: what it shows, what to try"),
+    ("E", "expert view: every field and the paper's symbols"),
+    ("V", "graphs under the scene on / off"),
+    ("Tab", "hide the panel: the scene fills the window"),
+    ("P", "projector mode: larger text and parts"),
     ("H  or  F1", "this help"),
-    ("Enter (in a field)", "apply the typed value (clamped to the level schema)"),
-    ("Esc", "close a dialog; else quit (clips and changes are kept)"),
+    ("Esc", "close; twice: quit (changes are kept)"),
 )
 
 
@@ -87,300 +88,393 @@ def _smooth(y: np.ndarray, n: int) -> np.ndarray:
     return out
 
 
-def card_rows(font: pygame.font.Font, text: str, width: int, height: int) -> list[str]:
-    """``text`` wrapped to ``width`` pixels in ``font``, as many rows as fit ``height``
-    pixels; when it does not all fit, the last row is :data:`ABOUT_MORE`."""
-    rows = render.wrap(font, text, width)
-    n = max(2, height // font.get_linesize())
-    return rows if len(rows) <= n else [*rows[:n - 1], ABOUT_MORE]
-
-
 class DrawMixin:
-    """Drawing of :class:`~chainfountain.app.window.App` (reads its own state and the session)."""
+    """Drawing of :class:`~chainfountain.app.window.App` (reads its own state and the
+    session)."""
 
     def draw(self) -> None:
         """Draw the whole window into ``self.screen``."""
         t0 = time.perf_counter()
         scr = self.screen
-        scr.fill(render.BG, pygame.Rect(0, 0, self.scene_rect.x, self.size[1]))
         s = self.session
         if (self._ro is None or self.frame - self._ro_frame >= PLOT_EVERY
                 or self._ro_sim is not s.sim or s.paused):
             self._ro, self._ro_frame, self._ro_sim = s.readout(), self.frame, s.sim
         ro = self._ro
-        render.draw_scene(scr, self.camera, s.sim, ro, self.show_theory)
-        self._draw_right(ro)
-        # the scene and the plots are drawn, nothing over them yet: what clips and stills
-        # take (no time line, messages, card, REC counter or controls)
+        keep = self.timebar.keep_clear() + self._tool_buttons_rects() + [self._messages_box()]
+        card = self._about_card() if self.about_visible else None
+        if card is not None:
+            keep.append(card[0])
+        self.scene_view.draw(scr, self.camera, s.sim, ro, self.show_theory, self.expert,
+                             keep_clear=keep, bar_at=self._bar_at())
+        scr.set_clip(self.scene_rect)
+        self.ruler.draw(scr, self.camera)
+        scr.set_clip(None)
+        if self.plots_rect is not None:
+            self._draw_plots(ro)
+        # the scene (and graphs) drawn, no overlay yet: what clips and stills take
         if self.clip is not None and self.clip.recording:
             self.clip.offer(scr, s.sim.time)
         if self._still_rect is not None:
             self._still = scr.subsurface(self._still_rect).copy()
+        scr.set_clip(self.scene_rect)
         self._draw_overlay(ro)
-        if self.about_visible:
-            self._draw_about()
+        if card is not None:
+            self._draw_about(*card)
+        if self.panel_rect is None:
+            self._draw_big_readout(ro)
+        scr.set_clip(None)
+        if self.panel_rect is not None:
+            self._draw_panel(ro)
         self.ui.draw_ui(scr)
+        if self.picker is not None:
+            self.picker.draw(scr, pygame.mouse.get_pos() if not self.offscreen else None)
         if self.show_help:
             self._draw_help()
+        if self.quit_prompt is not None:
+            self._draw_banner(self.quit_prompt)
         self.draw_time += 0.1 * ((time.perf_counter() - t0) - self.draw_time)
 
+    # ------------------------------------------------------------------ the card
     @property
     def about_visible(self) -> bool:
-        """The level's description is on the view: from the level's start for
-        :data:`ABOUT_SECONDS` of simulated time (so it does not hide the fountain as it
-        forms), or while I keeps it."""
+        """The level's card is on the view: for its first :data:`ABOUT_SECONDS` of
+        simulated time, or while I keeps it."""
         return self.show_about and (self.about_pinned
                                     or self.session.sim.time < ABOUT_SECONDS)
 
-    def _about_width(self) -> int:
-        """Width (px) of the description card in the present view."""
-        return min(self.scene_rect.w - 20, render.px(640))
-
-    def about_rows(self, text: str) -> list[str]:
-        """``text`` as the description card shows it in the present view
-        (:func:`card_rows`)."""
-        return card_rows(render.font(18), text, self._about_width() - 20,
-                         int(self.scene_rect.h * ABOUT_SHARE) - render.px(34))
-
-    def _about_card(self) -> tuple[pygame.Rect, list[str]] | None:
-        """The level's description card at the top of the view: its box and its rows
-        (``None``: the level has no description)."""
-        text = self.session.level.meta.description.strip()
-        if not text:
+    def _about_card(self) -> tuple[pygame.Rect, str, list[str]] | None:
+        """The level's card at the view's top left: its box, title and rows (``None``: no
+        description)."""
+        level = self.session.level
+        body = level.meta.description.strip()
+        if not body:
             return None
-        rows = self.about_rows(text)
-        lh = render.font(18).get_linesize()
-        return pygame.Rect(self.scene_rect.x + 10, render.px(72), self._about_width(),
-                           render.px(34) + lh * len(rows)), rows
+        rect = self.scene_rect
+        w = min(rect.w - px(20), px(560))
+        f, ft = font(19), font(21, bold=True)
+        title = text.fit_text(ft, level.meta.shown_title, w - px(20))
+        rows = text.wrap(f, body, w - px(20))
+        hint = "I hides this"
+        room = int(0.4 * rect.h) - ft.get_linesize() - px(30)
+        n = max(1, room // f.get_linesize())
+        if len(rows) > n:
+            rows = [*rows[:n - 1], text.fit_text(f, rows[n - 1] + " ...", w - px(20))]
+        h = px(14) + ft.get_linesize() + f.get_linesize() * (len(rows) + 1) + px(8)
+        box = pygame.Rect(rect.x + px(10), rect.y + px(40), w, h)
+        return box, title, rows + [hint]
 
     def about_box(self) -> pygame.Rect | None:
-        """Where the level's description card goes at the top of the view (``None``: the
-        level has no description)."""
         card = self._about_card()
         return None if card is None else card[0]
 
-    def _draw_about(self) -> None:
-        """The level's description (what it shows and what to watch) on a card at the top
-        of the view, under the time line, or at its bottom when that hides less of the
-        chain (a fountain forming rises into the top); I hides it."""
-        card = self._about_card()
-        if card is None:
-            return
-        box, rows = card
-        rect = self.scene_rect
-        head, body = render.font(19), render.font(18)
-        lh = body.get_linesize()
-        low = box.move(0, rect.bottom - render.px(40) - box.bottom)
-        if low.top > box.bottom:  # room for both: the one hiding less, without flicker
-            at_top, at_low = self._chain_under((box, low))
-            hidden, other = (at_low, at_top) if self._about_low else (at_top, at_low)
-            if other + ABOUT_SWITCH < hidden:
-                self._about_low = not self._about_low
-            box = low if self._about_low else box
-        shade = pygame.Surface(box.size, pygame.SRCALPHA)
-        shade.fill((10, 12, 18, 215))
-        self.screen.blit(shade, box.topleft)
-        pygame.draw.rect(self.screen, render.DIM, box, 1, 6)
-        self.screen.blit(render.text(head, f"{self.session.name}: what to watch   (I hides this)",
-                                     True, render.SPEED_COL), (box.x + 10, box.y + render.px(8)))
-        y = box.y + render.px(30)
-        for row in rows:
-            self.screen.blit(render.text(body, row, True, render.TEXT), (box.x + 10, y))
-            y += lh
+    def _draw_about(self, box: pygame.Rect, title: str, rows: list[str]) -> None:
+        scr = self.screen
+        scr.blit(shade(box.size, (10, 12, 18), 225), box.topleft)
+        pygame.draw.rect(scr, pal.DIM, box, 1, px(6))
+        ft, f = font(21, bold=True), font(19)
+        y = box.y + px(8)
+        blit_in(scr, text.text(ft, title, True, pal.SPEED_COL), (box.x + px(10), y), box,
+                title)
+        y += ft.get_linesize() + px(2)
+        for i, row in enumerate(rows):
+            colour = pal.DIM if i == len(rows) - 1 else pal.TEXT
+            blit_in(scr, text.text(f, row, True, colour), (box.x + px(10), y), box, row)
+            y += f.get_linesize()
 
-    def _chain_under(self, boxes: tuple[pygame.Rect, ...]) -> list[int]:
-        """How many of the chain's link ends a card at each of ``boxes`` would hide."""
-        poly = self.session.sim.chain_polyline()
-        if len(poly) == 0:
-            return [0] * len(boxes)
-        x, y = self.camera.to_screen(poly).T
-        return [int(np.count_nonzero((x >= b.left) & (x <= b.right) & (y >= b.top)
-                                     & (y <= b.bottom))) for b in boxes]
+    # ------------------------------------------------------------------ overlays
+    def _bar_at(self) -> tuple[int, int]:
+        """Where the scale bar starts: the view's bottom left, level with the time
+        controls."""
+        return self.scene_rect.x + px(18), self.timebar.rect.centery + px(10)
+
+    def _tool_buttons(self) -> list[TextButton]:
+        rect = self.scene_rect
+        out = []
+        x = rect.right - px(8)
+        y = rect.y + px(8)
+        for key, label in reversed(TOOLS):
+            w = text_button_width(label, 15)
+            x -= w
+            out.append(TextButton(key, pygame.Rect(x, y, w, px(26)), label,
+                                  on=getattr(self, key).on))
+            x -= px(4)
+        return out
+
+    def _tool_buttons_rects(self) -> list[pygame.Rect]:
+        return [b.rect for b in self._tool_buttons()]
 
     def _draw_overlay(self, ro) -> None:
         s = self.session
         rect = self.scene_rect
-        state = []
+        scr = self.screen
+        mouse = None if self.offscreen else pygame.mouse.get_pos()
+        x = rect.x + px(10)
+        head = f"t = {s.sim.time:6.2f} s"
+        if self.expert:
+            head += f"    links {s.sim.n_free} free"
+        img = text.text(font(24, bold=True), head, True, pal.TEXT)
+        scr.blit(img, (x, rect.y + px(8)))
+        chips = []
         if s.paused:
-            state.append(("PAUSED", render.WARN))
+            chips.append(("PAUSED", pal.WARN))
         if s.speed_factor != 1:
-            state.append((f"slow motion 1/{round(1 / s.speed_factor)}", render.SPEED_COL))
+            chips.append((f"slow motion 1/{round(1 / s.speed_factor)}", pal.SPEED_COL))
         if self.clip is not None and self.clip.recording:
-            state.append((f"REC {self.clip.seconds:4.1f} s of simulated time", render.WARN))
+            chips.append((f"REC {self.clip.seconds:4.1f} s", pal.WARN))
         if s.dragging:
-            state.append(("holding a link", render.VERTEX))
-        f = render.font(20)
-        x = rect.x + 10
-        head = f"t = {s.sim.time:7.2f} s   links {s.sim.n_free} free"
-        scr = self.screen
-        scr.blit(render.text(f, head, True, render.TEXT), (x, render.px(8)))
-        rtf_col = render.WARN if s.behind else render.DIM
-        speed = (f"off-screen: {s.speed_factor / self.fps * 1e3:.1f} ms simulated per frame"
-                 if self.offscreen else
-                 f"real-time factor {s.rtf:4.2f}  ({self.fps_measured:4.1f} fps)")
-        scr.blit(render.text(render.font(18), speed, True, rtf_col), (x, render.px(28)))
-        xx = x
-        for txt, col in state:
-            surf = render.text(f, txt, True, col)
-            scr.blit(surf, (xx, render.px(48)))
-            xx += surf.get_width() + 14
-        # status messages (newest last), shown for 6 s, wrapped to the view's width; why
-        # the run stopped stays whole while paused (its head says what failed: a fold's
-        # collapse runs to 8-10 rows), with the newest other message below it
-        now = s.clock()
-        small = render.font(17)
-        msgs = [m for t, m in s.messages if now - t < 6.0][-3:]
-        rows = status_rows(msgs, s.stopped if s.paused else None,
-                           lambda m: render.wrap(small, m, rect.w - 20))
-        lh = small.get_linesize()
-        y = rect.bottom - render.px(44) - lh * len(rows)
-        for m in rows:
-            img = render.text(small, m, True, render.TEXT)
-            bg = pygame.Surface((img.get_width() + 8, img.get_height() + 2), pygame.SRCALPHA)
-            bg.fill((0, 0, 0, 150))
-            scr.blit(bg, (rect.x + 6, y - 1))
-            scr.blit(img, (rect.x + 10, y))
-            y += lh
-        hint = render.text(render.font(16), "H: help", True, render.DIM)
-        scr.blit(hint, (rect.right - hint.get_width() - 8, render.px(8)))
+            chips.append(("holding a link", pal.VERTEX))
+        behind = not self.offscreen and (s.behind or s.rtf < 0.95 * s.speed_factor) \
+            and not s.paused
+        if self.expert:
+            speed = (f"off-screen: {s.speed_factor / self.fps * 1e3:.1f} ms per frame"
+                     if self.offscreen else
+                     f"real-time factor {s.rtf:4.2f}  ({self.fps_measured:4.1f} fps)")
+            chips.append((speed, pal.WARN if s.behind else pal.DIM))
+        elif behind:
+            chips.append((f"running slower than real time (x{s.rtf:.2f})", pal.WARN))
+        xx = x + img.get_width() + px(16)
+        for txt, col in chips:
+            surf = text.text(font(19), txt, True, col)
+            if xx + surf.get_width() > rect.right - px(260):
+                break
+            scr.blit(surf, (xx, rect.y + px(12)))
+            xx += surf.get_width() + px(14)
+        for b in self._tool_buttons():
+            b.draw(scr, hover=mouse is not None and b.hit(mouse), size=15)
+        self.stopwatch.draw(scr)
+        hint = text.text(font(16), "H: help", True, pal.DIM)
+        scr.blit(hint, (rect.right - hint.get_width() - px(10), rect.y + px(38)
+                        if not self.stopwatch.on else self.stopwatch.rect.bottom + px(4)))
+        self.timebar.draw(scr, s.paused, s.slow_index, mouse)
+        self._draw_messages()
 
-    def _draw_right(self, ro) -> None:
-        rect = self.right_rect
-        scr = self.screen
-        pygame.draw.rect(scr, render.BG, rect)
+    def _message_rows(self) -> list[str]:
         s = self.session
+        now = s.clock()
+        small = font(18)
+        msgs = [m for t, m in s.messages if now - t < 6.0][-3:]
+        width = self.scene_rect.w - px(28)
+        return status_rows(msgs, s.stopped if s.paused else None,
+                           lambda m: text.wrap(small, m, width))
 
+    def _messages_box(self) -> pygame.Rect:
+        """Where the status messages go (labels keep clear of it)."""
+        rows = self._message_rows()
+        lh = font(18).get_linesize()
+        bottom = self.timebar.rect.top - px(10)
+        w = max((font(18).size(r)[0] for r in rows), default=0) + px(12)
+        return pygame.Rect(self.scene_rect.x + px(8), bottom - lh * len(rows), w,
+                           lh * len(rows))
+
+    def _draw_messages(self) -> None:
+        """Status messages (newest last, 6 s each) above the time controls; why a run
+        stopped stays whole while paused."""
+        rect = self.scene_rect
+        small = font(18)
+        width = rect.w - px(28)
+        rows = self._message_rows()
+        lh = small.get_linesize()
+        y = self.timebar.rect.top - px(10) - lh * len(rows)
+        box = rect.inflate(-px(8), 0)
+        for m in rows:
+            img = text.text(small, text.fit_text(small, m, width), True, pal.TEXT)
+            self.screen.blit(shade((img.get_width() + px(10), lh), (0, 0, 0), 170),
+                             (rect.x + px(8), y))
+            blit_in(self.screen, img, (rect.x + px(13), y), box, m)
+            y += lh
+
+    def _draw_big_readout(self, ro) -> None:
+        """With the panel hidden: the chief numbers in large text over the scene."""
+        s = self.session
+        rows = readout_rows(ro, s.sim.config.chain.linear_density, False,
+                            stopped=s.stopped is not None)[:4]
+        f = font(26, bold=True)
+        w = max(f.size(r.text)[0] for r in rows) + px(24)
+        w = min(w, self.scene_rect.w // 2)
+        h = f.get_linesize() * len(rows) + px(16)
+        y0 = self.scene_rect.y + px(40) + (self.stopwatch.rect.h + px(8)
+                                           if self.stopwatch.on else 0)
+        box = pygame.Rect(self.scene_rect.right - w - px(10), y0, w, h)
+        self.screen.blit(shade(box.size, (8, 10, 14), 200), box.topleft)
+        y = box.y + px(8)
+        for r in rows:
+            img = text.text(f, text.fit_text(f, r.text, w - px(20)), True, ROW_COLOURS[r.colour])
+            blit_in(self.screen, img, (box.x + px(12), y), box, r.text)
+            y += f.get_linesize()
+
+    def _draw_banner(self, message: str) -> None:
+        scr = self.screen
+        f = font(24, bold=True)
+        rows = text.wrap(f, message, min(self.size[0] - px(60), px(700)))
+        w = max(f.size(r)[0] for r in rows) + px(40)
+        h = f.get_linesize() * len(rows) + px(30)
+        box = pygame.Rect(0, 0, w, h)
+        box.center = self.scene_rect.center
+        scr.blit(shade(box.size, (40, 14, 10), 235), box.topleft)
+        pygame.draw.rect(scr, pal.WARN, box, 2, px(8))
+        y = box.y + px(15)
+        for r in rows:
+            img = text.text(f, r, True, pal.TEXT)
+            blit_in(scr, img, (box.centerx - img.get_width() // 2, y), box, r)
+            y += f.get_linesize()
+
+    # ------------------------------------------------------------------ the panel
+    def _draw_panel(self, ro) -> None:
+        p = self.panel_rect
+        scr = self.screen
+        pygame.draw.rect(scr, pal.BG, p)
+        pygame.draw.line(scr, pal.GRID, p.topleft, p.bottomleft if not self.lay.portrait
+                         else p.topright, 2)
+        s = self.session
         rows = readout_rows(ro, s.sim.config.chain.linear_density, self.expert,
                             stopped=s.stopped is not None)
-        width = rect.w - 18  # the rows' font, measured: no line runs off the panel
-        if ro.machine:
-            rows += [Row(part) for part in render.wrap(render.font(19), ro.machine, width)[:2]]
-        if ro.note:
-            rows += [Row(part, "dim") for part in render.wrap(render.font(19), ro.note, width)[:2]]
-        y = self._draw_rows(rows, rect)
-        top = y + 6
-        key = (top, rect.size, id(s.sim))
-        if (self._plot_cache is None or key != self._plot_key
-                or self.frame - self._plot_frame >= PLOT_EVERY):
-            self._plot_cache = self._render_plots(ro, pygame.Rect(0, 0, rect.w, rect.h - top))
-            self._plot_key = key
-            self._plot_frame = self.frame
-        scr.blit(self._plot_cache, (rect.x, top))
+        if self.expert:
+            width = self.readout_rect.w - px(16)
+            f = font(18)
+            if ro.machine:
+                rows += [Row(part) for part in text.wrap(f, ro.machine, width)[:2]]
+            if ro.note:
+                rows += [Row(part, "dim") for part in text.wrap(f, ro.note, width)[:2]]
+        self._draw_rows(rows, self.readout_rect)
 
     def _draw_rows(self, rows: list[Row], rect: pygame.Rect) -> int:
-        """The readout's rows at the top of ``rect``, each symbol right-aligned in dim, a
-        row too long for the panel (large text, projector mode) wrapped onto the next
-        line; returns the y below them."""
-        f, sym_f = render.font(19), render.font(17)
-        y = render.px(8)
+        """The readout's rows in ``rect``, each symbol (expert view) right-aligned in
+        dim, a row too long wrapped onto the next line, rows that do not fit left out;
+        returns the y below them."""
+        f = readout_font(self.expert)
+        sym_f = font(16)
+        y = rect.y + px(4)
         for row in rows:
-            room = rect.w - 18
-            if row.symbol:
-                img = render.text(sym_f, row.symbol, True, render.DIM)
-                self.screen.blit(img, (rect.right - img.get_width() - 10, y + 1))
-                room -= img.get_width() + 10
-            fits = f.size(row.text)[0] <= room  # as written: its spacing kept
-            for part in [row.text] if fits else render.wrap(f, row.text, max(room, 40)):
-                self.screen.blit(render.text(f, part, True, ROW_COLOURS[row.colour]),
-                                 (rect.x + 8, y))
+            room = rect.w - px(16)
+            if row.symbol and self.expert:
+                img = text.text(sym_f, row.symbol, True, pal.DIM)
+                if y + f.get_linesize() <= rect.bottom:
+                    blit_in(self.screen, img, (rect.right - img.get_width() - px(8), y + 1),
+                            rect, row.symbol)
+                room -= img.get_width() + px(10)
+            parts = [row.text] if f.size(row.text)[0] <= room else text.wrap(f, row.text,
+                                                                           max(room, 40))
+            for part in parts:
+                if y + f.get_linesize() > rect.bottom:
+                    return y
+                img = text.text(f, text.fit_text(f, part, room), True, ROW_COLOURS[row.colour])
+                blit_in(self.screen, img, (rect.x + px(8), y), rect, part)
                 y += f.get_linesize() + 1
         return y
 
+    # ------------------------------------------------------------------ graphs
+    def _draw_plots(self, ro) -> None:
+        rect = self.plots_rect
+        key = (rect.size, id(self.session.sim), self.expert)
+        if (self._plot_cache is None or key != self._plot_key
+                or self.frame - self._plot_frame >= PLOT_EVERY):
+            self._plot_cache = self._render_plots(ro, pygame.Rect(0, 0, rect.w, rect.h))
+            self._plot_key = key
+            self._plot_frame = self.frame
+        self.screen.blit(self._plot_cache, rect.topleft)
+
     def _render_plots(self, ro, area: pygame.Rect) -> pygame.Surface:
+        """The three graphs side by side (in a narrow strip, over each other): the pull
+        along the chain against height, the speed, and the pulls at the ends (a beaker:
+        how high it rises; the open arrangement: the plate's reaction)."""
         surf = pygame.Surface(area.size)
-        surf.fill(render.BG)
-        ph = (area.h - 8) // 3
-        w = area.w - 12
+        surf.fill(pal.BG)
+        wide = area.w >= 2.2 * area.h
+        if wide:
+            pw = (area.w - px(16)) // 3
+            boxes = [pygame.Rect(px(4) + i * (pw + px(4)), px(4), pw, area.h - px(8))
+                     for i in range(3)]
+        else:
+            ph = (area.h - px(16)) // 3
+            boxes = [pygame.Rect(px(4), px(4) + i * (ph + px(4)), area.w - px(8), ph)
+                     for i in range(3)]
         s = self.session
         hist = s.history.arrays()
-        r1 = pygame.Rect(6, 0, w, ph - 4)
-        r2 = pygame.Rect(6, ph, w, ph - 4)
-        r3 = pygame.Rect(6, 2 * ph, w, ph - 4)
-        # 1. tension along the chain against height (plain words unless E: expert)
         ex = self.expert
-        series = []
-        ys = ro.tension_y
-        if len(ys):
-            series.append(render.Series(ys, ro.tension_bar, render.CHAIN, "measured",
-                                        points=True))
-        if math.isfinite(ro.q) and math.isfinite(ro.h):
-            top = ro.vertex[1] if ro.vertex is not None else ro.h  # the scene's frame
-            lo = min(float(ys.min()) if len(ys) else top - ro.H - ro.h, top - ro.H - ro.h)
-            hi = max(float(ys.max()) if len(ys) else top, top)
-            yy = np.linspace(lo, hi, 50)
-            tb = tension_bar(yy - top, ro.q, ro.k)
-            series.append(render.Series(yy, tb, render.THEORY,
-                                        "1 - k/q + k*y" if ex else "paper"))
-        render.draw_plot(surf, r1, "Tbar along the chain" if ex else
-                         "pull along the chain / (lambda v^2)", f"height above {ro.origin} (m)",
-                         series, ylim=(-0.1, 1.05))
-        # 2. speed against time
+        self._tension_plot(surf, boxes[0], ro, ex)
         t = hist["t"]
         span = 20.0
         t1 = float(t[-1]) if len(t) else s.sim.time
         t0 = max(0.0, t1 - span)
         sel = t >= t0
+        xlim = (t0, max(t1, t0 + 1))
+        self._speed_plot(surf, boxes[1], hist, sel, xlim, ex)
+        n = max(1, round(0.1 / s.recorder.cfg.sample_interval))
+        if np.isfinite(hist["reaction"][sel]).any():
+            self._reaction_plot(surf, boxes[2], t[sel], hist["reaction"][sel],
+                                hist["speed"][sel], xlim, n)
+        elif s.sim.beaker is not None:
+            top = _smooth(hist["vertex_y"][sel], n)
+            fin = top[np.isfinite(top)]
+            plots.draw_plot(surf, boxes[2], "how high it rises above the rim (m)", "time (s)",
+                            [plots.Series(t[sel], top, pal.VERTEX, "top")], xlim=xlim,
+                            ylim=(min(0.0, float(fin.min()) if len(fin) else 0.0),
+                                  max(0.1, 1.1 * float(fin.max()) if len(fin) else 0.1)))
+        else:
+            self._ends_plot(surf, boxes[2], t[sel], hist, sel, xlim, n, ex)
+        return surf
+
+    def _tension_plot(self, surf: pygame.Surface, box: pygame.Rect, ro, ex: bool) -> None:
+        series = []
+        ys = ro.tension_y
+        if len(ys):
+            series.append(plots.Series(ys, ro.tension_bar, pal.CHAIN, "measured", points=True))
+        if math.isfinite(ro.q) and math.isfinite(ro.h):
+            top = ro.vertex[1] if ro.vertex is not None else ro.h
+            lo = min(float(ys.min()) if len(ys) else top - ro.H - ro.h, top - ro.H - ro.h)
+            hi = max(float(ys.max()) if len(ys) else top, top)
+            yy = np.linspace(lo, hi, 50)
+            series.append(plots.Series(yy, tension_bar(yy - top, ro.q, ro.k), pal.THEORY,
+                                       "1 - k/q + k*y" if ex else "paper"))
+        title = "Tbar along the chain" if ex else "how hard the chain pulls (share of lambda v^2)"
+        plots.draw_plot(surf, box, title, f"height above the {ro.origin} (m)", series,
+                        ylim=(-0.1, 1.05))
+
+    def _speed_plot(self, surf: pygame.Surface, box: pygame.Rect, hist: dict, sel,
+                    xlim: tuple[float, float], ex: bool) -> None:
+        s = self.session
+        t = hist["t"]
         fs = s.sim.feed.speed
-        sp = [render.Series(t[sel], hist["speed"][sel], render.SPEED_COL, "mean link speed")]
-        # apparatus: the chain speed at each roller (twice its speed) shows the slow swing
-        # of the stored length, which the fountain's mean link speed averages away
+        sp = [plots.Series(t[sel], hist["speed"][sel], pal.SPEED_COL, "chain")]
         extra = [(k, col, label) for k, col, label in (
-            ("speed_in", render.T0_COL, "pick-up 2 v_R" if ex else "at pick-up"),
-            ("speed_out", render.TE_COL, "fold 2 v_R" if ex else "at fold"))
+            ("speed_in", pal.T0_COL, "pick-up 2 v_R" if ex else "at pick-up"),
+            ("speed_out", pal.TE_COL, "fold 2 v_R" if ex else "at fold"))
             if np.isfinite(hist[k][sel]).any()]
-        n_sm = max(1, round(0.05 / s.recorder.cfg.sample_interval))  # rollers jitter
-        rollers = [render.Series(t[sel], _smooth(hist[k][sel], n_sm), col, label, width=1)
+        n_sm = max(1, round(0.05 / s.recorder.cfg.sample_interval))
+        rollers = [plots.Series(t[sel], _smooth(hist[k][sel], n_sm), col, label, width=1)
                    for k, col, label in extra]
         sp += rollers
-        sp.append(render.Series(np.array([t0, max(t1, t0 + 1)]), np.array([fs, fs]),
-                                render.DIM, "floor's take" if s.sim.beaker else "feed",
-                                width=1))
+        sp.append(plots.Series(np.array(xlim), np.array([fs, fs]), pal.DIM,
+                               "floor's take" if s.sim.beaker else "set", width=1))
         vals = np.concatenate([hist["speed"][sel]] + [r.y for r in rollers])
         vals = vals[np.isfinite(vals)]
         lo = min(float(vals.min()) if len(vals) else fs, fs) * 0.97
         hi = max(float(vals.max()) if len(vals) else fs, fs) * 1.03
-        render.draw_plot(surf, r2, "speed (m/s)", "time (s)", sp, xlim=(t0, max(t1, t0 + 1)),
-                         ylim=(lo, hi))
-        # 3. end tensions against time with the paper's ranges; the 'open' arrangement's
-        # point is its lower plate's reaction force instead (paper: "exactly known over time")
-        n = max(1, round(0.1 / s.recorder.cfg.sample_interval))
-        if np.isfinite(hist["reaction"][sel]).any():
-            self._reaction_plot(surf, r3, t[sel], hist["reaction"][sel], hist["speed"][sel],
-                                (t0, max(t1, t0 + 1)), n)
-            return surf
-        if s.sim.beaker is not None:
-            # a beaker's end tensions are not the paper's machine's: how high it rises is
-            top = _smooth(hist["vertex_y"][sel], n)
-            fin = top[np.isfinite(top)]
-            render.draw_plot(surf, r3, "top of the chain above the rim (m)", "time (s)",
-                             [render.Series(t[sel], top, render.VERTEX, "top")],
-                             xlim=(t0, max(t1, t0 + 1)),
-                             ylim=(min(0.0, float(fin.min()) if len(fin) else 0.0),
-                                   max(0.1, 1.1 * float(fin.max()) if len(fin) else 0.1)))
-            return surf
-        ts = [render.Series(t[sel], _smooth(hist["T0"][sel], n), render.T0_COL,
-                            "Tbar_0" if ex else "launch"),
-              render.Series(t[sel], _smooth(hist["TE"][sel], n), render.TE_COL,
-                            "Tbar_E" if ex else "landing")]
-        # the paper's ranges are what its pulley machine delivers; a motor's guide is not
-        # that machine, so a fed fountain may sit outside them
+        plots.draw_plot(surf, box, "speed (m/s)", "time (s)", sp, xlim=xlim, ylim=(lo, hi))
+
+    def _ends_plot(self, surf: pygame.Surface, box: pygame.Rect, t: np.ndarray, hist: dict,
+                   sel, xlim: tuple[float, float], n: int, ex: bool) -> None:
+        s = self.session
+        ts = [plots.Series(t, _smooth(hist["T0"][sel], n), pal.T0_COL,
+                           "Tbar_0" if ex else "launch"),
+              plots.Series(t, _smooth(hist["TE"][sel], n), pal.TE_COL,
+                           "Tbar_E" if ex else "landing")]
         motor = s.sim.config.kind == "feed" and s.sim.config.feed.drive == "motor"
-        what = "end tensions" if ex else "pull at the ends / (lambda v^2)"
+        what = "end tensions" if ex else "pull at the ends"
         title = f"{what}, motor-fed" if motor else f"{what} (0.1 s mean)"
-        bands = (((0.5, 1.0, render.T0_COL, "paper's machine: Tbar_0 in (1/2, 1)"),
-                  (0.0, 0.5, render.TE_COL, "paper's machine: Tbar_E in [0, 1/2)")) if ex else
-                 ((0.5, 1.0, render.T0_COL, "the paper's machine: launch 1/2 to 1"),
-                  (0.0, 0.5, render.TE_COL, "landing 0 to 1/2")))
-        render.draw_plot(surf, r3, title, "time (s)", ts,
-                         xlim=(t0, max(t1, t0 + 1)), ylim=(-0.1, 1.05), bands=bands)
-        return surf
+        bands = (((0.5, 1.0, pal.T0_COL, "paper's machine: Tbar_0 in (1/2, 1)"),
+                  (0.0, 0.5, pal.TE_COL, "Tbar_E in [0, 1/2)")) if ex else
+                 ((0.5, 1.0, pal.T0_COL, "the paper's launch: 1/2 to 1"),
+                  (0.0, 0.5, pal.TE_COL, "landing: 0 to 1/2")))
+        plots.draw_plot(surf, box, title, "time (s)", ts, xlim=xlim, ylim=(-0.1, 1.05),
+                        bands=bands)
 
     def _reaction_plot(self, surf: pygame.Surface, rect: pygame.Rect, t: np.ndarray,
                        reaction: np.ndarray, speed: np.ndarray, xlim: tuple[float, float],
                        n: int) -> None:
         """The lower plate's reaction force against time, with the paper's rate: it carries
-        the chain sliding away, so it grows at ``lambda*g*v`` (drawn from the first
-        plotted sample, integrating the measured speed)."""
+        the chain sliding away, so it grows at ``lambda*g*v``."""
         ok = np.isfinite(reaction) & np.isfinite(speed)
         t, reaction, speed = t[ok], reaction[ok], speed[ok]
         cfg = self.session.sim.config
@@ -390,36 +484,38 @@ class DrawMixin:
         if len(t):
             measured = _smooth(reaction, n)
             predicted = plate_reaction(t, speed, float(reaction[0]), lam, g)
-            series = [render.Series(t, measured, render.CHAIN, "measured"),
-                      render.Series(t, predicted, render.THEORY, "lambda g v (paper)",
-                                    width=1, dashed=True)]
+            series = [plots.Series(t, measured, pal.CHAIN, "measured"),
+                      plots.Series(t, predicted, pal.THEORY, "lambda g v (paper)", width=1,
+                                   dashed=True)]
             hi = max(hi, 1.1 * float(max(measured.max(), predicted.max())))
-        render.draw_plot(surf, rect, "lower plate reaction (N, 0.1 s mean)", "time (s)",
-                         series, xlim=xlim, ylim=(0.0, hi))
+        plots.draw_plot(surf, rect, "lower plate reaction (N, 0.1 s mean)", "time (s)",
+                        series, xlim=xlim, ylim=(0.0, hi))
 
+    # ------------------------------------------------------------------ help
     def _draw_help(self) -> None:
         scr = self.screen
-        size = 19  # as large as fits the window's height
-        while size > 11 and (render.px(60) + (render.font(size).get_linesize() + 2) * len(KEYS)
-                             > self.size[1] - 20):
+        size = 20
+        while size > 11 and (px(64) + (font(size).get_linesize() + 2) * len(KEYS)
+                             > self.size[1] - px(20)):
             size -= 1
-        small = render.font(size)
+        small = font(size)
         lh = small.get_linesize() + 2
-        w = min(self.size[0] - 20, render.px(700))
-        h = render.px(60) + lh * len(KEYS)
+        key_w = max(small.size(k)[0] for k, _ in KEYS) + px(24)
+        what_w = max(small.size(w)[0] for _, w in KEYS)
+        w = min(self.size[0] - px(20), key_w + what_w + px(40))
+        h = px(60) + lh * len(KEYS)
         box = pygame.Rect(0, 0, w, h)
         box.center = (self.size[0] // 2, self.size[1] // 2)
-        shade = pygame.Surface(box.size, pygame.SRCALPHA)
-        shade.fill((10, 12, 18, 235))
-        scr.blit(shade, box.topleft)
-        pygame.draw.rect(scr, render.DIM, box, 1, 6)
-        f = render.font(22)
-        scr.blit(render.text(f, "Keys and mouse  (H, F1 or Esc closes)", True, render.TEXT),
-                 (box.x + 16, box.y + render.px(14)))
-        y = box.y + render.px(46)
+        scr.blit(shade(box.size, (10, 12, 18), 240), box.topleft)
+        pygame.draw.rect(scr, pal.DIM, box, 1, px(6))
+        f = font(22, bold=True)
+        blit_in(scr, text.text(f, "Keys and mouse  (H or Esc closes)", True, pal.TEXT),
+                (box.x + px(16), box.y + px(14)), box, "help title")
+        y = box.y + px(48)
+        room = box.w - key_w - px(28)
         for key, what in KEYS:
-            scr.blit(render.text(small, key, True, render.SPEED_COL), (box.x + 20, y))
-            scr.blit(render.text(small, what, True, render.TEXT), (box.x + render.px(210), y))
+            blit_in(scr, text.text(small, key, True, pal.SPEED_COL), (box.x + px(20), y), box,
+                    key)
+            blit_in(scr, text.text(small, text.fit_text(small, what, room), True, pal.TEXT),
+                    (box.x + px(20) + key_w, y), box, what)
             y += lh
-
-    # ------------------------------------------------------------------ main loop

@@ -11,8 +11,8 @@ from chainfountain.level.library import shipped_dir as builtin_levels_dir
 from chainfountain.level.library import user_dir as user_levels_dir
 
 __all__ = ["FORMING", "HEADING_TEXT", "LAID", "SAVED", "builtin_levels_dir", "captures_dir",
-           "forms_from_rest", "level_description", "list_levels", "safe_name", "user_home",
-           "user_levels_dir"]
+           "forms_from_rest", "level_description", "level_title", "list_levels", "safe_name",
+           "user_home", "user_levels_dir"]
 
 
 def captures_dir(create: bool = False) -> Path:
@@ -46,6 +46,18 @@ def level_description(path: Path) -> str:
         return f"cannot read this file ({exc})"
     text = meta.get("description") if isinstance(meta, dict) else None
     return text.strip() if isinstance(text, str) and text.strip() else "(no description)"
+
+
+def level_title(path: Path) -> str:
+    """A level file's title as written (``meta.title``, else ``meta.name``, else the file's
+    name; not validated: the picker shows it before the level is opened)."""
+    meta = _read(path).get("meta")
+    if isinstance(meta, dict):
+        for key in ("title", "name"):
+            v = meta.get(key)
+            if isinstance(v, str) and v.strip():
+                return v.strip()
+    return path.stem
 
 
 def forms_from_rest(path: Path) -> bool:

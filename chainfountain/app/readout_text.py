@@ -28,14 +28,13 @@ def plain_rows(ro: Readout, lam: float) -> list[Row]:
     """The readout in plain words, SI units, for a class. ``lam``: the chain's mass per
     length (kg/m), which turns the scaled end tensions into newtons (``T = Tbar*lambda*v^2``,
     paper eq. for ``Tbar``)."""
-    head = "Measured now" if ro.measured else "Predicted (no fountain yet)"
-    rows = [Row(head + "   (E: symbols)", "dim")]
+    rows = [] if ro.measured else [Row("predicted: no fountain yet", "dim")]
     rows.append(Row(f"chain speed  {_num(ro.v, '.2f')} m/s", "text", "v"))
-    top = f"top of the arch  {_num(ro.h, '.2f')} m above the {ro.origin}"
+    top = f"top  {_num(ro.h, '.2f')} m above the {ro.origin}"
     rows.append(Row(top, "text", "h"))
     if math.isfinite(ro.paper_h):
-        rows.append(Row(f"   paper, from the launch speed and angle: {ro.paper_h:.2f} m", "dim"))
-    rows.append(Row(f"lands  {_num(ro.l, '.2f')} m across, {_num(ro.H, '.2f')} m below",
+        rows.append(Row(f"   the paper predicts {ro.paper_h:.2f} m", "dim"))
+    rows.append(Row(f"lands  {_num(ro.l, '.2f')} m away, {_num(ro.H, '.2f')} m down",
                     "text", "l, H"))
     if ro.origin != "launch":
         return rows  # a beaker: the pile's push is in the Biggins & Warner line below
@@ -54,7 +53,7 @@ def expert_rows(ro: Readout) -> list[Row]:
     src = "measured" if ro.measured else "predicted"
     f3 = ".3f"
     return [
-        Row(f"Readout ({src}); theory: catenary through the ends   (E: plain words)", "dim"),
+        Row(f"{src}; theory: the catenary through the ends", "dim"),
         Row(f"v  {_num(ro.v, f3)} m/s     k = g/v^2  {_num(ro.k)} 1/m"),
         Row(f"q  {_num(ro.q)} 1/m     h  {_num(ro.h, f3)} m"),
         Row(f"l  {_num(ro.l, f3)} m     H  {_num(ro.H, f3)} m"),
@@ -73,6 +72,6 @@ def readout_rows(ro: Readout, lam: float, expert: bool, stopped: bool = False) -
         rows.append(Row("steady" if ro.steady else "not steady (yet)",
                         "ok" if ro.steady else "warn"))
     else:
-        rows.append(Row("steady: the fountain keeps its shape" if ro.steady else
-                        "still changing (not steady yet)", "ok" if ro.steady else "warn"))
+        rows.append(Row("steady: it keeps its shape" if ro.steady else
+                        "still forming (not steady yet)", "ok" if ro.steady else "warn"))
     return rows

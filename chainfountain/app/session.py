@@ -228,8 +228,7 @@ class Session:
         folder = folder if folder is not None else paths.user_levels_dir(create=True)
         folder.mkdir(parents=True, exist_ok=True)
         path = folder / f"{paths.safe_name(name)}.toml"
-        level = io.make_level(name, saved_description(self._origin, self.level.sim),
-                              copy.deepcopy(self.level.sim))
+        level = self.saved_level(name, name)
         try:
             io.save(level, path)
         except (LevelError, OSError) as exc:
@@ -241,6 +240,35 @@ class Session:
         self._origin = copy.deepcopy(level)
         self.say(f"saved {path}")
         return path
+
+    def keep_copy(self, name: str, folder: Path | None = None) -> Path | None:
+        """Write the present setup as ``<folder>/<name>.toml`` (default: the user's
+        folder) and change nothing else: the level, its source and whether it has
+        unsaved changes stay (an autosave)."""
+        folder = folder if folder is not None else paths.user_levels_dir(create=True)
+        path = folder / f"{paths.safe_name(name)}.toml"
+        level = self.saved_level(name, f"{self._origin.meta.shown_title} (kept {name[-15:]})")
+        try:
+            folder.mkdir(parents=True, exist_ok=True)
+            io.save(level, path)
+        except (LevelError, OSError) as exc:
+            self.say(f"could not keep the changes: {exc}")
+            return None
+        return path
+
+    def saved_level(self, name: str, title: str) -> Level:
+        """The present setup as a level named ``name`` with ``title``: its description
+        says what changed from the level opened, its student sliders are that level's."""
+        level = io.make_level(name, saved_description(self._origin, self.level.sim),
+                              copy.deepcopy(self.level.sim))
+        level.meta.title = title
+        level.meta.controls = self._origin.meta.controls
+        return level
+
+    @property
+    def opened(self) -> Level:
+        """The level as it was opened (or last saved): what Reset all restores."""
+        return self._origin
 
     # ------------------------------------------------------------------ fields
     def spec(self, path: str) -> FieldSpec:

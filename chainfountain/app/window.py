@@ -1,128 +1,82 @@
 """The window: pygame-ce drawing, pygame_gui controls, keys and mouse.
 
-:class:`App` reads a :class:`~chainfountain.app.session.Session` (the model
-side) and sends it commands; all pixels are made here and in
-:mod:`chainfountain.app.render`. The physics runs at its fixed step inside
-:meth:`Session.tick`, with a per-frame time budget so drawing stays at the
-frame rate; when the machine cannot keep up the fountain slows down and the
-real-time factor is shown.
+:class:`App` reads a :class:`~chainfountain.app.session.Session` (the model side) and
+sends it commands; pixels are made in :mod:`chainfountain.app.draw` and the views it
+calls. The physics runs at its fixed step inside :meth:`Session.tick`, with a per-frame
+time budget so drawing stays at the frame rate; when the machine cannot keep up, the
+window first draws fewer frames and then the fountain slows down (the real-time factor
+is shown).
+
+The layout (:mod:`chainfountain.app.layout`) gives the scene most of the window at every
+size: a panel with the readout and the sliders beside it (under it in a portrait window),
+the graphs under it when shown (V), and with Tab the scene alone. The student view shows
+a level's two to four sliders and plain words; E shows every field and the paper's
+symbols. Projector mode (P, ``--projector``) makes text and parts larger and keeps the
+window's size.
 """
 
 from __future__ import annotations
 
-import html
+import copy
 import os
 import threading
 import time
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 import pygame
 import pygame_gui
-from pygame_gui.elements import (
-    UIButton,
-    UIHorizontalSlider,
-    UILabel,
-    UIScrollingContainer,
-    UISelectionList,
-    UITextBox,
-    UITextEntryLine,
-    UIWindow,
-)
+from pygame_gui.elements import UIButton, UILabel, UIScrollingContainer, UITextEntryLine, UIWindow
 
-from chainfountain.app import paths, render, spans
+from chainfountain.app import layout, panel, paths, spans, text
 from chainfountain.app.capture import BackgroundSaver, ClipRecorder, mp4_available, timestamp
 from chainfountain.app.capture import unique_path as _unique
-from chainfountain.app.controls import SLIDER_STEPS, FieldSpec, control_fields, spec_for
+from chainfountain.app.controls import control_fields, spec_for, student_paths
 from chainfountain.app.draw import DrawMixin
 from chainfountain.app.input import InputMixin
+from chainfountain.app.layout import DEFAULT_SIZE, MIN_SIZE
+from chainfountain.app.panel import ControlRow, tooltip
+from chainfountain.app.picker import LevelPicker
+from chainfountain.app.scene_view import SceneView, scene_bounds
 from chainfountain.app.session import Session
+from chainfountain.app.timebar import TimeBar
+from chainfountain.app.tools import Ruler, Stopwatch
 from chainfountain.level import library
+from chainfountain.level.io import Level, LevelError
 
-LEFT_W = 300
-RIGHT_W = 390
-"""Widths of the control panel and of the readout (pixels at text scale 1)."""
-DEFAULT_SIZE = (1280, 760)
-PROJECTOR = 1.4
-"""Projector mode (P, ``play --projector``) makes the text this much larger."""
-PANEL_SHARE = 0.55
-"""The control panel and the readout take at most this share of the window's width (the
-text scale is capped for it)."""
-GUI_FONT = 14
-"""pygame_gui's text size (pixels at text scale 1)."""
 FRAMEBUFFER_HINT = "SDL_FRAMEBUFFER_ACCELERATION"
 """SDL's hint for how a window's pixels reach the screen; the window sets it to "0" unless
 the environment sets it: through the display's own framebuffer (X11: shared memory), not
-SDL's OpenGL texture. Without GPU drivers (Mesa's llvmpipe; Xvfb) the OpenGL path runs two
-rendering threads beside the physics on the same cores: ``apparatus_fold_gripped`` in a
-1280x760 window under Xvfb ran at 0.89-0.91x real time and 30-31 frames/s with it,
-0.97-0.98x and 42-44 frames/s without (``benchmarks/bench_app.py --window``, two runs
-each; docs/apparatus.md). Set ``SDL_FRAMEBUFFER_ACCELERATION=1`` to use it."""
+SDL's OpenGL texture, which without GPU drivers (Mesa's llvmpipe; Xvfb) runs two
+rendering threads beside the physics on the same cores. Set
+``SDL_FRAMEBUFFER_ACCELERATION=1`` to use it."""
 MIN_FPS = 30
 """The frame rate may drop to this before the simulation runs slower than requested."""
 HEADROOM = 0.9
 """Share of one core the window's own work (the physics of real time and the drawing of
-every frame) may take before it draws fewer frames (:meth:`App.target_fps`); the rest is
-for the display and the system."""
+every frame) may take before it draws fewer frames (:meth:`App.target_fps`)."""
 FOLLOW_EVERY = 30
 """Frames between checks that the view still shows the fountain (0.5 s at 60 frames/s)."""
 REBUILD_DELAY = 0.35
-"""Seconds a rebuild-only slider must rest before the scene is rebuilt."""
-
-
-@dataclass
-class ControlRow:
-    """The widgets of one schema field."""
-
-    spec: FieldSpec
-    label: UILabel
-    slider: UIHorizontalSlider
-    entry: UITextEntryLine
-
-
-def text_scale(size: tuple[int, int], projector: bool) -> float:
-    """The window's text scale: 1 at :data:`DEFAULT_SIZE`, growing with the window, times
-    :data:`PROJECTOR` in projector mode; capped so that the control panel and the readout
-    leave the scene :data:`PANEL_SHARE` of the width."""
-    w, h = size
-    s = max(1.0, min(w / DEFAULT_SIZE[0], h / DEFAULT_SIZE[1]))
-    if projector:
-        s *= PROJECTOR
-    return max(1.0, min(s, PANEL_SHARE * w / (LEFT_W + RIGHT_W)))
+"""Seconds a restarting slider must rest before the scene is rebuilt."""
+QUIT_WINDOW = 3.0
+"""Seconds after a first Esc in which a second one quits."""
+AUTOSAVES_KEPT = 10
+"""Autosaves kept in the user's level folder (the oldest beyond this are removed)."""
 
 
 def _move_window_to_origin() -> None:
-    """Put the window at the screen's top left corner (projector mode fills the screen)."""
     try:
         pygame.Window.from_display_module().position = (0, 0)
-    except (AttributeError, pygame.error):  # an SDL without windows to move: leave it
+    except (AttributeError, pygame.error):
         pass
 
 
-def gui_theme(scale: float) -> dict:
-    """pygame_gui's theme at text scale ``scale``: its font for every element the window
-    uses."""
-    size = str(round(GUI_FONT * scale))
-    font = {"font": {"name": "noto_sans", "size": size}}
-    return {t: font for t in ("label", "button", "text_entry_line", "text_box",
-                              "selection_list", "tool_tip", "window", "horizontal_slider")}
-
-
-TOOLTIP_WIDTH = 420
-"""Width (px) a field's tooltip wraps at: the longest dotted path (``chain.bending_stiffness:``)
-fits on a line, so the wrap never breaks a word (pygame_gui hyphenates one that does not fit)."""
-
-
-def _tooltip(spec: FieldSpec) -> str:
-    how = "applies live" if spec.live else "rebuilds the scene"
-    span = ""
-    if spec.narrowed:
-        lo, hi = spec.slider_lo, spec.slider_hi
-        span = (f" The slider spans {lo:.4g}-{hi:.4g}{spec.shown_unit}, where this machine "
-                "keeps running; a value typed beyond runs as a real machine would.")
-    return html.escape(f"{spec.path}: {spec.doc}. Allowed: {spec.allowed()}. Changing it "
-                       f"{how}.{span}")
+def theory_by_default(level: Level) -> bool:
+    """Whether the paper's curve is on when a level opens: where the paper predicts the
+    fountain (fed levels and machines), not over a beaker's chain, whose fountain is its
+    own (T shows it)."""
+    return level.sim.kind != "beaker"
 
 
 class App(InputMixin, DrawMixin):
@@ -135,11 +89,13 @@ class App(InputMixin, DrawMixin):
     size:
         Window size in pixels.
     offscreen:
-        Deterministic frames: each frame advances exactly ``1/fps`` s of
-        simulated time (times the slow-motion factor), independent of wall
-        time (``--frames`` runs and tests).
+        Deterministic frames: each frame advances exactly ``1/fps`` s of simulated time
+        (times the slow-motion factor), independent of wall time (``--frames`` runs and
+        tests).
     fps:
         Target frame rate.
+    projector:
+        Projector mode from the start (as P).
     """
 
     def __init__(self, session: Session, size: tuple[int, int] = DEFAULT_SIZE,
@@ -148,6 +104,7 @@ class App(InputMixin, DrawMixin):
         pygame.display.init()
         pygame.font.init()
         flags = 0 if offscreen else pygame.RESIZABLE
+        size = (max(MIN_SIZE[0], int(size[0])), max(MIN_SIZE[1], int(size[1])))
         self.screen = pygame.display.set_mode(size, flags)
         pygame.display.set_caption("chainfountain")
         pygame.key.set_repeat(350, 60)
@@ -158,33 +115,28 @@ class App(InputMixin, DrawMixin):
         self.running = True
         self.show_help = False
         self.show_about = True
-        """The level's description on the view (I); shown again whenever a level opens,
-        for its first :data:`~chainfountain.app.draw.ABOUT_SECONDS` of simulated time
-        unless I pinned it."""
-        self._about_low = False
-        """The level's card is at the bottom of the view (:meth:`_draw_about`)."""
-        self._fit_top = 0
-        """Pixels the last fit kept free at the view's top for the description card."""
+        """The level's card on the view (I); shown whenever a level opens, for its first
+        :data:`~chainfountain.app.draw.ABOUT_SECONDS` unless I pinned it."""
         self.about_pinned = False
-        """I showed the description: it stays until I hides it."""
-        self.show_theory = True
+        self.show_theory = theory_by_default(session.level)
         self.expert = False
-        """The readout in the paper's symbols (E) instead of plain words."""
+        """The expert view (E): every field, the paper's symbols, the graphs."""
+        self.show_panel = True
+        """The panel beside the scene (Tab hides it: the scene fills the window)."""
+        self.show_plots = False
+        """The graphs under the scene (V); on in the expert view."""
+        self.projector = projector
         self.frame = 0
         self.draw_time = 0.004
         self.overhead = 0.006
-        """Smoothed wall time of a frame before its physics (events, GUI, drawing; the flip to
-        the screen overlaps the physics)."""
+        """Smoothed wall time of a frame before its physics (events, GUI, drawing)."""
         self.physics_time = 0.0
-        """Wall time of the last frame's physics (s)."""
         self.physics_cost = 0.0
         """Smoothed wall seconds the physics takes per simulated second (window only)."""
         self.work_time = 0.0
-        """Wall time of the last frame before its physics (s; :attr:`overhead` unsmoothed)."""
         self.fps_measured = float(fps)
         self.clip: ClipRecorder | None = None
         self._still_rect: pygame.Rect | None = None
-        """While a picture is taken: the part of the window it takes."""
         self._still: pygame.Surface | None = None
         self.finishing_clips: list[ClipRecorder] = []
         self.saver = BackgroundSaver()
@@ -200,90 +152,147 @@ class App(InputMixin, DrawMixin):
         self._ro_sim = None
         self.save_window: UIWindow | None = None
         self.save_entry: UITextEntryLine | None = None
-        self.load_window: UIWindow | None = None
-        self.load_list: UISelectionList | None = None
-        self.load_about: UITextBox | None = None
-        self._load_items: dict[str, Path] = {}
+        self.picker: LevelPicker | None = None
         self.follow = True
         """The view follows the fountain until the user pans or zooms (F follows again)."""
-        self.projector = projector
-        """Projector mode (P): larger text everywhere (:func:`text_scale`); a window
-        smaller than the screen grows to it."""
-        self._size_before: tuple[int, int] | None = None
-        """The window's size before projector mode grew it (restored when it ends)."""
+        self.quit_asked: float | None = None
+        """When a first Esc asked to quit (a second within :data:`QUIT_WINDOW` quits)."""
+        self.came_from: list[tuple[Level, Path | None]] = []
+        """The levels M left for their twin (M on the twin goes back)."""
+        self.scene_view = SceneView()
+        self.timebar = TimeBar()
+        self.ruler = Ruler()
+        self.stopwatch = Stopwatch()
+        self.rows: list[ControlRow] = []
         self._layout()
         self.fit_view()
 
     # ------------------------------------------------------------------ layout
     def _layout(self) -> None:
+        """Lay the window out for its size and modes; rebuild the panel's widgets."""
         if getattr(self, "clip", None) is not None:  # a clip's frames keep one size
             self.toggle_clip()
             self.session.say("the window changed size: the clip is finished (G starts another)")
-        w, h = self.size
-        render.set_text_scale(text_scale(self.size, self.projector))
-        px = render.px
-        self.left_w, right_w = px(LEFT_W), px(RIGHT_W)
-        self.scene_rect = pygame.Rect(self.left_w, 0, max(100, w - self.left_w - right_w), h)
-        self.right_rect = pygame.Rect(w - right_w, 0, right_w, h)
-        self.ui = pygame_gui.UIManager((w, h), gui_theme(render.text_scale()))
-        self.camera = getattr(self, "camera", None) or render.Camera(self.scene_rect)
+        text.set_text_scale(layout.text_scale(self.size, self.projector))
+        plots = self.show_plots or self.expert
+        self.lay = layout.compute(self.size, text.text_scale(), self.show_panel, plots)
+        self.scene_rect = self.lay.scene
+        self.ui = pygame_gui.UIManager(self.size, panel.gui_theme(text.text_scale()))
+        self.camera = getattr(self, "camera", None)
+        if self.camera is None:
+            from chainfountain.app.camera import Camera
+
+            self.camera = Camera(self.scene_rect)
         self.camera.rect = self.scene_rect
+        self.timebar.place(self.scene_rect)
+        self.stopwatch.place((self.scene_rect.right - text.px(10),
+                              self.scene_rect.y + text.px(40)))
+        if self.picker is not None:
+            self.picker.place(self.size)
+        self._plot_cache = None
         self._build_panel()
 
+    @property
+    def panel_rect(self) -> pygame.Rect | None:
+        return self.lay.panel
+
+    @property
+    def plots_rect(self) -> pygame.Rect | None:
+        return self.lay.plots
+
+    def _panel_columns(self) -> tuple[pygame.Rect, pygame.Rect]:
+        """The panel's two parts: the title, buttons and readout; the sliders. One above
+        the other beside the scene, side by side under it (portrait)."""
+        p = self.lay.panel
+        if self.lay.portrait:
+            half = p.w // 2
+            return pygame.Rect(p.x, p.y, half, p.h), pygame.Rect(p.x + half, p.y, p.w - half,
+                                                                 p.h)
+        top = self._readout_bottom(p)
+        return pygame.Rect(p.x, p.y, p.w, top - p.y), pygame.Rect(p.x, top, p.w, p.bottom - top)
+
+    def _readout_bottom(self, p: pygame.Rect) -> int:
+        """Where the readout ends and the sliders start in a landscape panel: room for the
+        title, the buttons and the readout's rows of this level and view at the panel's
+        width (:meth:`readout_lines`)."""
+        from chainfountain.app.draw import readout_font
+
+        lines = self.readout_lines(p.w)
+        return p.y + text.px(40) + 2 * text.px(34) + text.px(8) \
+            + lines * (readout_font(self.expert).get_linesize() + 1) + text.px(10)
+
+    def readout_lines(self, width: int) -> int:
+        """Lines the readout takes at most in a panel ``width`` wide: its rows with every
+        number there, wrapped as :meth:`_draw_rows` wraps them."""
+        from chainfountain.app.draw import readout_font
+        from chainfountain.app.readout import Readout
+        from chainfountain.app.readout_text import readout_rows
+
+        s = self.session
+        full = Readout(v=9.99, k=0.999, q=9.99, h=9.99, l=9.99, H=9.99, T0_bar=0.999,
+                       TE_bar=0.999, T0_theory=0.999, TE_theory=0.999, measured=True,
+                       paper_h=9.99 if s.sim.reference is not None else float("nan"),
+                       origin="pick-up" if s.sim.beaker is not None else "launch")
+        rows = readout_rows(full, s.sim.config.chain.linear_density, self.expert)
+        f = readout_font(self.expert)
+        room = width - text.px(16) - (text.px(60) if self.expert else 0)
+        lines = sum(len(text.wrap(f, r.text, room)) for r in rows)
+        return lines + (4 if self.expert else 0)
+
     def _build_panel(self) -> None:
-        ui = self.ui
-        px, lw = render.px, self.left_w
         self.buttons: dict[str, UIButton] = {}
-        self.title = UILabel(pygame.Rect(8, px(4), lw - 16, px(24)), self._title_text(), ui)
-        row1 = (("play", "Pause", "Play / pause (Space)"), ("step", "Step", "Single step (Right)"),
-                ("slow", "Slow", "Slow motion 1/2, 1/4 (S)"), ("reset", "Reset", "Reset (R)"))
-        row2 = (("save", "Save", "Save the setup as a level (Ctrl+S)"),
-                ("load", "Load", "Open a level (Ctrl+O)"), ("shot", "Shot", "Screenshot (F12)"),
-                ("rec", "Rec", "Record a clip (G)"), ("help", "?", "Keys (H, F1)"))
-        for y, row in ((px(32), row1), (px(64), row2)):
-            bw = (lw - 16) // len(row)
-            for i, (key, text, tip) in enumerate(row):
-                self.buttons[key] = UIButton(pygame.Rect(8 + i * bw, y, bw - 4, px(28)), text,
-                                             ui, tool_tip_text=tip)
-        top = px(100)
-        self.controls_box = UIScrollingContainer(
-            pygame.Rect(0, top, lw, self.size[1] - top), ui, allow_scroll_x=False)
+        self.rows = []
+        self.title = None
+        self.controls_box = None
+        if self.lay.panel is None:
+            return
+        head, sliders = self._panel_columns()
+        px = text.px
+        self.title = UILabel(pygame.Rect(head.x + px(6), head.y + px(4), head.w - px(12),
+                                         px(32)), "", self.ui, object_id="#title")
+        self._set_title()
+        self.buttons, y = panel.build_buttons(self.ui, head, head.y + px(40))
+        self.readout_top = y + px(4)
+        self.readout_rect = pygame.Rect(head.x, self.readout_top, head.w,
+                                        head.bottom - self.readout_top)
+        self.controls_box = UIScrollingContainer(sliders, self.ui, allow_scroll_x=False)
         self._build_controls()
+
+    def _set_title(self) -> None:
+        if self.title is not None:
+            panel.fit_label(self.title, self._title_text())
 
     def _title_text(self) -> str:
         s = self.session
-        return f"{s.name}{' *' if s.dirty else ''}  ({s.level.sim.kind})"
+        return f"{s.level.meta.shown_title}{' *' if s.dirty else ''}"
+
+    def shown_specs(self) -> list:
+        """The fields the panel shows: every control field (expert view), else the
+        level's student sliders; each spanning where its machine runs."""
+        level = self.session.level
+        specs = control_fields(level.sim)
+        if not self.expert:
+            wanted = student_paths(level)
+            specs = sorted((s for s in specs if s.path in wanted),
+                           key=lambda s: wanted.index(s.path))
+        return [spans.narrowed(level, s, self.session.origin) for s in specs]
 
     def _build_controls(self) -> None:
-        box = self.controls_box
-        for row in getattr(self, "rows", []):
+        for row in self.rows:
             for el in (row.label, row.slider, row.entry):
                 el.kill()
-        self.rows: list[ControlRow] = []
-        level = self.session.level
-        origin = self.session.origin
-        specs = [spans.narrowed(level, s, origin) for s in control_fields(level.sim)]
-        px, lw = render.px, self.left_w
-        y = px(4)
-        for spec in specs:
-            tag = "live" if spec.live else "rebuild"
-            unit = f" ({spec.unit})" if spec.unit and spec.unit != "1" else ""
-            label = UILabel(pygame.Rect(8, y, lw - 30, px(20)), f"{spec.label}{unit}  [{tag}]",
-                            self.ui, container=box, object_id="#field_label")
-            label.set_tooltip(_tooltip(spec), wrap_width=TOOLTIP_WIDTH)
-            slider = UIHorizontalSlider(pygame.Rect(8, y + px(21), px(180), px(24)), 0,
-                                        (0, SLIDER_STEPS),
-                                        self.ui, container=box, click_increment=1)
-            entry = UITextEntryLine(pygame.Rect(px(192), y + px(20), lw - px(222), px(26)),
-                                    self.ui,
-                                    container=box)
-            entry.set_allowed_characters(list("0123456789.-+eE"))
-            entry.set_tooltip(_tooltip(spec), wrap_width=TOOLTIP_WIDTH)
-            row = ControlRow(spec, label, slider, entry)
-            self.rows.append(row)
+        self.rows = []
+        if self.controls_box is None:
+            return
+        width = self.controls_box.get_container().get_rect().w
+        self.rows = panel.build_rows(self.ui, self.controls_box, width, self.shown_specs(),
+                                     self.expert)
+        for row in self.rows:
             self._show_value(row)
-            y += px(52)
-        box.set_scrollable_area_dimensions((lw - 20, y + 8))
+        for key, on in (("plots", self.show_plots or self.expert), ("expert", self.expert)):
+            b = self.buttons.get(key)
+            if b is not None:
+                (b.select if on else b.unselect)()
 
     def _row(self, path: str) -> ControlRow | None:
         for r in self.rows:
@@ -298,21 +307,26 @@ class App(InputMixin, DrawMixin):
             row.slider.set_current_value(row.spec.to_slider(v), warn=False)
         row.entry.set_text(row.spec.fmt(row.spec.to_display(v)))
 
+    # ------------------------------------------------------------------ the view
     def fit_view(self) -> None:
-        """Fit the camera to the scene, below the level's description card while it shows,
-        and follow the fountain from now on."""
+        """Fit the camera to the scene, below the level's card while it shows and above
+        the time controls, and follow the fountain from now on."""
         box = self.about_box() if self.about_visible else None
-        top = box.bottom - self.scene_rect.top if box is not None else 0
-        self.camera.fit(*render.scene_bounds(self.session.sim, self.session.readout()),
-                        top=top)
+        top = box.bottom - self.scene_rect.top if box is not None else text.px(36)
+        bottom = self.scene_rect.bottom - self.timebar.rect.top + text.px(6)
+        ro = self.session.readout()
+        self.camera.fit(*scene_bounds(self.session.sim, ro), top=top, bottom=bottom)
+        # the parts' least sizes in pixels at that scale, then the fit again
+        self.camera.fit(*scene_bounds(self.session.sim, ro, self.camera.scale), top=top,
+                        bottom=bottom)
         self._fit_top = top
         self.follow = True
 
     def follow_view(self) -> None:
         """While following: refit when part of the scene has left the view, or when the
         scene fills less than a fifth of it (a fountain that shrank or settled)."""
-        x0, y0, x1, y1 = render.scene_bounds(self.session.sim, None)
         c = self.camera
+        x0, y0, x1, y1 = scene_bounds(self.session.sim, None, c.scale)
         (ax, ay), (bx, by) = c.to_screen(np.array([[x0, y0], [x1, y1]]))
         r = self.scene_rect
         left, right = min(ax, bx), max(ax, bx)
@@ -322,35 +336,92 @@ class App(InputMixin, DrawMixin):
         if out or small:
             self.fit_view()
 
+    def fit_view_if_lost(self) -> None:
+        """Refit when the fountain would be mostly outside the view."""
+        x0, y0, x1, y1 = scene_bounds(self.session.sim, None)
+        a = self.camera.to_screen(np.array([[x0, y0], [x1, y1]]))
+        if not (self.scene_rect.collidepoint(a[0]) or self.scene_rect.collidepoint(a[1])):
+            self.fit_view()
+
+    def relayout(self) -> None:
+        """Lay out again (a mode changed) and fit the view."""
+        self.close_dialogs()
+        self._layout()
+        self.fit_view()
+
+    def toggle_projector(self) -> None:
+        """Projector mode on or off: larger text and parts; the window keeps its size."""
+        self.projector = not self.projector
+        self.relayout()
+        scale = text.text_scale()
+        self.session.say(f"projector mode: text x{scale:.2f} (P: back)" if self.projector
+                         else f"projector mode off: text x{scale:.2f}")
+
+    def toggle_expert(self) -> None:
+        """The expert view (every field, the paper's symbols, the graphs) or the student
+        view (the level's sliders, plain words)."""
+        self.expert = not self.expert
+        self.relayout()
+        self.session.say("expert view: every field and the paper's symbols (E: student view)"
+                         if self.expert else "student view: plain words (E: expert view)")
+
+    def toggle_panel(self) -> None:
+        """Hide the panel (the scene fills the window, the readout over it) or show it."""
+        self.show_panel = not self.show_panel
+        self.relayout()
+        self.session.say("full view: Tab shows the panel" if not self.show_panel
+                         else "panel shown")
+
+    def toggle_plots(self) -> None:
+        self.show_plots = not (self.show_plots or self.expert)
+        if self.expert and not self.show_plots:
+            self.expert = False  # the expert view shows the graphs: leave it
+        self.relayout()
+
+    def toggle_ruler(self) -> None:
+        if self.ruler.on:
+            self.ruler.on = False
+        else:
+            self.ruler.show(self.camera)
+            self.session.say("ruler: drag its ends (U hides it)")
+
+    def toggle_stopwatch(self) -> None:
+        self.stopwatch.on = not self.stopwatch.on
+        if self.stopwatch.on:
+            self.session.say("stopwatch: counts simulated seconds (W hides it)")
+
     # ------------------------------------------------------------------ commands
     def set_field(self, path: str, value: float) -> None:
-        """Set a schema field from the GUI (clamped, live or rebuilt) and refresh its row."""
+        """Set a field from the GUI (clamped, live or rebuilt) and refresh its row."""
         res = self.session.set_field(path, value)
         level = self.session.level
-        # a change can move other fields (a cart that follows the balance) and the spans
-        for row in self.rows:
+        for row in self.rows:  # a change can move other fields and their spans
             if row.spec.path in spans.NARROWED_FIELDS:
                 row.spec = spans.narrowed(level, spec_for(level.sim, row.spec.path),
                                           self.session.origin)
                 for el in (row.label, row.entry):
-                    el.set_tooltip(_tooltip(row.spec), wrap_width=TOOLTIP_WIDTH)
+                    el.set_tooltip(tooltip(row.spec), wrap_width=panel.TOOLTIP_WIDTH)
+                row.slider.value_range = (0, max(1, row.spec.positions))
             self._show_value(row)
         if res.ok and not res.live:
             self.fit_view_if_lost()
-        self.title.set_text(self._title_text())
-
-    def fit_view_if_lost(self) -> None:
-        """Refit when the fountain would be mostly outside the view."""
-        x0, y0, x1, y1 = render.scene_bounds(self.session.sim, None)
-        c = self.camera
-        a = c.to_screen(np.array([[x0, y0], [x1, y1]]))
-        if not (self.scene_rect.collidepoint(a[0]) or self.scene_rect.collidepoint(a[1])):
-            self.fit_view()
+        self._set_title()
 
     def reset(self) -> None:
+        """Restart the scene with the current settings (R)."""
         self.session.reset()
         self._pending.clear()
         self.fit_view()
+
+    def reset_all(self) -> None:
+        """The level as it was opened: every setting back, the scene restarted (Shift+R,
+        Reset all); changed settings are kept in an autosave first."""
+        s = self.session
+        kept = self.autosave("reset all") if s.dirty else None
+        s.load_level(copy.deepcopy(s.opened), s.source)
+        self._after_open()
+        s.say("reset all: the level as opened" + (f" (your settings are kept as {kept.name})"
+                                                   if kept else ""))
 
     def toggle_pause(self) -> None:
         self.session.toggle_pause()
@@ -364,13 +435,135 @@ class App(InputMixin, DrawMixin):
         else:
             s.step_frame(1.0 / 60.0)
 
+    def set_speed(self, index: int) -> None:
+        s = self.session
+        while s.slow_index != index:
+            s.cycle_slow()
+
+    # ------------------------------------------------------------------ levels
+    def autosave(self, why: str) -> Path | None:
+        """Keep the present setup as an autosave in the user's folder (``why``: what is
+        about to replace it); the path, or ``None`` when nothing was written."""
+        if os.environ.get("CHAINFOUNTAIN_NO_AUTOSAVE"):
+            return None
+        p = self.session.keep_copy(f"autosave-{timestamp()}")
+        if p is not None:
+            _prune_autosaves(p.parent)
+        return p
+
+    def _keep_changes(self) -> str:
+        """Before another level opens: unsaved changes go to an autosave; what to say."""
+        if not self.session.dirty:
+            return ""
+        p = self.autosave("another level")
+        return f"; your changes to the last level are kept as {p.name} (L lists it)" if p \
+            else ""
+
+    def load_path(self, path: Path, back: bool = False) -> bool:
+        """Open a level file (errors are shown, never raised); unsaved changes are kept in
+        an autosave and the window says so."""
+        kept = self._keep_changes()
+        ok = self.session.load_path(path)
+        if ok:
+            if not back:
+                self.came_from.clear()
+            self._after_open()
+            if kept:
+                self.session.say(f"opened {self.session.level.meta.shown_title}{kept}")
+        return ok
+
+    def open_level(self, level: Level, source: Path | None) -> bool:
+        """Open ``level`` (a twin made here, or one M goes back to)."""
+        kept = self._keep_changes()
+        ok = self.session.load_level(level, source)
+        if ok:
+            self._after_open()
+            if kept:
+                self.session.say(f"opened {level.meta.shown_title}{kept}")
+        return ok
+
+    def _after_open(self) -> None:
+        self.close_dialogs()
+        self._pending.clear()
+        self.show_theory = theory_by_default(self.session.level)
+        self.show_about, self.about_pinned = True, False
+        self.scene_view = SceneView()
+        self._layout()
+        self.fit_view()
+
+    def open_twin(self) -> bool:
+        """M: open the machine's twin in the other machine (the ideal machine of the same
+        drop, offsets and speed for a contact machine), or go back to the level M came
+        from; say so when there is none."""
+        s = self.session
+        if self.came_from:
+            level, source = self.came_from.pop()
+            ok = self.open_level(level, source)
+            if ok:
+                s.say(f"M: back to {level.meta.shown_title}")
+            return ok
+        try:
+            twin = twin_of(s.level)
+        except LevelError as exc:
+            s.say(f"M: {exc}")
+            return False
+        if twin is None:
+            s.say("M: this level has no twin (the machine levels each have one: the same "
+                  "machine with the paper's ideal rollers, or with contact rollers)")
+            return False
+        here = (copy.deepcopy(s.level), s.source)
+        level, source = twin
+        if self.open_level(level, source):
+            self.came_from.append(here)
+            s.say(f"M: {level.meta.shown_title} (M goes back)")
+            return True
+        return False
+
+    def open_picker(self) -> None:
+        self.close_dialogs()
+        self.picker = LevelPicker(self.session.source)
+        self.picker.place(self.size)
+
+    def close_picker(self) -> None:
+        self.picker = None
+
+    def open_chosen(self) -> bool:
+        """Open the picker's chosen level."""
+        e = self.picker.chosen if self.picker is not None else None
+        if e is None or e.path is None:
+            self.session.say("pick a level first")
+            return False
+        self.picker = None
+        return self.load_path(e.path)
+
+    # ------------------------------------------------------------------ quitting
+    def request_quit(self) -> None:
+        """Esc: ask first (a second Esc within :data:`QUIT_WINDOW` quits; unsaved changes
+        are kept in an autosave then)."""
+        now = time.monotonic()
+        if self.quit_asked is not None and now - self.quit_asked < QUIT_WINDOW:
+            self.running = False
+            return
+        self.quit_asked = now
+
+    @property
+    def quit_prompt(self) -> str | None:
+        """What the window says while a quit is asked, or ``None``."""
+        if self.quit_asked is None or time.monotonic() - self.quit_asked >= QUIT_WINDOW:
+            return None
+        kept = " Your changes will be kept as an autosave." if self.session.dirty else ""
+        return f"Quit chainfountain? Press Esc again to quit, any other key to stay.{kept}"
+
+    # ------------------------------------------------------------------ pictures
     def capture_rect(self, with_plots: bool = False) -> pygame.Rect:
-        """What pictures and clips take: the scene, or the scene and the plots beside it."""
-        return self.scene_rect.union(self.right_rect) if with_plots else self.scene_rect.copy()
+        """What pictures and clips take: the scene, or the scene and the graphs."""
+        if with_plots and self.plots_rect is not None:
+            return self.scene_rect.union(self.plots_rect)
+        return self.scene_rect.copy()
 
     def screenshot(self, path: Path | None = None, background: bool = True,
                    with_plots: bool = False) -> Path:
-        """Save a picture of the scene (with the plots: ``with_plots``) as PNG, at full
+        """Save a picture of the scene (with the graphs: ``with_plots``) as PNG, at full
         resolution and without the window's overlays (default: the captures folder)."""
         if path is None:
             path = _unique(paths.captures_dir(create=True), f"chainfountain-{timestamp()}",
@@ -392,8 +585,8 @@ class App(InputMixin, DrawMixin):
         return path
 
     def toggle_clip(self, path: Path | None = None, with_plots: bool = False) -> Path | None:
-        """Start or stop recording a clip of the scene (with the plots: ``with_plots``) in
-        simulated time; returns the clip path when starting."""
+        """Start or stop recording a clip of the scene (with the graphs: ``with_plots``)
+        in simulated time; returns the clip path when starting."""
         if self.clip is not None and self.clip.recording:
             self.clip.stop()
             self.finishing_clips.append(self.clip)
@@ -406,154 +599,64 @@ class App(InputMixin, DrawMixin):
             path = _unique(paths.captures_dir(create=True), f"chainfountain-{timestamp()}", ext)
         fps = 30.0 if path.suffix.lower() == ".mp4" else 20.0  # a GIF counts in 10 ms
         self.clip = ClipRecorder(path, fps=fps, crop=self.capture_rect(with_plots))
-        self.session.say(f"recording {'the scene and plots' if with_plots else 'the scene'} "
+        self.session.say(f"recording {'the scene and graphs' if with_plots else 'the scene'} "
                          f"in simulated time to {path} (G stops; up to "
                          f"{self.clip.max_frames / fps:.0f} s)")
         return path
 
+    # ------------------------------------------------------------------ dialogs
     def open_save_dialog(self) -> None:
         self.close_dialogs()
-        px = render.px
-        r = pygame.Rect(0, 0, px(420), px(150))
+        px = text.px
+        r = pygame.Rect(0, 0, min(px(440), self.size[0] - 20), px(156))
         r.center = self.scene_rect.center
-        win = UIWindow(r, self.ui, window_display_title="Save level as", always_on_top=True)
+        win = UIWindow(r, self.ui, window_display_title="Save the setup as a level",
+                       always_on_top=True)
+        inner = r.w - px(36)
         folder = str(paths.user_levels_dir())
         if len(folder) > 40:
             folder = "..." + folder[-37:]
-        UILabel(pygame.Rect(8, px(6), px(390), px(22)), f"Name (into {folder})", self.ui,
-                container=win)
-        entry = UITextEntryLine(pygame.Rect(8, px(32), px(390), px(30)), self.ui, container=win)
+        label = UILabel(pygame.Rect(8, px(6), inner, px(22)), "", self.ui, container=win)
+        panel.fit_label(label, f"Name (into {folder})")
+        entry = UITextEntryLine(pygame.Rect(8, px(32), inner, px(30)), self.ui, container=win)
         entry.set_text(self.session.name)
         entry.focus()
-        UIButton(pygame.Rect(px(218), px(68), px(90), px(28)), "Save", self.ui, container=win,
-                 object_id="#save_ok")
-        UIButton(pygame.Rect(px(310), px(68), px(90), px(28)), "Cancel", self.ui, container=win,
-                 object_id="#dialog_cancel")
+        UIButton(pygame.Rect(inner - px(184), px(68), px(90), px(28)), "Save", self.ui,
+                 container=win, object_id="#save_ok")
+        UIButton(pygame.Rect(inner - px(88), px(68), px(90), px(28)), "Cancel", self.ui,
+                 container=win, object_id="#dialog_cancel")
         self.save_window, self.save_entry = win, entry
-
-    def open_load_dialog(self) -> None:
-        self.close_dialogs()
-        items = paths.list_levels()
-        self._load_items = {label: p for label, p in items if p is not None}
-        px = render.px
-        w = min(px(780), self.size[0] - 20)
-        r = pygame.Rect(0, 0, w, min(px(400), self.size[1] - 20))
-        r.center = (self.size[0] // 2, self.size[1] // 2)
-        win = UIWindow(r, self.ui, window_display_title="Open a level", always_on_top=True)
-        labels = [label for label, _ in items] or ["(no level files found)"]
-        list_w, list_h = px(300), r.h - px(100)
-        self.load_list = UISelectionList(pygame.Rect(8, 6, list_w, list_h), labels, self.ui,
-                                         container=win)
-        self.load_about = UITextBox("Click a level to read what it shows and what to watch; "
-                                    "double-click or Open to open it.",
-                                    pygame.Rect(list_w + 16, 6, w - list_w - 56, list_h),
-                                    self.ui, container=win)
-        UIButton(pygame.Rect(w - px(232), list_h + 14, px(90), px(28)), "Open", self.ui,
-                 container=win, object_id="#load_ok")
-        UIButton(pygame.Rect(w - px(140), list_h + 14, px(90), px(28)), "Cancel", self.ui,
-                 container=win,
-                 object_id="#dialog_cancel")
-        self.load_window = win
-
-    def describe_choice(self, label: str | None) -> None:
-        """Show the picked level's description beside the picker's list."""
-        if self.load_about is None:
-            return
-        if label in paths.HEADING_TEXT:
-            self.load_about.set_text(html.escape(paths.HEADING_TEXT[label]))
-            return
-        path = self._load_items.get(label or "")
-        if path is None:
-            return
-        start = ("Starts at rest and forms its fountain." if paths.forms_from_rest(path)
-                 else "Starts laid on its path, already moving.")
-        self.load_about.set_text(f"{html.escape(path.stem)}: {start}<br>"
-                                 + html.escape(paths.level_description(path)))
 
     def close_dialogs(self) -> bool:
         closed = False
-        for attr in ("save_window", "load_window"):
-            win = getattr(self, attr)
-            if win is not None:
-                win.kill()
-                setattr(self, attr, None)
-                closed = True
+        if self.save_window is not None:
+            self.save_window.kill()
+            self.save_window = None
+            closed = True
+        if self.picker is not None:
+            self.picker = None
+            closed = True
         self.save_entry = None
-        self.load_list = None
-        self.load_about = None
         return closed
 
     def do_save(self, name: str) -> Path | None:
         path = self.session.save(name)
         if path is not None:
             self.close_dialogs()
-            self.title.set_text(self._title_text())
+            self._set_title()
         return path
-
-    def do_load(self, label: str | None) -> bool:
-        if not label or label not in self._load_items:
-            self.session.say("pick a level first")
-            return False
-        return self.load_path(self._load_items[label])
-
-    def load_path(self, path: Path) -> bool:
-        """Open a level file (errors are shown, never raised)."""
-        ok = self.session.load_path(path)
-        if ok:
-            self.close_dialogs()
-            self._pending.clear()
-            self._build_controls()
-            self.title.set_text(self._title_text())
-            self.fit_view()
-            self.show_about, self.about_pinned = True, False
-        return ok
-
-    def open_twin(self) -> bool:
-        """Open the current machine preset in the other machine (contact or ideal;
-        :func:`chainfountain.level.library.twin`), or say there is none."""
-        other = library.twin(self.session.level.meta.name)
-        if other is None:
-            self.session.say("M: this level has no twin (the machine presets apparatus_floor, "
-                             "_fold, _special, _limit and _open each have an ideal one)")
-            return False
-        return self.load_path(library.resolve(other))
-
-    def toggle_projector(self) -> None:
-        """Projector mode on or off: the text, panels and controls grow (or shrink back), a
-        window smaller than the screen grows to fill it (and returns to its size after),
-        the view is fitted again."""
-        self.projector = not self.projector
-        size = self.size
-        if not self.offscreen:  # a projector shows the whole screen: grow to it, and back
-            if self.projector:
-                self._size_before = self.size
-                desk = pygame.display.get_desktop_sizes()
-                if desk and desk[0][0] > size[0] and desk[0][1] > size[1]:
-                    size = desk[0]
-            elif self._size_before is not None:
-                size, self._size_before = self._size_before, None
-        if size != self.size:
-            self.resize(size)
-            if self.projector:
-                _move_window_to_origin()
-        else:
-            self.close_dialogs()
-            self._layout()
-            self.fit_view()
-        self._plot_cache = None
-        scale = render.text_scale()
-        self.session.say(f"projector mode: text x{scale:.2f} (P: back)" if self.projector
-                         else f"projector mode off: text x{scale:.2f}")
-
-    def request_quit(self) -> None:
-        self.running = False
 
     # ------------------------------------------------------------------ events
     def resize(self, size: tuple[int, int]) -> None:
-        """Resize the window (at least 900 x 560 pixels) and refit the view."""
-        size = (max(900, int(size[0])), max(560, int(size[1])))
+        """Resize the window (at least :data:`~chainfountain.app.layout.MIN_SIZE`)."""
+        size = (max(MIN_SIZE[0], int(size[0])), max(MIN_SIZE[1], int(size[1])))
+        picker = self.picker
         self.close_dialogs()
-        self.screen = pygame.display.set_mode(size, pygame.RESIZABLE)
+        self.picker = picker
+        if not self.offscreen:
+            self.screen = pygame.display.set_mode(size, pygame.RESIZABLE)
+        else:
+            self.screen = pygame.display.set_mode(size)
         self.size = self.screen.get_size()
         self._layout()
         self.fit_view()
@@ -561,7 +664,7 @@ class App(InputMixin, DrawMixin):
     # ------------------------------------------------------------------ frame
     def update(self, wall_dt: float) -> None:
         """Apply debounced rebuilds, run the physics for one frame, follow the fountain."""
-        if self.follow and self._fit_top and not self.about_visible:
+        if self.follow and self._fit_top > text.px(40) and not self.about_visible:
             self.fit_view()  # the card has gone: the scene takes the whole view again
         if self.follow and self.frame % FOLLOW_EVERY == 0 and self._drag_mode is None:
             self.follow_view()
@@ -573,9 +676,7 @@ class App(InputMixin, DrawMixin):
         s = self.session
         if self.offscreen:
             self.physics(wall_dt)
-        play = "Play" if s.paused else "Pause"
-        if self.buttons["play"].text != play:
-            self.buttons["play"].set_text(play)
+        self.stopwatch.tick(s.sim.time)
         self.ui.update(wall_dt)
         for err in self.saver.errors:
             s.say(err)
@@ -594,7 +695,7 @@ class App(InputMixin, DrawMixin):
         window what real time asks for within :meth:`physics_budget`."""
         s = self.session
         t0 = time.perf_counter()
-        steps = 0  # real-time steps (window only): they measure the physics' cost
+        steps = 0
         if self.offscreen:
             if not s.paused:
                 s.advance(s.speed_factor / self.fps)
@@ -609,10 +710,7 @@ class App(InputMixin, DrawMixin):
     def target_fps(self) -> float:
         """The frame rate to aim for: :attr:`fps` while the physics leaves room, fewer
         frames (down to :data:`MIN_FPS`) when the physics of real time and the drawing
-        of every frame would take more than :data:`HEADROOM` of the core. Every frame
-        drawn costs :attr:`overhead` (5-7 ms), time the physics needs: at 0.7 s of
-        physics per simulated second (``apparatus_fold_gripped``) 60 frames/s would
-        leave too little for real time, 40 leave enough."""
+        of every frame would take more than :data:`HEADROOM` of the core."""
         s = self.session
         if s.paused or self.offscreen:
             return float(self.fps)
@@ -620,11 +718,8 @@ class App(InputMixin, DrawMixin):
         return max(float(MIN_FPS), min(float(self.fps), spare / max(self.overhead, 1e-4)))
 
     def _physics_during_flip(self, wall_dt: float) -> None:
-        """Run :meth:`physics` while the drawn frame goes to the screen. Copying a frame
-        to the screen waits on the display (about 10 ms at 1280x760 under a software X
-        server, Xvfb) with Python's lock released, so the physics runs in that wait
-        instead of after it; the next frame draws its result. Nothing else touches the
-        model meanwhile (events are handled before the frame is drawn)."""
+        """Run :meth:`physics` while the drawn frame goes to the screen (the copy waits on
+        the display with Python's lock released); the next frame draws its result."""
         failure: list[BaseException] = []
 
         def work() -> None:
@@ -637,21 +732,14 @@ class App(InputMixin, DrawMixin):
         worker.start()
         try:
             pygame.display.flip()
-        finally:  # Ctrl-C in the flip: the model is left alone before anything else runs
+        finally:
             worker.join()
         if failure:
             raise failure[0]
 
     def physics_budget(self) -> float:
-        """Wall seconds the physics may use this frame.
-
-        First what is left of a frame at the target rate; when that is not
-        enough for real time, the frame rate may sink towards :data:`MIN_FPS`
-        before the simulation itself slows down (then the real-time factor
-        shown drops below the requested speed).
-        """
-        # Session.tick only takes the steps real time asks for, so when they fit in
-        # a 1/fps frame the frame rate stays; only the cap is at MIN_FPS.
+        """Wall seconds the physics may use this frame: what is left of a frame at
+        :data:`MIN_FPS` (the frame rate gives way before the simulation slows down)."""
         return max(0.002, 1.0 / MIN_FPS - self.overhead - 0.001)
 
     def run_frame(self, wall_dt: float = 1.0 / 60.0) -> None:
@@ -661,10 +749,10 @@ class App(InputMixin, DrawMixin):
         for ev in pygame.event.get():
             self.handle(ev)
         self.update(wall_dt)
-        self.draw()  # the clip takes its frame while drawing
+        self.draw()
         work = self.work_time = time.perf_counter() - t0 - self.physics_time
         if not self.offscreen:
-            self._physics_during_flip(wall_dt)  # the flip overlaps the physics
+            self._physics_during_flip(wall_dt)
         self.frame += 1
         self.overhead += 0.1 * (work - self.overhead)
 
@@ -692,7 +780,7 @@ class App(InputMixin, DrawMixin):
         return 0
 
     def finish(self) -> list[str]:
-        """Quit without losing data: finish clips and screenshots, keep unsaved changes."""
+        """Quit without losing data: finish clips and pictures, keep unsaved changes."""
         notes: list[str] = []
         if self.clip is not None:
             self.clip.stop()
@@ -704,21 +792,39 @@ class App(InputMixin, DrawMixin):
         self.finishing_clips.clear()
         self.saver.wait()
         s = self.session
-        if s.dirty and not self.offscreen and not os.environ.get("CHAINFOUNTAIN_NO_AUTOSAVE"):
-            p = s.save(f"autosave-{timestamp()}")
+        if s.dirty and not self.offscreen:
+            p = self.autosave("quit")
             if p is not None:
                 notes.append(f"unsaved setup kept as {p}")
-                _prune_autosaves(p.parent)
         for n in notes:
             print(f"chainfountain: {n}")
         pygame.display.quit()
         return notes
 
 
+def twin_of(level: Level) -> tuple[Level, Path | None] | None:
+    """The level M opens from ``level``: a contact machine's like-for-like ideal twin
+    (:func:`chainfountain.level.twins.ideal_twin`) or an ideal preset's contact one;
+    ``None`` when it has none."""
+    try:
+        from chainfountain.level import twins
+    except ImportError:  # pragma: no cover - the module arrives with the twins
+        twins = None
+    if twins is not None:
+        if level.sim.kind == "apparatus":
+            twin = twins.ideal_twin(level)
+            return (twin, None) if twin is not None else None
+        twin = twins.contact_twin(level)
+        if twin is not None:
+            return twin, library.resolve(twin.meta.name)
+        return None
+    other = library.twin(level.meta.name)
+    if other is None:
+        return None
+    path = library.resolve(other)
+    from chainfountain.level import io
 
-AUTOSAVES_KEPT = 10
-"""Autosaves kept in the user's level folder (one per quit with unsaved changes, named
-by time; the oldest beyond this are removed)."""
+    return io.load(path), path
 
 
 def _prune_autosaves(folder: Path) -> None:

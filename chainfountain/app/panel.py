@@ -1,0 +1,130 @@
+"""The panel's widgets (pygame_gui): the level's title, the buttons, and a slider with a
+text field for each field the view shows (the student view: the level's two to four;
+the expert view: every field, with its paper symbol and whether it applies live).
+
+The readout between the buttons and the sliders is drawn by
+:mod:`chainfountain.app.draw`; this module only builds and fills the widgets.
+"""
+
+from __future__ import annotations
+
+import html
+from dataclasses import dataclass
+
+import pygame
+from pygame_gui.elements import (
+    UIButton,
+    UIHorizontalSlider,
+    UILabel,
+    UIScrollingContainer,
+    UITextEntryLine,
+)
+
+from chainfountain.app.controls import STUDENT_LABELS, FieldSpec
+from chainfountain.app.text import px
+
+GUI_FONT = 14
+"""pygame_gui's text size (pixels at text scale 1)."""
+TOOLTIP_WIDTH = 420
+"""Width (px) a field's tooltip wraps at: the longest dotted path fits on a line."""
+ROW_H = 54
+"""Height of one slider row (px at text scale 1)."""
+BUTTONS = (("levels", "Levels", "Open another level (L)"),
+           ("save", "Save", "Save the setup as a level (Ctrl+S)"),
+           ("shot", "Picture", "A picture of the scene (F12)"),
+           ("rec", "Clip", "Record a clip of the scene (G)"))
+TOGGLES = (("plots", "Graphs", "The graphs under the scene on / off (V)"),
+           ("expert", "Expert", "Every field and the paper's symbols (E)"),
+           ("full", "Full view", "Hide the panel: the scene fills the window (Tab)"),
+           ("help", "?", "Keys and mouse (H)"))
+
+
+def gui_theme(scale: float) -> dict:
+    """pygame_gui's theme at text scale ``scale``: its font for every element used."""
+    size = str(round(GUI_FONT * scale))
+    font = {"font": {"name": "noto_sans", "size": size}}
+    theme = {t: font for t in ("label", "button", "text_entry_line", "text_box",
+                               "selection_list", "tool_tip", "window", "horizontal_slider")}
+    big = str(round(GUI_FONT * 1.3 * scale))
+    theme["#title"] = {"font": {"name": "noto_sans", "size": big, "bold": "1"}}
+    return theme
+
+
+def tooltip(spec: FieldSpec) -> str:
+    """A field's tooltip: its path, what it is, what is allowed and how a change acts."""
+    how = "applies live" if spec.live else "restarts the scene"
+    span = ""
+    if spec.narrowed:
+        lo, hi = spec.slider_lo, spec.slider_hi
+        span = (f" The slider spans {lo:.4g}-{hi:.4g}{spec.shown_unit}, where this machine "
+                "keeps running; a value typed beyond runs as a real machine would.")
+    return html.escape(f"{spec.path}: {spec.doc}. Allowed: {spec.allowed()}. Changing it "
+                       f"{how}.{span}")
+
+
+def row_label(spec: FieldSpec, expert: bool) -> str:
+    """What a slider row is called: plain words with the unit (student view), the paper's
+    name with the unit and whether it is live (expert view)."""
+    unit = f" ({spec.unit})" if spec.unit and spec.unit != "1" else ""
+    if expert:
+        return f"{spec.label}{unit}  [{'live' if spec.live else 'restarts'}]"
+    return f"{STUDENT_LABELS.get(spec.path, spec.label)}{unit}"
+
+
+def fit_label(label: UILabel, text: str) -> None:
+    """Set ``label``'s text, cut with "..." to its width (pygame_gui would cut it off)."""
+    font = label.font
+    room = label.rect.w - 6
+    if font.size(text)[0] > room:
+        while text and font.size(text + "...")[0] > room:
+            text = text[:-1]
+        text = text.rstrip() + "..."
+    label.set_text(text)
+
+
+@dataclass
+class ControlRow:
+    """The widgets of one field."""
+
+    spec: FieldSpec
+    label: UILabel
+    slider: UIHorizontalSlider
+    entry: UITextEntryLine
+
+
+def build_buttons(ui, rect: pygame.Rect, y: int) -> tuple[dict[str, UIButton], int]:
+    """The two rows of buttons across ``rect`` from ``y``; returns them and the y below."""
+    buttons: dict[str, UIButton] = {}
+    h = px(30)
+    for row in (BUTTONS, TOGGLES):
+        bw = (rect.w - px(12)) // len(row)
+        for i, (key, label, tip) in enumerate(row):
+            r = pygame.Rect(rect.x + px(6) + i * bw, y, bw - px(4), h)
+            buttons[key] = UIButton(r, label, ui, tool_tip_text=tip)
+        y += h + px(4)
+    return buttons, y
+
+
+def build_rows(ui, box: UIScrollingContainer, width: int, specs: list[FieldSpec],
+               expert: bool) -> list[ControlRow]:
+    """A row (label, slider, text field) per spec in the scrolling ``box`` of ``width``."""
+    rows: list[ControlRow] = []
+    y = px(4)
+    entry_w = px(84)
+    for spec in specs:
+        label = UILabel(pygame.Rect(px(6), y, width - px(12), px(22)), "", ui, container=box,
+                        object_id="#field_label")
+        fit_label(label, row_label(spec, expert))
+        label.set_tooltip(tooltip(spec), wrap_width=TOOLTIP_WIDTH)
+        sw = width - entry_w - px(20)
+        slider = UIHorizontalSlider(pygame.Rect(px(6), y + px(23), sw, px(26)), 0,
+                                    (0, max(1, spec.positions)), ui, container=box,
+                                    click_increment=1)
+        entry = UITextEntryLine(pygame.Rect(px(10) + sw, y + px(22), entry_w, px(28)), ui,
+                                container=box)
+        entry.set_allowed_characters(list("0123456789.-+eE"))
+        entry.set_tooltip(tooltip(spec), wrap_width=TOOLTIP_WIDTH)
+        rows.append(ControlRow(spec, label, slider, entry))
+        y += px(ROW_H)
+    box.set_scrollable_area_dimensions((width - px(4), y + px(6)))
+    return rows
