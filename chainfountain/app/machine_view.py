@@ -138,7 +138,26 @@ class MachineView:
             self._motor(surf, cam, sim, out, expert)
         else:
             self._ideal(surf, cam, sim, out, expert, marks_every)
+        if sim.apparatus is None:
+            self._obstacles(surf, cam, sim, out)
         return out
+
+    def _obstacles(self, surf: pygame.Surface, cam: Camera, sim, out: Drawn) -> None:
+        """A fed level's own rollers (turning at their set speed) and carts on their
+        tracks (``rollers``, ``carts`` of the level)."""
+        for i, r in enumerate(sim.rollers):
+            pos = r.body.position
+            self.wheel(surf, cam, f"roller{i}", float(pos.x), float(pos.y), r.cfg.radius,
+                       float(r.body.angle), out)
+        for c in sim.carts:
+            pygame.draw.line(surf, TRACK, cam.point(*c.track_start), cam.point(*c.track_end),
+                             max(3, px(4)))
+            verts = [cam.point(*c.body.local_to_world(v)) for v in c.shape.get_vertices()]
+            pygame.draw.polygon(surf, CART, verts)
+            pygame.draw.polygon(surf, CART_DARK, verts, max(1, px(2)))
+            xs, ys = [v[0] for v in verts], [v[1] for v in verts]
+            out.boxes.append(pygame.Rect(min(xs), min(ys), max(xs) - min(xs) + 1,
+                                         max(ys) - min(ys) + 1))
 
     def _landing(self, sim, predicted: float) -> float:
         """Where an ideal machine's end guide is drawn: where the chain lands once it has

@@ -23,7 +23,6 @@ from chainfountain.sim.config import SimConfig
 from chainfountain.sim.feed import Feed
 from chainfountain.sim.machine_rules import MACHINE_FIELDS, follow, keeps_any_speed
 from chainfountain.sim.measure import ChainReader, ChainState, link_ends, polyline
-from chainfountain.sim.part_labels import PartLabel, part_labels
 from chainfountain.sim.piston import Piston
 from chainfountain.sim.put_down import PutDown
 from chainfountain.sim.reference import LaunchReference
@@ -32,10 +31,6 @@ from chainfountain.sim.watchdog import CHECK_INTERVAL, Limits, Watchdog, limits_
 
 FOLLOW_TOLERANCE = 1e-3
 """The ideal full machine's reference follows its speed in steps of this fraction."""
-CART_PULLEY = 0.12
-"""Drawing: distance (m) from a roller to the pulley at the top of its cart's ramp."""
-CART_RAMP = 0.3
-"""Drawing: length (m) of a cart's ramp."""
 
 
 class Observer(Protocol):
@@ -555,77 +550,6 @@ class Simulation:
                     for u in (app.upper, app.lower) if u is not None]
         return [(r.body.position.x, r.body.position.y, r.cfg.radius, r.body.angle)
                 for r in self.rollers]
-
-    def _apparatus_carts(self) -> list[tuple[tuple[float, float], tuple[float, float],
-                                               float, float]]:
-        """Drawing of apparatus carts, a schematic beside each roller like the paper's
-        figure: (ramp top, ramp foot, cart's distance from the top, incline). The ramp
-        starts at a pulley :data:`CART_PULLEY` behind the roller (ahead of the folding
-        roller) at its carriage's height and falls at the cart's incline over
-        :data:`CART_RAMP`; the cart sits on it, roped over the pulley to the carriage
-        (:meth:`rope_geometry`). The picture moves with its roller (it stands for the
-        force ``m g sin(beta)``, not for the cart's travel)."""
-        app = self.apparatus
-        out = []
-        if app is None:
-            return out
-        for u in (app.upper, app.lower):
-            if u is None or u.cart is None:
-                continue
-            beta = u.cart.incline
-            top = (u.x + u.direction * CART_PULLEY, u.yc)
-            end = (top[0] + u.direction * CART_RAMP * math.cos(beta),
-                   top[1] - CART_RAMP * math.sin(beta))
-            out.append((top, end, 0.55 * CART_RAMP, beta))
-        return out
-
-    def rope_geometry(self) -> list[np.ndarray]:
-        """Apparatus: each cart's rope, carriage -> pulley -> cart, as a polyline
-        ``(3, 2)`` (m)."""
-        app = self.apparatus
-        if app is None:
-            return []
-        units = [u for u in (app.upper, app.lower) if u is not None and u.cart is not None]
-        out = []
-        for u, verts in zip(units, self.cart_geometry(), strict=True):
-            top = self._apparatus_carts()[len(out)][0]
-            cx, cy = np.asarray(verts).mean(axis=0)
-            out.append(np.array([(u.x, u.yc), top, (cx, cy)]))
-        return out
-
-    def cart_geometry(self) -> list[np.ndarray]:
-        """World vertices ``(4, 2)`` of every cart box."""
-        out = []
-        if self.apparatus is not None:
-            for top, end, s, _ in self._apparatus_carts():
-                dx, dy = end[0] - top[0], end[1] - top[1]
-                n = math.hypot(dx, dy) or 1.0
-                ux, uy = dx / n, dy / n
-                s = min(s, n)
-                cx, cy = top[0] + ux * s, top[1] + uy * s
-                w, h = 0.05, 0.02
-                px, py = -uy, ux
-                if py < 0:  # the normal that points up, off the ramp
-                    px, py = -px, -py
-                cx, cy = cx + px * h / 2, cy + py * h / 2  # the cart rests on the ramp
-                out.append(np.array([(cx + a * ux * w / 2 + b * px * h / 2,
-                                      cy + a * uy * w / 2 + b * py * h / 2)
-                                     for a, b in ((-1, -1), (1, -1), (1, 1), (-1, 1))]))
-            return out
-        for c in self.carts:
-            out.append(np.array([tuple(c.body.local_to_world(v)) for v in c.shape.get_vertices()]))
-        return out
-
-    def part_labels(self) -> list[PartLabel]:
-        """The apparatus's parts named in the paper's words, where they are
-        (:func:`~chainfountain.sim.part_labels.part_labels`; empty for other kinds)."""
-        return part_labels(self)
-
-    def track_geometry(self) -> list[tuple[tuple[float, float], tuple[float, float]]]:
-        """End points of every cart track."""
-        if self.apparatus is not None:
-            return [(top, end) for top, end, _, _ in self._apparatus_carts()]
-        return [(c.track_start, c.track_end) for c in self.carts]
 
     def kinetic_energy(self) -> float:
         """Kinetic energy of the free links (J)."""

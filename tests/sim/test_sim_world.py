@@ -129,8 +129,8 @@ def test_views_and_building_blocks() -> None:
     assert mode == "solid" and y == -cfg.feed.drop and x0 < x1
     (rx, ry, rr, _), = sim.roller_geometry()
     assert (rx, ry, rr) == (1.0, -0.3, 0.05)
-    assert sim.cart_geometry()[0].shape == (4, 2)
-    assert len(sim.track_geometry()) == 1
+    cart = sim.carts[0]
+    assert len(cart.shape.get_vertices()) == 4 and cart.track_start != cart.track_end
     front, back = sim.link_endpoints()
     assert front.shape == back.shape == (sim.n_links, 2)
     sim.set_roller_speed(0, -3.0)
