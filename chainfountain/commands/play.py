@@ -47,7 +47,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--size", type=_size, metavar="WxH", help="window size (default 1280x760)")
     p.add_argument("--paused", action="store_true", help="start paused")
     p.add_argument("--projector", action="store_true",
-                   help="projector mode: larger text and parts, the window's size kept (P in the window)")
+                   help="projector mode: larger text and parts, the window's size kept "
+                   "(P in the window)")
     p.add_argument("--out", type=path_arg("an output folder"), metavar="DIR",
                    help="output folder of a headless run (no display); "
                    "default runs/<level name>")

@@ -7,9 +7,9 @@ from __future__ import annotations
 import pytest
 
 from chainfountain.app import controls, spans
+from chainfountain.app.panel import tooltip as _tooltip
 from chainfountain.app.readout import machine_line
 from chainfountain.app.session import Session
-from chainfountain.app.panel import tooltip as _tooltip
 from chainfountain.level import io, library
 from chainfountain.level.model import Level
 from chainfountain.study.changes import with_changes
