@@ -9,6 +9,7 @@ left out of the frame rather than drawn over something.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass
 
 import numpy as np
@@ -19,6 +20,8 @@ from chainfountain.app.text import px
 SIDES = ("above", "below", "left", "right")
 DISTANCES = (12, 24, 38, 56, 78, 104, 136)
 """How far (px at text scale 1) from its anchor a label may go, tried in this order."""
+RETRY_FRAMES = 10
+"""Frames a label that found no clear place waits before it tries again."""
 CHAIN_CLEARANCE = 3
 """Pixels (at text scale 1) a label keeps clear of the chain's drawn edge."""
 
@@ -57,17 +60,16 @@ def _box(side: str, d: int, anchor: tuple[int, int], size: tuple[int, int],
     return pygame.Rect(ax + d, ay - h // 2 + slide, w, h)
 
 
-def candidates(req: Request) -> list[tuple[str, int, int]]:
+def candidates(req: Request) -> Iterator[tuple[str, int, int]]:
     """``(side, distance, slide)`` to try for ``req``: its own side first, then the
     others, at growing distances; above and below also slid sideways by half the label."""
     order = [req.side] + [s for s in SIDES if s != req.side]
     w, h = req.size
-    out = []
-    for d in DISTANCES:
+    for d in (px(d) for d in DISTANCES):
         for side in order:
             slides = (0, -w // 2, w // 2) if side in ("above", "below") else (0, -h, h)
-            out += [(side, px(d), s) for s in slides]
-    return out
+            for s in slides:
+                yield side, d, s
 
 
 def chain_points(polylines: list[np.ndarray], spacing: float = 4.0) -> np.ndarray:
@@ -98,10 +100,13 @@ class LabelLayout:
     """Places a frame's labels; remembers where each went for the next frame."""
 
     def __init__(self) -> None:
-        self._last: dict[str, tuple[str, int, int]] = {}
+        self._last: dict[str, tuple[str, int, int, bool]] = {}
+        self._failed: dict[str, int] = {}
+        """Labels that found no place, and how many frames until they try again."""
 
     def clear(self) -> None:
         self._last.clear()
+        self._failed.clear()
 
     def place(self, requests: list[Request], view: pygame.Rect,
               obstacles: list[pygame.Rect], chain: np.ndarray,
@@ -119,21 +124,28 @@ class LabelLayout:
             ax, ay = req.anchor
             near = chain[(np.abs(chain[:, 0] - ax) < reach) & (np.abs(chain[:, 1] - ay) < reach)] \
                 if len(chain) else chain
-            tries = candidates(req)
-            last = self._last.get(req.key)
-            if last is not None:
-                tries.insert(0, last)
+            wait = self._failed.get(req.key, 0)
+            if wait > 0:  # no place last time: try again in a few frames
+                self._failed[req.key] = wait - 1
+                continue
             found = None
+            last = self._last.get(req.key)
+            if last is not None:  # where it was, if that is still as clear as it was
+                side, d, slide, parts = last
+                rect = _box(side, d, req.anchor, req.size, slide)
+                if _clear(rect, inner, taken, obstacles if parts else [], near, pad):
+                    found = last, rect
             for parts in (True, False):  # beside the parts if it can, else over one
-                for side, d, slide in tries:
-                    rect = _box(side, d, req.anchor, req.size, slide)
-                    if _clear(rect, inner, taken, obstacles if parts else [], near, pad):
-                        found = (side, d, slide), rect
-                        break
                 if found is not None:
                     break
+                for side, d, slide in candidates(req):
+                    rect = _box(side, d, req.anchor, req.size, slide)
+                    if _clear(rect, inner, taken, obstacles if parts else [], near, pad):
+                        found = (side, d, slide, parts), rect
+                        break
             if found is None:
                 self._last.pop(req.key, None)
+                self._failed[req.key] = RETRY_FRAMES
                 continue
             self._last[req.key] = found[0]
             taken.append(found[1])

@@ -85,12 +85,23 @@ def _grams(kg: float) -> str:
     return f"{kg * 1e3:.3g} g"
 
 
+_NORMALS: dict[tuple, np.ndarray] = {}
+
+
 def _offset(line: np.ndarray, d: float) -> np.ndarray:
-    """``line`` (``(n, 2)``) moved ``d`` to its left (normals of its segments)."""
-    t = np.gradient(line, axis=0)
-    n = np.hypot(t[:, 0], t[:, 1])
-    n[n == 0] = 1.0
-    return line + d * np.column_stack([-t[:, 1] / n, t[:, 0] / n])
+    """``line`` (``(n, 2)``) moved ``d`` to its left (its unit normals are kept for the
+    next frames: a channel's line is the same array every frame)."""
+    key = (id(line), len(line), float(line[0, 0]), float(line[0, 1]), float(line[-1, 0]))
+    normals = _NORMALS.get(key)
+    if normals is None:
+        t = np.gradient(line, axis=0)
+        n = np.hypot(t[:, 0], t[:, 1])
+        n[n == 0] = 1.0
+        normals = np.column_stack([-t[:, 1] / n, t[:, 0] / n])
+        if len(_NORMALS) > 32:
+            _NORMALS.clear()
+        _NORMALS[key] = normals
+    return line + d * normals
 
 
 def landing_angle(q: float, h: float, H: float) -> float:
@@ -110,6 +121,7 @@ class MachineView:
         self._t_last: float | None = None
         self._sim_id = 0
         self._x_land: float | None = None
+        self._parts: tuple[tuple, IdealParts] | None = None
         self.frame_dt = 1.0 / 60.0
         """Simulated seconds since the last frame (the rollers' blur)."""
         self.paths: list[np.ndarray] = []
@@ -382,9 +394,6 @@ class MachineView:
             self.floor(surf, cam, fy, "floor: takes the chain away", out)
         elif mode == "solid":
             self.floor(surf, cam, fy, "floor", out, absorbing=False)
-        app.sync_plates()
-        if hasattr(app, "sync_end_walls"):
-            app.sync_end_walls()
         for tab in (app.table_up, getattr(app, "table_lo", None)):
             if tab is not None:
                 top = float(max(tab.a.y, tab.b.y)) + float(tab.radius)
@@ -394,8 +403,6 @@ class MachineView:
         lo = getattr(app, "channel_lo", None)
         if lo is not None:
             self.channel(surf, cam, np.asarray(lo, dtype=float), half)
-        plates = [p for p in (app.plate_up, getattr(app, "plate_lo", None)) if p is not None]
-        self.segments(surf, cam, plates, TRACK, 1)
         units = [("upper", app.upper), ("lower", app.lower)]
         for key, u in units:
             if u is None:
@@ -460,7 +467,11 @@ class MachineView:
         g = cfg.gravity
         ref = sim.reference
         land = self._landing(sim, float(ref.landing_x)) if ref is not None else None
-        parts = ideal_parts(sim, land)
+        key = (id(sim), f.xi2, f.xi3, H, f.launch_angle, None if ref is None else
+               (ref.q, ref.h), None if land is None else round(land, 3))
+        if self._parts is None or self._parts[0] != key:
+            self._parts = key, ideal_parts(sim, None if land is None else round(land, 3))
+        parts = self._parts[1]
         up = parts.upper
         half = (width / 2 + px(4)) / cam.scale
         self.table(surf, cam, up.table[0], up.table[1], out)

@@ -49,18 +49,20 @@ def scene_bounds(sim, readout: Readout | None, scale: float | None = None
 
 def dashed_line(surf: pygame.Surface, colour, pts: np.ndarray, dash: float, gap: float,
                 width: int) -> None:
-    """``pts`` (screen, ``(n, 2)``) as a dashed polyline."""
+    """``pts`` (screen, ``(n, 2)``) as a dashed polyline (each dash drawn straight: dashes
+    are a few pixels long)."""
     if len(pts) < 2:
         return
     seg = np.hypot(*np.diff(pts, axis=0).T)
     s = np.concatenate([[0.0], np.cumsum(seg)])
-    period = dash + gap
-    starts = np.arange(0.0, s[-1], period)
-    for a in starts.tolist():
-        b = min(a + dash, float(s[-1]))
-        t = np.linspace(a, b, 4)
-        x, y = np.interp(t, s, pts[:, 0]), np.interp(t, s, pts[:, 1])
-        pygame.draw.lines(surf, colour, False, np.column_stack([x, y]).tolist(), width)
+    a = np.arange(0.0, s[-1], dash + gap)
+    b = np.minimum(a + dash, s[-1])
+    xa, ya = np.interp(a, s, pts[:, 0]), np.interp(a, s, pts[:, 1])
+    xb, yb = np.interp(b, s, pts[:, 0]), np.interp(b, s, pts[:, 1])
+    line = pygame.draw.line
+    for x0, y0, x1, y1 in zip(xa.tolist(), ya.tolist(), xb.tolist(), yb.tolist(),
+                              strict=True):
+        line(surf, colour, (x0, y0), (x1, y1), width)
 
 
 def grid(surf: pygame.Surface, cam: Camera) -> None:

@@ -162,7 +162,8 @@ def test_the_contact_fold_machines_carts_span_their_measured_band() -> None:
             built = controls.get_value(lvl.sim, path)
             assert spans.admissible(moved, _spec(moved, path), lvl.sim) == (built, built)
         tip = _tooltip(spans.narrowed(lvl, _spec(lvl, "carts[1].mass"), lvl.sim))
-        assert f"spans {lower[0]:g}-{lower[1]:g} kg, where this machine keeps running" in tip
+        assert (f"spans {lower[0] * 1e3:g}-{lower[1] * 1e3:g} g, where this machine keeps "
+                "running") in tip
     limit = io.load(library.resolve("apparatus_limit"))
     assert spans.admissible(limit, _spec(limit, "carts[0].mass"), limit.sim) is None
 

@@ -61,10 +61,31 @@ def test_clamp_never_raises_and_stays_in_range(bad):
 
 
 def test_slider_round_trip():
+    """Every slider position is a rung of the field's ladder and comes back to itself."""
     for spec in controls.control_fields(SimConfig()):
-        for pos in (0, 1, 250, 500, 999, 1000):
+        top = spec.positions
+        assert 1 <= top <= 200, spec.path
+        for pos in (0, 1, top // 2, top - 1, top):
             v = spec.from_slider(pos)
-            assert abs(spec.to_slider(v) - pos) <= 1, (spec.path, pos)
+            assert spec.to_slider(v) == pos, (spec.path, pos)
+
+
+def test_slider_arrows_step_by_round_amounts():
+    """A slider's rungs between its ends are a round step apart (1, 2 or 5 times a power
+    of ten; a logarithmic one 1, 2, 5 in each decade), so an arrow click moves a value
+    such as 9 g to 9.5 g, not to 9.073 g."""
+    for spec in controls.control_fields(SimConfig()):
+        rungs = spec.ladder()[1:-1]
+        if spec.log or len(rungs) < 2:
+            continue
+        steps = {round(b - a, 12) for a, b in zip(rungs, rungs[1:], strict=False)}
+        assert len(steps) == 1, (spec.path, steps)
+        step = steps.pop()
+        mantissa = step / 10 ** math.floor(math.log10(step))
+        assert round(mantissa, 9) in (1.0, 2.0, 5.0), (spec.path, step)
+    spec = controls.FieldSpec("carts[0].mass", "cart", "g", "", 0.0, 1.0, True, True, True,
+                              False, 1000.0, 8.0, 27.0, False)
+    assert spec.ladder()[:4] == [8.0, 8.5, 9.0, 9.5]
 
 
 def test_live_change_rebuild_and_refusal():

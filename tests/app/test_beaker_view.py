@@ -25,8 +25,17 @@ def test_the_default_level_is_the_beaker():
 
 
 def test_the_beakers_parts_are_named():
-    texts = {lb.text for lb in Simulation(_beaker().sim).part_labels()}
-    assert {"pot", "rim", "pick-up", "pile (topped up from below)"} <= texts
+    import pygame
+
+    from chainfountain.app.camera import Camera
+    from chainfountain.app.machine_view import MachineView
+
+    pygame.font.init()
+    sim = Simulation(_beaker().sim)
+    cam = Camera(pygame.Rect(0, 0, 800, 600), scale=400.0)
+    texts = {lb.text for lb in MachineView().draw(pygame.Surface((800, 600)), cam, sim).labels}
+    assert {"pot", "the chain leaves the pile here",
+            "pile of chain (topped up from below)"} <= texts
 
 
 def test_readout_speaks_of_the_pick_up_and_shows_no_machine_pulls():
@@ -67,11 +76,11 @@ def test_the_bend_limit_has_a_slider_in_the_beaker_only():
 
 
 def test_the_what_to_watch_card_leaves_the_rising_fountain_in_view(tmp_path, monkeypatch):
-    """While the beaker forms, its chain rises above the rim: wherever the level's card is,
-    it hides at most a few of the chain's link ends (the first fit keeps the card's band
-    free; the card moves to the bottom when that hides fewer)."""
-    from chainfountain.app import render
-    from chainfountain.app.draw import ABOUT_SWITCH
+    """While the beaker forms, its chain rises above the rim: the level's card (at the
+    view's top left) hides at most a few of the chain's drawn points (the first fit keeps
+    the card's band free)."""
+    import numpy as np
+
     from chainfountain.app.session import Session
     from chainfountain.app.window import App
 
@@ -83,10 +92,10 @@ def test_the_what_to_watch_card_leaves_the_rising_fountain_in_view(tmp_path, mon
             app.run_frame()
             if app.frame % 10 == 0:
                 box = app.about_box()
-                if app._about_low:
-                    box = box.move(0, app.scene_rect.bottom - render.px(40) - box.bottom)
-                hidden.append(app._chain_under((box,))[0])
-        assert app.about_visible and max(hidden) <= ABOUT_SWITCH
+                x, y = app.scene_view.chain_screen.T
+                hidden.append(int(np.count_nonzero((x >= box.left) & (x <= box.right)
+                                                   & (y >= box.top) & (y <= box.bottom))))
+        assert app.about_visible and max(hidden) <= 5
     finally:
         app.finish()
 
