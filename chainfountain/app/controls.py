@@ -339,7 +339,7 @@ SLIDER_RUNGS = 40
 def slider_step(span: float, integer: bool = False) -> float:
     """A round step (1, 2 or 5 times a power of ten) cutting ``span`` into about
     :data:`SLIDER_RUNGS` parts; at least 1 for a whole-number field."""
-    if not (math.isfinite(span) and span > 0):
+    if not (math.isfinite(span) and span > 1e-300):
         return 1.0
     raw = span / SLIDER_RUNGS
     mag = 10.0 ** math.floor(math.log10(raw))
@@ -350,6 +350,8 @@ def slider_step(span: float, integer: bool = False) -> float:
 def _ladder(lo: float, hi: float, log: bool, floor: float, integer: bool) -> list[float]:
     if not (math.isfinite(lo) and math.isfinite(hi)) or hi <= lo:
         return [lo]
+    if hi - lo <= 1e-12 * max(abs(lo), abs(hi)) or hi - lo < 1e-300:  # a span of one value
+        return [lo, hi]
     if log and floor > 0:
         out = [lo]
         e = math.floor(math.log10(floor))

@@ -118,8 +118,8 @@ def build_rows(ui, box: UIScrollingContainer, width: int, specs: list[FieldSpec]
         label.set_tooltip(tooltip(spec), wrap_width=TOOLTIP_WIDTH)
         sw = width - entry_w - px(20)
         slider = UIHorizontalSlider(pygame.Rect(px(6), y + px(23), sw, px(26)), 0,
-                                    (0, max(1, spec.positions)), ui, container=box,
-                                    click_increment=1)
+                                    (0.0, float(max(1, spec.positions))), ui, container=box,
+                                    click_increment=1.0)
         entry = UITextEntryLine(pygame.Rect(px(10) + sw, y + px(22), entry_w, px(28)), ui,
                                 container=box)
         entry.set_allowed_characters(list("0123456789.-+eE"))

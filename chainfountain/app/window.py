@@ -401,7 +401,7 @@ class App(InputMixin, DrawMixin):
                                           self.session.origin)
                 for el in (row.label, row.entry):
                     el.set_tooltip(tooltip(row.spec), wrap_width=panel.TOOLTIP_WIDTH)
-                row.slider.value_range = (0, max(1, row.spec.positions))
+                row.slider.value_range = (0.0, float(max(1, row.spec.positions)))
             self._show_value(row)
         if res.ok and not res.live:
             self.fit_view_if_lost()
