@@ -110,14 +110,17 @@ class LabelLayout:
 
     def place(self, requests: list[Request], view: pygame.Rect,
               obstacles: list[pygame.Rect], chain: np.ndarray,
-              chain_width: int = 6) -> list[Placed]:
+              chain_width: int = 6, keep_clear: list[pygame.Rect] | None = None
+              ) -> list[Placed]:
         """Boxes for ``requests`` (in order: earlier ones get the better places) inside
         ``view``, overlapping no other label, no box of ``obstacles`` and no point of
         ``chain`` (screen points, :func:`chain_points`; kept ``chain_width / 2`` plus
-        :data:`CHAIN_CLEARANCE` clear). Requests without a clear place are left out."""
+        :data:`CHAIN_CLEARANCE` clear). A label goes over a part's box when it finds no
+        place beside one, never over ``keep_clear`` (the window's controls). Requests
+        without a clear place are left out."""
         inner = view.inflate(-4, -4)
         placed: list[Placed] = []
-        taken: list[pygame.Rect] = []
+        taken: list[pygame.Rect] = list(keep_clear or [])
         pad = chain_width // 2 + px(CHAIN_CLEARANCE)
         reach = px(DISTANCES[-1]) + 2 * max((r.size[0] for r in requests), default=0)
         for req in requests:

@@ -27,6 +27,8 @@ GUI_FONT = 14
 """pygame_gui's text size (pixels at text scale 1)."""
 TOOLTIP_WIDTH = 420
 """Width (px) a field's tooltip wraps at: the longest dotted path fits on a line."""
+SCROLLBAR = 22
+"""pygame_gui's scroll bar width (px, not scaled) plus a gap."""
 ROW_H = 54
 """Height of one slider row (px at text scale 1)."""
 BUTTONS = (("levels", "Levels", "Open another level (L)"),
@@ -111,6 +113,8 @@ def build_rows(ui, box: UIScrollingContainer, width: int, specs: list[FieldSpec]
     rows: list[ControlRow] = []
     y = px(4)
     entry_w = px(84)
+    if len(specs) * px(ROW_H) + px(10) > box.get_container().get_rect().h:
+        width -= SCROLLBAR  # the rows scroll: leave room for the bar
     for spec in specs:
         label = UILabel(pygame.Rect(px(6), y, width - px(12), px(22)), "", ui, container=box,
                         object_id="#field_label")

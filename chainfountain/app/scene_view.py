@@ -165,8 +165,8 @@ class SceneView:
         self.chain_screen = labels.chain_points([poly] + self._drawn_chains(cam, sim))
         at = bar_at or (rect.left + px(18), rect.bottom - px(22))
         bar = scale_bar(surf, cam, at)
-        obstacles = drawn.boxes + (keep_clear or []) + marker + [bar]
-        self.placed = self.layout.place(requests, rect, obstacles, self.chain_screen, width)
+        self.placed = self.layout.place(requests, rect, drawn.boxes + marker, self.chain_screen,
+                                        width, keep_clear=(keep_clear or []) + [bar])
         for p in self.placed:
             self._draw_label(surf, p, images[p.key])
         surf.set_clip(old_clip)

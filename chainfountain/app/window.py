@@ -61,6 +61,9 @@ REBUILD_DELAY = 0.35
 """Seconds a restarting slider must rest before the scene is rebuilt."""
 QUIT_WINDOW = 3.0
 """Seconds after a first Esc in which a second one quits."""
+NO_LIKE_TWIN = "No ideal machine runs this very fountain"
+"""How M's message starts when the ideal twin is the shipped preset, not the same
+fountain."""
 AUTOSAVES_KEPT = 10
 """Autosaves kept in the user's level folder (the oldest beyond this are removed)."""
 
@@ -492,9 +495,8 @@ class App(InputMixin, DrawMixin):
         self.fit_view()
 
     def open_twin(self) -> bool:
-        """M: open the machine's twin in the other machine (the ideal machine of the same
-        drop, offsets and speed for a contact machine), or go back to the level M came
-        from; say so when there is none."""
+        """M: open the machine's twin in the other machine, or go back to the level M came
+        from (:func:`twin_of`); say so when there is none."""
         s = self.session
         if self.came_from:
             level, source = self.came_from.pop()
@@ -502,20 +504,19 @@ class App(InputMixin, DrawMixin):
             if ok:
                 s.say(f"M: back to {level.meta.shown_title}")
             return ok
-        try:
-            twin = twin_of(s.level)
-        except LevelError as exc:
-            s.say(f"M: {exc}")
-            return False
+        twin = twin_of(s.level)
         if twin is None:
             s.say("M: this level has no twin (the machine levels each have one: the same "
                   "machine with the paper's ideal rollers, or with contact rollers)")
             return False
         here = (copy.deepcopy(s.level), s.source)
-        level, source = twin
+        level, source, why = twin
+        if why.startswith(NO_LIKE_TWIN) and not self.expert:  # the short reason for a class
+            why = (f"{NO_LIKE_TWIN}: the paper's rollers need carts that push here; this is "
+                   "the same arrangement at its own drop and speed (E: why)")
         if self.open_level(level, source):
             self.came_from.append(here)
-            s.say(f"M: {level.meta.shown_title} (M goes back)")
+            s.say(f"M: {level.meta.shown_title} (M goes back)" + (f". {why}" if why else ""))
             return True
         return False
 
@@ -802,29 +803,32 @@ class App(InputMixin, DrawMixin):
         return notes
 
 
-def twin_of(level: Level) -> tuple[Level, Path | None] | None:
-    """The level M opens from ``level``: a contact machine's like-for-like ideal twin
-    (:func:`chainfountain.level.twins.ideal_twin`) or an ideal preset's contact one;
-    ``None`` when it has none."""
-    try:
-        from chainfountain.level import twins
-    except ImportError:  # pragma: no cover - the module arrives with the twins
-        twins = None
-    if twins is not None:
-        if level.sim.kind == "apparatus":
-            twin = twins.ideal_twin(level)
-            return (twin, None) if twin is not None else None
-        twin = twins.contact_twin(level)
-        if twin is not None:
-            return twin, library.resolve(twin.meta.name)
-        return None
-    other = library.twin(level.meta.name)
-    if other is None:
-        return None
-    path = library.resolve(other)
-    from chainfountain.level import io
+def twin_of(level: Level) -> tuple[Level, Path | None, str] | None:
+    """What M opens from ``level``, with a sentence on what it is: a contact machine's
+    like-for-like ideal twin (the same drop, offsets and speed,
+    :func:`chainfountain.level.twins.ideal_twin`); where the paper's rollers cannot run
+    that fountain (they pick the chain up with ``lambda v^2/2``, about twice the contact
+    rollers' pull, so most contact presets would need carts that push), the shipped ideal
+    preset of the same arrangement, and why; for an ideal preset its contact preset.
+    ``None`` when the level has no twin."""
+    from chainfountain.level import io, twins
 
-    return io.load(path), path
+    if level.sim.kind == "apparatus":
+        try:
+            twin = twins.ideal_twin(level)
+        except LevelError as exc:
+            other = library.twin(level.meta.name)
+            if other is None:
+                return None
+            path = library.resolve(other)
+            why = str(exc).split(": ", 1)[-1]
+            return io.load(path), path, (f"{NO_LIKE_TWIN}: {why}; this is the same "
+                                         "arrangement at its own drop and speed")
+        return (twin, None, "the same drop, offsets and speed") if twin is not None else None
+    twin = twins.contact_twin(level)
+    if twin is None:
+        return None
+    return twin, library.resolve(twin.meta.name), "the same arrangement with contact rollers"
 
 
 def _prune_autosaves(folder: Path) -> None:
