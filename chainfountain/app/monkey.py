@@ -21,7 +21,8 @@ import pygame
 KEYS = (pygame.K_SPACE, pygame.K_RIGHT, pygame.K_PERIOD, pygame.K_s, pygame.K_r, pygame.K_f,
         pygame.K_t, pygame.K_h, pygame.K_i, pygame.K_F1, pygame.K_l, pygame.K_g, pygame.K_F12,
         pygame.K_RETURN, pygame.K_BACKSPACE, pygame.K_TAB, pygame.K_a, pygame.K_0,
-        pygame.K_MINUS, pygame.K_ESCAPE, pygame.K_LEFT, pygame.K_DELETE)
+        pygame.K_MINUS, pygame.K_ESCAPE, pygame.K_LEFT, pygame.K_DELETE, pygame.K_e,
+        pygame.K_v, pygame.K_u, pygame.K_w, pygame.K_p, pygame.K_m, pygame.K_UP, pygame.K_DOWN)
 """Keys pressed at random (with Shift or Ctrl now and then)."""
 
 TEXTS = ("1e9", "-3", "nan", "0", "abc", "2.5", "1e-300", ".", "inf", "30", "0.001")

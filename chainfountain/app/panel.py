@@ -41,6 +41,10 @@ TOGGLES = (("plots", "Graphs", "The graphs under the scene on / off (V)"),
            ("help", "?", "Keys and mouse (H)"))
 
 
+PLAIN_UNITS = frozenset({"m", "m/s", "deg", "g", "kg", "N", "s"})
+"""Units the student view writes after a slider's name (the expert view writes all)."""
+
+
 def gui_theme(scale: float) -> dict:
     """pygame_gui's theme at text scale ``scale``: its font for every element used."""
     size = str(round(GUI_FONT * scale))
@@ -70,6 +74,8 @@ def row_label(spec: FieldSpec, expert: bool) -> str:
     unit = f" ({spec.unit})" if spec.unit and spec.unit != "1" else ""
     if expert:
         return f"{spec.label}{unit}  [{'live' if spec.live else 'restarts'}]"
+    if spec.unit not in PLAIN_UNITS:  # a damper's N*s/m says nothing to a class
+        unit = ""
     return f"{STUDENT_LABELS.get(spec.path, spec.label)}{unit}"
 
 

@@ -210,6 +210,17 @@ class Session:
         self.say(f"opened level {level.meta.name!r}" + (f" ({source})" if source else ""))
         return True
 
+    def restore(self, level: Level, source: Path | None, opened: Level, dirty: bool) -> bool:
+        """Go back to a setup left for another level: ``level`` running, ``opened`` the
+        level as it was opened (what Reset all restores), ``dirty`` whether ``level``
+        has changes not saved."""
+        if not self.load_level(opened, source):
+            return False
+        self.level = copy.deepcopy(level)
+        self._build()
+        self.dirty = dirty
+        return True
+
     def load_path(self, path: Path) -> bool:
         """Load a level file (errors are reported, never raised)."""
         try:

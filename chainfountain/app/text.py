@@ -67,6 +67,8 @@ def text(f: pygame.font.Font, s: str, antialias: bool,
     """``f.render(s, antialias, colour)``, kept for the next frames (at most
     :data:`TEXT_CACHE` texts, the least recently drawn forgotten first). The surface is
     shared: blit it, do not draw on it."""
+    if SEEN is not None:
+        SEEN.add(s)
     key = (f, s, antialias, tuple(colour))  # the font itself: its id could be reused
     img = _TEXTS.get(key)
     if img is None:
@@ -112,6 +114,10 @@ def fit_text(f: pygame.font.Font, s: str, width: int) -> str:
         s = s[:-1]
     return s.rstrip() + "..."
 
+
+SEEN: set[str] | None = None
+"""While a set: every text :func:`text` rendered or took from its cache (the tests read
+what the window says)."""
 
 OVERFLOWS: list[tuple[str, tuple[int, int, int, int], tuple[int, int, int, int]]] | None = None
 """While a list: every text :func:`blit_in` drew outside its box, as ``(text, text rect,

@@ -160,7 +160,7 @@ class App(InputMixin, DrawMixin):
         """The view follows the fountain until the user pans or zooms (F follows again)."""
         self.quit_asked: float | None = None
         """When a first Esc asked to quit (a second within :data:`QUIT_WINDOW` quits)."""
-        self.came_from: list[tuple[Level, Path | None]] = []
+        self.came_from: list[tuple[Level, Path | None, Level, bool]] = []
         """The levels M left for their twin (M on the twin goes back)."""
         self.scene_view = SceneView()
         self.timebar = TimeBar()
@@ -499,17 +499,19 @@ class App(InputMixin, DrawMixin):
         from (:func:`twin_of`); say so when there is none."""
         s = self.session
         if self.came_from:
-            level, source = self.came_from.pop()
-            ok = self.open_level(level, source)
+            level, source, opened, dirty = self.came_from.pop()
+            kept = self._keep_changes()
+            ok = s.restore(level, source, opened, dirty)
             if ok:
-                s.say(f"M: back to {level.meta.shown_title}")
+                self._after_open()
+                s.say(f"M: back to {level.meta.shown_title}" + kept)
             return ok
         twin = twin_of(s.level)
         if twin is None:
             s.say("M: this level has no twin (the machine levels each have one: the same "
                   "machine with the paper's ideal rollers, or with contact rollers)")
             return False
-        here = (copy.deepcopy(s.level), s.source)
+        here = (copy.deepcopy(s.level), s.source, copy.deepcopy(s.opened), s.dirty)
         level, source, why = twin
         if why.startswith(NO_LIKE_TWIN) and not self.expert:  # the short reason for a class
             why = (f"{NO_LIKE_TWIN}: the paper's rollers need carts that push here; this is "
