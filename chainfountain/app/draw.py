@@ -34,6 +34,15 @@ STOP_ROWS = 12
 TOOLS = (("ruler", "ruler (U)"), ("stopwatch", "stopwatch (W)"))
 
 
+TITLE_LINES = 2
+"""Lines the panel keeps for the level's title."""
+
+
+def title_font() -> pygame.font.Font:
+    """The panel title's font."""
+    return font(24, bold=True)
+
+
 def readout_font(expert: bool) -> pygame.font.Font:
     """The panel readout's font (smaller in the expert view, which has more rows)."""
     return font(18) if expert else font(20)
@@ -231,7 +240,7 @@ class DrawMixin:
                      if self.offscreen else
                      f"real-time factor {s.rtf:4.2f}  ({self.fps_measured:4.1f} fps)")
             chips.append((speed, pal.WARN if s.behind else pal.DIM))
-        elif behind:
+        elif behind and s.rtf < 0.9 * s.speed_factor:
             chips.append((f"running slower than real time (x{s.rtf:.2f})", pal.WARN))
         xx = x + img.get_width() + px(16)
         for txt, col in chips:
@@ -327,6 +336,15 @@ class DrawMixin:
         pygame.draw.line(scr, pal.GRID, p.topleft, p.bottomleft if not self.lay.portrait
                          else p.topright, 2)
         s = self.session
+        tr = self.title_rect
+        f = title_font()
+        lines = text.wrap(f, self._title_text(), tr.w)
+        if len(lines) > TITLE_LINES:
+            lines = [*lines[:TITLE_LINES - 1], text.fit_text(f, " ".join(
+                lines[TITLE_LINES - 1:]), tr.w)]
+        for i, ln in enumerate(lines):
+            blit_in(scr, text.text(f, text.fit_text(f, ln, tr.w), True, pal.TEXT),
+                    (tr.x, tr.y + i * f.get_linesize()), tr, ln)
         rows = readout_rows(ro, s.sim.config.chain.linear_density, self.expert,
                             stopped=s.stopped is not None)
         if self.expert:

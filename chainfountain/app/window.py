@@ -218,10 +218,11 @@ class App(InputMixin, DrawMixin):
         """Where the readout ends and the sliders start in a landscape panel: room for the
         title, the buttons and the readout's rows of this level and view at the panel's
         width (:meth:`readout_lines`)."""
-        from chainfountain.app.draw import readout_font
+        from chainfountain.app.draw import TITLE_LINES, readout_font, title_font
 
         lines = self.readout_lines(p.w)
-        return p.y + text.px(40) + 2 * text.px(34) + text.px(8) \
+        return p.y + text.px(12) + TITLE_LINES * title_font().get_linesize() \
+            + 2 * text.px(34) + text.px(8) \
             + lines * (readout_font(self.expert).get_linesize() + 1) + text.px(10)
 
     def readout_lines(self, width: int) -> int:
@@ -245,16 +246,17 @@ class App(InputMixin, DrawMixin):
     def _build_panel(self) -> None:
         self.buttons: dict[str, UIButton] = {}
         self.rows = []
-        self.title = None
+        self.title_rect = None
         self.controls_box = None
         if self.lay.panel is None:
             return
         head, sliders = self._panel_columns()
         px = text.px
-        self.title = UILabel(pygame.Rect(head.x + px(6), head.y + px(4), head.w - px(12),
-                                         px(32)), "", self.ui, object_id="#title")
-        self._set_title()
-        self.buttons, y = panel.build_buttons(self.ui, head, head.y + px(40))
+        from chainfountain.app.draw import TITLE_LINES, title_font
+
+        self.title_rect = pygame.Rect(head.x + px(8), head.y + px(6), head.w - px(16),
+                                      TITLE_LINES * title_font().get_linesize())
+        self.buttons, y = panel.build_buttons(self.ui, head, self.title_rect.bottom + px(6))
         self.readout_top = y + px(4)
         self.readout_rect = pygame.Rect(head.x, self.readout_top, head.w,
                                         head.bottom - self.readout_top)
@@ -262,8 +264,7 @@ class App(InputMixin, DrawMixin):
         self._build_controls()
 
     def _set_title(self) -> None:
-        if self.title is not None:
-            panel.fit_label(self.title, self._title_text())
+        """The title is drawn with the panel (:meth:`_draw_panel`); nothing to set."""
 
     def _title_text(self) -> str:
         s = self.session
