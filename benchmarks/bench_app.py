@@ -1,17 +1,20 @@
-"""Frame rate and real-time factor of the app on the default level (one core).
+"""The window's speed on the demonstration levels: real-time factor, frames per second and
+the share of a frame spent drawing.
 
 Usage::
 
-    .venv/bin/python benchmarks/bench_app.py [--seconds 5] [--level LEVEL] [--links N]
-    .venv/bin/python benchmarks/bench_app.py --window      # real window (needs a display)
+    .venv/bin/python benchmarks/bench_app.py                  # every demo level, a window
+    .venv/bin/python benchmarks/bench_app.py --level beaker --seconds 20
+    .venv/bin/python benchmarks/bench_app.py --offscreen      # no display: drawing only
 
-Off-screen (default, SDL dummy driver) it runs the app's frame loop with each
-frame advancing 1/60 s of simulated time and times the physics and the rest of
-the frame (events, GUI, drawing) separately, then prints the frame rate the
-app could hold in real time and the real-time factor it reaches at 60 frames
-per second. The flip to a real screen is not included (about 1 ms on a desktop;
-far more under Xvfb). ``--window`` runs the real loop on the display and
-prints the measured frame rate and real-time factor.
+With a display (Xvfb: ``xvfb-run -s "-screen 0 1920x1080x24"``) it opens the real window,
+1920x1080 in projector mode by default, on each level the picker lists as forming from rest
+(or ``--level``), lets it run ``--warmup`` seconds from its start, then times ``--seconds``
+of the window's own loop (the frame rate it chooses, the physics overlapping the copy to
+the screen) and prints, per level: the real-time factor reached, the frames per second,
+the wall time a frame spends drawing (the scene, the panel, the GUI) and its share of the
+frame, and the physics' cost per simulated second. ``--offscreen`` (SDL's dummy driver)
+times the drawing of one frame at the same size instead, with no physics in real time.
 """
 
 from __future__ import annotations
@@ -24,83 +27,97 @@ import time
 from pathlib import Path
 
 
-def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--seconds", type=float, default=5.0, help="simulated seconds to time")
-    ap.add_argument("--warmup", type=float, default=1.0, help="simulated seconds not timed")
-    ap.add_argument("--level", help="level file or name (default: the built-in default)")
-    ap.add_argument("--links", type=int, help="override the link length to get about N links")
-    ap.add_argument("--window", action="store_true", help="time the real window loop")
-    args = ap.parse_args()
-    if not args.window:
-        os.environ["SDL_VIDEODRIVER"] = "dummy"
-    os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
-    os.environ.setdefault("CHAINFOUNTAIN_HOME", str(Path("/tmp/chainfountain-bench")))
+def demo_levels() -> list[str]:
+    """The levels the picker lists as the demonstrations (they form from rest)."""
+    from chainfountain.app import paths
 
-    from chainfountain.app.session import Session, default_level
+    rows = paths.list_levels()
+    out = []
+    for label, path in rows[1:]:
+        if path is None:
+            break
+        out.append(path.stem)
+    return out
+
+
+def time_window(name: str, size: tuple[int, int], projector: bool, warmup: float,
+                seconds: float, offscreen: bool) -> dict:
+    """Run ``name`` in the window and time it (see the module docstring)."""
+    import pygame
+
+    from chainfountain.app.session import Session
     from chainfountain.app.window import App
     from chainfountain.level import io, library
 
-    level = io.load(library.resolve(args.level)) if args.level else default_level()
-    if args.links:
-        sess = Session(level)
-        ref = sess.sim.reference
-        if ref is None:
-            print("no reference fountain: --links needs a tensile feed", file=sys.stderr)
-            return 2
-        level.sim.chain.link_length = ref.arc_length / args.links
-    sess = Session(level)
-    app = App(sess, offscreen=not args.window)
-    links = sess.sim.n_links
-    fps = 60
-    if args.window:
-        app.run_frame()
-        frames = 0
-        clock_t0 = time.perf_counter()
-        sim0 = sess.sim.time
-        import pygame
-
+    path = library.resolve(name)
+    app = App(Session(io.load(path), path), size=size, offscreen=offscreen,
+              projector=projector)
+    try:
+        if offscreen:
+            for _ in range(int(warmup * 60)):
+                app.run_frame()
+            draws = []
+            for _ in range(int(seconds * 60)):
+                t0 = time.perf_counter()
+                app.draw()
+                draws.append(time.perf_counter() - t0)
+                app.run_frame()
+            return {"draw_ms": 1e3 * statistics.median(draws)}
         clock = pygame.time.Clock()
-        work = phys = 0.0
-        while time.perf_counter() - clock_t0 < args.seconds:
+        t_start = time.perf_counter()
+        while time.perf_counter() - t_start < warmup:
+            app.run_frame(clock.tick(app.target_fps()) / 1000.0)
+        sim0, frames, draw, phys = app.session.sim.time, 0, 0.0, 0.0
+        t0 = time.perf_counter()
+        while time.perf_counter() - t0 < seconds and app.running:
             app.run_frame(clock.tick(app.target_fps()) / 1000.0)
             frames += 1
-            work += app.work_time
+            draw += app.draw_last
             phys += app.physics_time
-        wall = time.perf_counter() - clock_t0
+        wall = time.perf_counter() - t0
+        simulated = app.session.sim.time - sim0
+        fps = frames / wall
+        return {"rtf": simulated / wall, "fps": fps, "draw_ms": 1e3 * draw / frames,
+                "draw_share": (draw / frames) * fps,
+                "physics_cost": phys / max(simulated, 1e-9),
+                "stopped": app.session.stopped}
+    finally:
         app.finish()
-        print(f"level {level.meta.name}: {links} links, dt {sess.sim.dt * 1e3:g} ms (window)")
-        simulated = sess.sim.time - sim0
-        print(f"  {frames / wall:.1f} frames/s, real-time factor {simulated / wall:.2f}")
-        print(f"  per frame: events, GUI and drawing {work / frames * 1e3:.1f} ms, physics "
-              f"{phys / frames * 1e3:.1f} ms (during the copy to the screen); the physics "
-              f"costs {phys / max(simulated, 1e-9):.2f} s per simulated second")
-        return 0
 
-    warm = int(args.warmup * fps)
-    for _ in range(warm):
-        app.run_frame()
-    phys: list[float] = []
-    other: list[float] = []
-    n = int(args.seconds * fps)
-    for _ in range(n):
-        t0 = time.perf_counter()
-        app.run_frame()
-        total = time.perf_counter() - t0
-        phys.append(app.physics_time)
-        other.append(total - app.physics_time)
-    app.finish()
-    p = statistics.mean(phys)
-    o = statistics.mean(other)
-    frame = p + o
-    rt_fps = 1.0 / frame
-    rtf60 = min(1.0, max(0.0, (1.0 / fps - o)) / p) if p > 0 else 1.0
-    print(f"level {level.meta.name}: {links} links, dt {sess.sim.dt * 1e3:g} ms, "
-          f"{round(1 / fps / sess.sim.dt)} steps per frame (off-screen, one core)")
-    print(f"  physics {p * 1e3:.2f} ms per 1/60 s simulated, "
-          f"drawing+GUI {o * 1e3:.2f} ms per frame")
-    print(f"  {rt_fps:.1f} frames/s in real time (physics + drawing, no flip)")
-    print(f"  real-time factor at 60 frames/s: {rtf60:.2f}")
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--level", action="append", help="a level (default: every demo level)")
+    ap.add_argument("--seconds", type=float, default=10.0, help="wall seconds timed")
+    ap.add_argument("--warmup", type=float, default=10.0,
+                    help="wall seconds run first (the fountain forms)")
+    ap.add_argument("--size", default="1920x1080", help="window size WxH")
+    ap.add_argument("--no-projector", action="store_true", help="without projector mode")
+    ap.add_argument("--offscreen", action="store_true", help="time the drawing only")
+    args = ap.parse_args()
+    if args.offscreen:
+        os.environ["SDL_VIDEODRIVER"] = "dummy"
+    elif not os.environ.get("DISPLAY") and not os.environ.get("WAYLAND_DISPLAY"):
+        print("no display: run under xvfb-run, or with --offscreen", file=sys.stderr)
+        return 2
+    os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
+    os.environ.setdefault("CHAINFOUNTAIN_HOME", str(Path("/tmp/chainfountain-bench")))
+    os.environ["CHAINFOUNTAIN_NO_AUTOSAVE"] = "1"
+    w, h = (int(v) for v in args.size.lower().split("x"))
+    names = args.level or demo_levels()
+    mode = "off-screen, drawing only" if args.offscreen else "a window"
+    print(f"{w}x{h}{'' if args.no_projector else ', projector mode'}, {mode}; "
+          f"{args.warmup:g} s from each level's start, then {args.seconds:g} s timed")
+    for name in names:
+        r = time_window(name, (w, h), not args.no_projector, args.warmup, args.seconds,
+                        args.offscreen)
+        if args.offscreen:
+            print(f"  {name:28s} drawing {r['draw_ms']:5.1f} ms a frame")
+            continue
+        note = f"  (stopped: {r['stopped'][:60]})" if r["stopped"] else ""
+        print(f"  {name:28s} real-time x{r['rtf']:.2f}  {r['fps']:5.1f} frames/s  drawing "
+              f"{r['draw_ms']:5.1f} ms = {100 * r['draw_share']:3.0f} % of a frame  physics "
+              f"{r['physics_cost']:.2f} s per simulated s{note}")
     return 0
 
 

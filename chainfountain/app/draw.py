@@ -142,7 +142,8 @@ class DrawMixin:
             self._draw_help()
         if self.quit_prompt is not None:
             self._draw_banner(self.quit_prompt)
-        self.draw_time += 0.1 * ((time.perf_counter() - t0) - self.draw_time)
+        self.draw_last = time.perf_counter() - t0
+        self.draw_time += 0.1 * (self.draw_last - self.draw_time)
 
     # ------------------------------------------------------------------ the card
     @property

@@ -131,6 +131,8 @@ class App(InputMixin, DrawMixin):
         self.projector = projector
         self.frame = 0
         self.draw_time = 0.004
+        """Smoothed wall time of drawing a frame (s); :attr:`draw_last`, the last one's."""
+        self.draw_last = 0.0
         self.overhead = 0.006
         """Smoothed wall time of a frame before its physics (events, GUI, drawing)."""
         self.physics_time = 0.0
