@@ -33,7 +33,7 @@ def demo_levels() -> list[str]:
 
     rows = paths.list_levels()
     out = []
-    for label, path in rows[1:]:
+    for _label, path in rows[1:]:
         if path is None:
             break
         out.append(path.stem)
