@@ -4,8 +4,9 @@ it, and every n-th link marked in white. The marks belong to the links, so they 
 with the chain: the flow shows in a still and is obvious in motion.
 
 The marks are spaced so that they move at most a third of their spacing in a frame at
-the window's lowest frame rate (:func:`mark_spacing`): closer marks would strobe (a mark
-jumping more than half the spacing is seen moving backwards).
+the slowest frame rate they are seen at, a GIF clip's 20 frames/s (:func:`mark_spacing`):
+closer marks would strobe (a mark jumping more than half the spacing is seen moving
+backwards).
 """
 
 from __future__ import annotations
@@ -27,8 +28,9 @@ MIN_BEAD = 3.5
 """Smallest bead radius (px at text scale 1)."""
 STROBE_FRAMES = 3.0
 """A mark moves at most 1/STROBE_FRAMES of the marks' spacing per frame."""
-SLOWEST_FPS = 30.0
-"""The frame rate the marks' spacing is chosen for (the window's lowest)."""
+SLOWEST_FPS = 20.0
+"""The frame rate the marks' spacing is chosen for: a GIF clip's (the window itself draws
+at least 30 frames/s)."""
 
 
 def mark_spacing(speed: float, link_length: float, fps: float = SLOWEST_FPS) -> int:
