@@ -11,8 +11,8 @@ from chainfountain.level.library import shipped_dir as builtin_levels_dir
 from chainfountain.level.library import user_dir as user_levels_dir
 
 __all__ = ["FORMING", "HEADING_TEXT", "LAID", "SAVED", "builtin_levels_dir", "captures_dir",
-           "forms_from_rest", "level_description", "level_title", "list_levels", "safe_name",
-           "user_home", "user_levels_dir"]
+           "forms_from_rest", "is_demo", "level_description", "level_title", "list_levels",
+           "safe_name", "user_home", "user_levels_dir"]
 
 
 def captures_dir(create: bool = False) -> Path:
@@ -48,6 +48,15 @@ def level_description(path: Path) -> str:
     return text.strip() if isinstance(text, str) and text.strip() else "(no description)"
 
 
+def is_demo(path: Path) -> bool:
+    """Whether the picker lists ``path`` with the demonstrations: it forms from rest
+    (:func:`forms_from_rest`) and its ``meta.demo`` is not false (a level that runs slower
+    than real time in the window goes with the studies)."""
+    meta = _read(path).get("meta")
+    flag = meta.get("demo", True) if isinstance(meta, dict) else True
+    return forms_from_rest(path) and flag is not False
+
+
 def level_title(path: Path) -> str:
     """A level file's title as written (``meta.title``, else ``meta.name``, else the file's
     name; not validated: the picker shows it before the level is opened)."""
@@ -71,12 +80,12 @@ def forms_from_rest(path: Path) -> bool:
     return isinstance(initial, dict) and initial.get("mode") == "stub"
 
 
-FORMING, LAID, SAVED = ("-- these form from rest --", "-- these start on their path --",
-                        "-- your saved levels --")
-"""The picker's headings: shipped levels that start at rest and form their fountain (the
-demonstrations; the default first), shipped levels that start laid on their path, moving
-(studies of the steady state and of where the model and the paper disagree), and the
-user's saved levels."""
+FORMING, LAID, SAVED = ("-- demonstrations --", "-- studies --", "-- your saved levels --")
+"""The picker's headings: shipped levels that start at rest and form their fountain in
+real time (the demonstrations, :func:`is_demo`; the default first), the other shipped
+levels (studies of the steady state, of where the model and the paper disagree, and of
+the paper's example at the simulator's accuracy, slower than real time), and the user's
+saved levels."""
 
 HEADING_TEXT = {
     FORMING: "The levels below start at rest and form their fountain: the demonstrations.",
@@ -95,7 +104,7 @@ def list_levels(default: str = DEFAULT_LEVEL_NAME) -> list[tuple[str, Path | Non
     path, then the user's; scene levels are left out (``chainfountain run`` runs them)."""
     shipped = [p for p in sorted(builtin_levels_dir().glob("*.toml")) if not _is_scene(p)] \
         if builtin_levels_dir().is_dir() else []
-    forms = {p: forms_from_rest(p) for p in shipped}
+    forms = {p: is_demo(p) for p in shipped}
     forming = sorted((p for p in shipped if forms[p]), key=lambda p: p.stem != default)
     laid = [p for p in shipped if not forms[p]]
     saved = [p for p in sorted(user_levels_dir().glob("*.toml")) if not _is_scene(p)] \

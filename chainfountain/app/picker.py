@@ -20,8 +20,8 @@ from chainfountain.app.readout import Readout
 from chainfountain.app.text import blit_in, font, px
 from chainfountain.app.widgets import TextButton
 
-HEADINGS = {paths.FORMING: "Demonstrations: they start at rest and form their fountain",
-            paths.LAID: "Studies: they start already running",
+HEADINGS = {paths.FORMING: "Demonstrations: they form their fountain from rest",
+            paths.LAID: "Studies: they start already running, or run slower than real time",
             paths.SAVED: "Your saved levels"}
 DOUBLE_CLICK = 0.4
 """Seconds between two clicks on a row that open it."""

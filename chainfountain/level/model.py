@@ -34,6 +34,9 @@ class Meta:
         "", unit="", doc="What the level shows and what to try, in at most three sentences "
         "(the window's card and the picker show it)"
     )
+    demo: bool = param(True, unit="", doc="Whether the window's picker lists a level that "
+                       "forms from rest with the demonstrations (false: with the studies, as "
+                       "a level that runs slower than real time in the window)")
     controls: str = param("", unit="", doc="The sliders the window's student view shows, as "
                           "field paths separated by commas (e.g. \"carts[0].mass, "
                           "apparatus.xi2\"); empty: the kind's usual ones. The expert view "
