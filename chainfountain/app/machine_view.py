@@ -37,7 +37,6 @@ from chainfountain.app.palette import (
     TABLE_DARK,
     TRACK,
 )
-from chainfountain.app.shade import shade
 from chainfountain.app.text import font, px, text
 from chainfountain.sim.guide import end_channel, upper_channel
 
@@ -79,6 +78,11 @@ class Drawn:
 
     labels: list[PartLabel] = field(default_factory=list)
     boxes: list[pygame.Rect] = field(default_factory=list)
+
+
+FLOOR_BAND = tuple(int(b + (a - b) * 60 / 255) for a, b in zip(ABSORB, SCENE_BG, strict=True))
+"""The absorbing floor's band: its colour over the scene's at a quarter (a fill, not a
+translucent blit: the band is a fifth of the view)."""
 
 
 def _grams(kg: float) -> str:
@@ -316,7 +320,7 @@ class MachineView:
         if absorbing:
             band = pygame.Rect(rect.x, sy, rect.w, max(4, rect.bottom - sy))
             if band.top < rect.bottom:
-                surf.blit(shade(band.size, ABSORB, 60), band.topleft)
+                surf.fill(FLOOR_BAND, band)
             pygame.draw.line(surf, ABSORB, (rect.x, sy), (rect.right, sy), max(2, px(3)))
         else:
             pygame.draw.line(surf, FLOOR, (rect.x, sy), (rect.right, sy), max(3, px(4)))
