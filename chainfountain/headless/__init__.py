@@ -23,6 +23,7 @@ from chainfountain.headless.run import (
     EXIT_STATUS,
     FORMING_DURATION,
     MACHINE_FORMING_DURATION,
+    check_run,
     default_duration,
     default_out_dir,
     describe_outputs,
@@ -44,8 +45,8 @@ from chainfountain.headless.summary import json_safe, summarize
 __all__ = [
     "DEFAULT_DURATION", "DEFAULT_OUTPUTS", "EXIT_STATUS", "FORMING_DURATION",
     "MACHINE_FORMING_DURATION", "LOG_PROGRESS_EVERY", "MAX_PROFILES", "MAX_SAMPLES",
-    "MAX_TENSION_SAMPLES", "Ending",
-    "Interrupted", "default_duration", "default_out_dir", "describe_outputs", "exit_status",
+    "MAX_TENSION_SAMPLES", "Ending", "Interrupted", "check_run", "default_duration",
+    "default_out_dir", "describe_outputs", "exit_status",
     "json_safe", "prepare_out_dir", "run_and_record", "run_level", "simulate", "summarize",
     "write_reaction_figure", "write_snapshot",
 ]

@@ -56,6 +56,33 @@ def default_duration(level: Level) -> float:
     return DEFAULT_DURATION
 
 
+def check_run(level: Level, duration: float | None = None, seed: int | None = None, *,
+              where: str = "", names: tuple[str, str] = ("duration", "seed")) -> float:
+    """Check a run's options against ``level`` before anything is written, as the command
+    line and the Python API both do; returns the duration the run takes (``None``: the
+    level's default). :class:`~chainfountain.errors.UserError` naming the option
+    (``names``: how the caller calls them, e.g. ``--duration``), or
+    :class:`~chainfountain.level.model.LevelError` naming the field, in one line."""
+    from chainfountain.level.model import LevelError
+    from chainfountain.options import DURATION, SEED
+
+    d = default_duration(level) if duration is None else DURATION.check(duration, names[0])
+    if seed is not None:
+        SEED.check(seed, names[1])
+        if level.sim.kind == "scene" and level.sim.scene.jitter == 0:
+            raise UserError(
+                f"{names[1]}: {seed} has no effect on {level.meta.name!r} (its scene.jitter is "
+                "0: no random angles to seed); allowed: only with a scene whose scene.jitter "
+                "is above 0")
+    interval = level.sim.recording.sample_interval
+    if interval > d:
+        at = f"{where}: " if where else f"{level.meta.name}: "
+        raise LevelError(f"{at}recording.sample_interval: {interval:g} s is longer than the "
+                         f"run ({d:g} s), which would record nothing; allowed: at most the "
+                         "run's duration")
+    return d
+
+
 def default_out_dir(level: Level) -> Path:
     """Where a headless run of ``level`` writes by default: ``./runs/<name>``."""
     from chainfountain.level.library import safe_name
