@@ -120,12 +120,15 @@ def _local(todo: list[Planned], out: Path, jobs: int, snapshots: bool) -> Iterat
 
 def execute(sweep: Sweep, out: Path, jobs: int = 1, *, retry_failed: bool = False,
             progress: Callable[[int, int, float], None] | None = None,
-            dask: str | None = None, planned: list[Planned] | None = None) -> list[dict]:
+            dask: str | None = None, planned: list[Planned] | None = None,
+            wait_for_workers: float | None = None) -> list[dict]:
     """Run every pending point, ``jobs`` processes at a time (or on the Dask cluster whose
     scheduler is at ``dask``); then write the results table. ``progress(done, total,
     seconds_left)`` after each point. Returns the rows; raises :class:`Stopped` (the table
     written) when a signal or a lost worker ended the sweep early. Call it inside
-    :func:`interruptible` for signals to end it so."""
+    :func:`interruptible` for signals to end it so. ``wait_for_workers``: seconds a Dask
+    cluster may have no worker before the sweep ends
+    (:data:`~chainfountain.study.cluster.NO_WORKERS_WAIT`)."""
     from joblib.externals.loky.process_executor import TerminatedWorkerError
 
     planned = plan(sweep) if planned is None else planned
@@ -135,9 +138,11 @@ def execute(sweep: Sweep, out: Path, jobs: int = 1, *, retry_failed: bool = Fals
     total = done + len(todo)
     t0 = time.perf_counter()
     stop: tuple[str, int] | None = None
+    lost_cluster = ""
     try:
         if todo:
-            results = (run_on_cluster(todo, out, dask, sweep.snapshots) if dask is not None
+            results = (run_on_cluster(todo, out, dask, sweep.snapshots, wait_for_workers)
+                       if dask is not None
                        else _local(todo, out, jobs, sweep.snapshots))
             for k, _ in enumerate(results, start=1):
                 if progress is not None:
@@ -148,7 +153,7 @@ def execute(sweep: Sweep, out: Path, jobs: int = 1, *, retry_failed: bool = Fals
     except TerminatedWorkerError as exc:
         stop = (f"a worker process died ({str(exc).splitlines()[0][:160]})", 5)
     except ClusterLost as exc:
-        stop = (str(exc), 5)
+        stop, lost_cluster = ("its Dask cluster lost its workers", 5), str(exc)
     with _signals_deferred([]):  # a second signal: noted, the table is written whole
         lost = points.mark_interrupted(out, todo, stop[0]) if stop else 0
         rows = collect(sweep, out, planned)
@@ -156,6 +161,9 @@ def execute(sweep: Sweep, out: Path, jobs: int = 1, *, retry_failed: bool = Fals
     if stop is not None:
         finished = sum(r["status"] not in ("interrupted", "refused") for r in rows)
         not_run = sum(pt.key not in {r["key"] for r in rows} for pt in todo)
+        if lost_cluster:
+            raise Stopped(f"{lost_cluster}; the table holds the {finished} finished points",
+                          stop[1], rows)
         raise Stopped(f"{stop[0]}: the table holds the {finished} finished points; "
                       f"{lost} interrupted and {not_run} not run, which a rerun of the "
                       "sweep runs", stop[1], rows)
