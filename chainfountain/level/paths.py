@@ -18,7 +18,8 @@ import tomllib
 from dataclasses import dataclass
 from typing import Any
 
-from chainfountain.fields import allowed_text, tuple_item_type
+from chainfountain.fields import tuple_item_type
+from chainfountain.level.io import _allowed_for
 from chainfountain.level.model import Level, LevelError, Meta, _hints, _is_dataclass_type
 from chainfountain.sim.config import SimConfig
 
@@ -44,21 +45,12 @@ class Field:
 
 def allowed_for(tp: Any, meta: dict[str, Any]) -> str:
     """What a field of type ``tp`` with metadata ``meta`` allows (``a text string``, ``true
-    or false``, ``a whole number >= 0``, ``a number in (0, 3600] (s)``, ...)."""
-    if meta.get("choices"):
-        return allowed_text(meta)
-    if tp is str:
-        return "a text string"
-    if tp is bool:
-        return "true or false"
-    if tp is int:
-        return "a whole number" + (f", {allowed_text(meta)}" if meta.get("min") is not None
-                                   or meta.get("max") is not None else "")
+    or false``, ``a whole number, a number >= 0``, ``a number in (0, 3600] (s)``, ...)."""
     if tp is tuple:
         return "an array of tables"
     if _is_dataclass_type(tp):
         return "a table of settings"
-    return allowed_text(meta)
+    return _allowed_for(tp, meta)
 
 
 def parse(path: Any, where: str) -> list[tuple[str, int | None]]:
