@@ -14,8 +14,9 @@ from typing import Any
 from chainfountain import atomic
 from chainfountain.errors import UserError
 from chainfountain.headless import files
-from chainfountain.headless.scene import SceneRun, describe_scene, run_scene
-from chainfountain.headless.stepping import Ending, _signals_deferred, simulate
+from chainfountain.headless.scene import _write, describe_scene, run_scene
+from chainfountain.headless.stepper import SceneRun, Stepper, simulate
+from chainfountain.headless.stepping import Ending, _signals_deferred
 from chainfountain.headless.summary import _attempt, _f, json_safe, model_error, summarize
 from chainfountain.level.io import Level
 from chainfountain.sim.recorder import Recorder
@@ -158,6 +159,21 @@ def run_and_record(level: Level, out_dir: Path, duration: float | None = None, *
         path = _write_outputs(level, out_dir, duration, sim, rec, wall, ended, error_bars,
                               snapshot)
     return path, rec
+
+
+def write_outputs(run: Stepper, out_dir: Path, duration: float | None = None, *,
+                  error_bars: dict | None = None, snapshot: bool = True) -> Path:
+    """Write a :class:`~chainfountain.headless.stepper.Stepper`'s run into ``out_dir`` as
+    ``chainfountain run`` does (the folder is made and checked first); returns
+    ``summary.json``. ``duration``: the seconds asked for (default: the time run). A
+    signal while writing is noted, not obeyed."""
+    asked = run.time if duration is None else float(duration)
+    out_dir = prepare_out_dir(Path(out_dir))
+    with _signals_deferred([]):
+        if run.kind == "scene":
+            return _write(run.level, out_dir, asked, run.scene_run(), snapshot)
+        return _write_outputs(run.level, out_dir, asked, run.sim, run.recorder, run.wall,
+                              run.ended, error_bars, snapshot)
 
 
 def _write_outputs(level: Level, out_dir: Path, duration: float, sim: Simulation,

@@ -15,10 +15,12 @@ import dataclasses
 import math
 import re
 import tomllib
+from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
 from chainfountain.fields import tuple_item_type
+from chainfountain.level import io
 from chainfountain.level.io import _allowed_for
 from chainfountain.level.model import Level, LevelError, Meta, _hints, _is_dataclass_type
 from chainfountain.sim.config import SimConfig
@@ -190,3 +192,19 @@ def get(level: Level, path: str, where: str = "field") -> Any:
                                  f"allowed: an index below {len(node)}")
             node = node[index]
     return node
+
+
+def changed(level: Level, changes: Mapping[str, Any], where: str = "change") -> Level:
+    """``level`` with each field of ``changes`` set (any path here), checked as a level
+    file is: a field that does not exist, a value of another type or out of its range, an
+    index beyond an array's end, or a combination the loader refuses raises
+    :class:`LevelError` naming the field. A new level (``solver.accuracy`` applied
+    again); ``level`` is untouched."""
+    if not isinstance(changes, Mapping):
+        raise LevelError(f"{where}: {changes!r} is not allowed; allowed: a mapping of field "
+                         "paths to values, e.g. {'feed.speed': 6.0}")
+    data = tomllib.loads(io.dumps(level))
+    for path, value in changes.items():
+        check_type(path, value, where)
+        set_in(data, path, value, where)
+    return io.parse_level(data, where)

@@ -2,12 +2,11 @@
 
 from __future__ import annotations
 
-import tomllib
 from collections.abc import Mapping
 from typing import Any
 
-from chainfountain.level import io, paths
-from chainfountain.level.model import Level, LevelError
+from chainfountain.level import paths
+from chainfountain.level.model import Level
 
 
 def with_changes(level: Level, changes: Mapping[str, Any], where: str = "change") -> Level:
@@ -18,14 +17,7 @@ def with_changes(level: Level, changes: Mapping[str, Any], where: str = "change"
     or a combination the loader refuses raises
     :class:`~chainfountain.level.model.LevelError` naming the field. The result is a new
     level (``solver.accuracy`` applied again); ``level`` is untouched."""
-    if not isinstance(changes, Mapping):
-        raise LevelError(f"{where}: {changes!r} is not allowed; allowed: a mapping of field "
-                         "paths to values, e.g. {'feed.speed': 6.0}")
-    data = tomllib.loads(io.dumps(level))
-    for path, value in changes.items():
-        paths.check_type(path, value, where)
-        paths.set_in(data, path, value, where)
-    return io.parse_level(data, where)
+    return paths.changed(level, changes, where)
 
 
 def laid_on_path(level: Level) -> Level:

@@ -26,7 +26,7 @@ from pathlib import Path
 from typing import Any
 
 from chainfountain import __version__, atomic
-from chainfountain.headless import check_run, default_duration
+from chainfountain.headless import check_run, default_duration, seeded
 from chainfountain.level import io
 from chainfountain.level.model import Level, LevelError
 from chainfountain.study.changes import with_changes
@@ -68,19 +68,6 @@ class Planned:
     def row(self) -> dict[str, Any]:
         """The table's first columns for this point."""
         return {"point": self.id, **self.values, "seed": self.seed}
-
-
-def seeded(level: Level, seed: int | None) -> Level:
-    """``level`` with ``seed`` as its random seed (``initial.seed``; a scene's
-    ``scene.seed``), as ``chainfountain run --seed`` runs it."""
-    if seed is None:
-        return level
-    sim = level.sim
-    if sim.kind == "scene":
-        sim = dataclasses.replace(sim, scene=dataclasses.replace(sim.scene, seed=int(seed)))
-    else:
-        sim = dataclasses.replace(sim, initial=dataclasses.replace(sim.initial, seed=int(seed)))
-    return dataclasses.replace(level, sim=sim)
 
 
 def identity(level: Level, duration: float) -> str:
