@@ -8,6 +8,7 @@ import sys
 
 from chainfountain.commands.args import integer, number, path_arg
 from chainfountain.errors import UserError
+from chainfountain.options import DURATION, SEED
 
 EXIT_HELP = ("Exit status: 0 a complete run; 2 bad input (one line naming it; nothing "
              "run); 3 the run ended early (a machine's table used up, the fold collapsed, "
@@ -35,8 +36,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    "scene.pins[0].release=0.1, feed.drive=ideal_floor)")
     p.add_argument("--headless", action="store_true",
                    help="run without a window (the only mode of 'run'; accepted for clarity)")
-    p.add_argument("--duration", type=number("a duration in s", min=0, min_inclusive=False,
-                                             max=3600),
+    p.add_argument("--duration", type=number(DURATION.what, min=DURATION.min,
+                                             min_inclusive=DURATION.min_inclusive,
+                                             max=DURATION.max),
                    default=None, help="simulated seconds (default 8; 20 for a fed level that "
                    "starts from its stub, to form and then be averaged, 40 for an ideal "
                    "machine's, which settles after its starter; 20 for an apparatus level "
@@ -44,7 +46,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    "scene or beaker: its own duration)")
     p.add_argument("--out", type=path_arg("an output folder"), default=None,
                    help="output folder (default runs/<level name>)")
-    p.add_argument("--seed", type=integer("a seed", min=0), default=None,
+    p.add_argument("--seed", type=integer(SEED.what, min=SEED.min), default=None,
                    help="override the level's random seed (kind 'feed'; kind 'scene' with "
                    "scene.jitter; kinds 'beaker' and 'apparatus': a seed above 0 nudges "
                    "every moving body by 1e-12 of its velocity, which picks another of "
