@@ -78,9 +78,13 @@ def check_run(level: Level, duration: float | None = None, seed: int | None = No
     interval = level.sim.recording.sample_interval
     if interval > d:
         at = f"{where}: " if where else f"{level.meta.name}: "
-        raise LevelError(f"{at}recording.sample_interval: {interval:g} s is longer than the "
-                         f"run ({d:g} s), which would record nothing; allowed: at most the "
-                         "run's duration")
+        if duration is None:
+            raise LevelError(f"{at}recording.sample_interval: {interval:g} s is longer than "
+                             f"the run ({d:g} s), which would record nothing; allowed: at "
+                             "most the run's duration")
+        raise LevelError(f"{names[0]}: {d:g} s is shorter than {at}recording.sample_interval "
+                         f"({interval:g} s), so the run would record nothing; allowed: a "
+                         f"duration of at least {interval:g} s")
     return d
 
 

@@ -179,7 +179,7 @@ def shown_path(path: str | Path) -> str:
 def _parse_toml(text: str, where: str) -> dict[str, Any]:
     """The TOML document in ``text``; :class:`LevelError` (one line) when it is not one."""
     try:
-        return tomllib.loads(text)
+        return tomllib.loads(text.removeprefix("\ufeff"))  # a byte-order mark: no content
     except ValueError as exc:  # TOMLDecodeError, and an integer of more than 4300 digits
         raise LevelError(f"{where}: not valid TOML ({exc})") from None
     except RecursionError:

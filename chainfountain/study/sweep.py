@@ -50,6 +50,11 @@ class Stopped(UserError):
         self.status, self.rows = status, rows
 
 
+_received: list[int] = []
+"""The signals :func:`interruptible` has taken (a worker that died of the same Ctrl-C is
+the signal's doing, not a lost worker)."""
+
+
 @contextlib.contextmanager
 def interruptible() -> Iterator[None]:
     """While a sweep runs, SIGINT and SIGTERM raise
@@ -60,8 +65,10 @@ def interruptible() -> Iterator[None]:
         return
 
     def handler(signum: int, frame: object) -> None:
+        _received.append(signum)
         raise Interrupted(signum)
 
+    _received.clear()
     old = {sig: signal.signal(sig, handler) for sig in (signal.SIGINT, signal.SIGTERM)}
     try:
         yield
@@ -151,15 +158,21 @@ def execute(sweep: Sweep, out: Path, jobs: int = 1, *, retry_failed: bool = Fals
     except Interrupted as exc:
         stop = (f"interrupted by {signal.Signals(exc.signum).name}", 128 + exc.signum)
     except TerminatedWorkerError as exc:
-        stop = (f"a worker process died ({str(exc).splitlines()[0][:160]})", 5)
+        if _received:  # the workers took the same Ctrl-C as this process
+            stop = (f"interrupted by {signal.Signals(_received[0]).name}", 128 + _received[0])
+        else:
+            stop = (f"a worker process died ({str(exc).splitlines()[0][:160]})", 5)
     except ClusterLost as exc:
         stop, lost_cluster = ("its Dask cluster lost its workers", 5), str(exc)
     with _signals_deferred([]):  # a second signal: noted, the table is written whole
-        lost = points.mark_interrupted(out, todo, stop[0]) if stop else 0
+        if stop:
+            points.mark_interrupted(out, todo, stop[0])
         rows = collect(sweep, out, planned)
         write_table(rows, out)
     if stop is not None:
         finished = sum(r["status"] not in ("interrupted", "refused") for r in rows)
+        keys = {pt.key for pt in todo}
+        lost = sum(r["status"] == "interrupted" and r["key"] in keys for r in rows)
         not_run = sum(pt.key not in {r["key"] for r in rows} for pt in todo)
         if lost_cluster:
             raise Stopped(f"{lost_cluster}; the table holds the {finished} finished points",
