@@ -133,11 +133,11 @@ def test_sim_vs_theory_states_its_agreement_with_the_paper(
 
 
 def test_sim_vs_theory_says_when_its_run_is_not_steady() -> None:
-    """Too short a run (3 s: the fountain is still forming from its stub) is drawn, and
+    """Too short a run (2.5 s: the fountain is still forming from its stub) is drawn, and
     the caption says it is not steady."""
     from chainfountain.figures.simulated import fig_sim_vs_theory_run
 
-    fig, cap = fig_sim_vs_theory_run(duration=3.0)
+    fig, cap = fig_sim_vs_theory_run(duration=2.5)
     import matplotlib.pyplot as plt
 
     plt.close(fig)

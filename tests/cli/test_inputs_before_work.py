@@ -49,7 +49,19 @@ def test_every_output_path_is_checked_before_any_work(tmp_path, args, flag, bad)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["afile", "s.toml"]
 
 
-def test_run_takes_field_overrides_checked_as_a_level_file(tmp_path):
+def test_run_takes_field_overrides_checked_as_a_level_file(tmp_path, capsys, monkeypatch):
+    from chainfountain.cli import main
+
+    def _cli(*args: str, cwd: Path) -> subprocess.CompletedProcess:  # in this process
+        monkeypatch.chdir(cwd)
+        capsys.readouterr()
+        try:
+            status = main(list(args))
+        except SystemExit as exc:  # argparse's refusals
+            status = exc.code
+        out = capsys.readouterr()
+        return subprocess.CompletedProcess(args, status, out.out, out.err)
+
     r = _cli("run", "falling_chain", "--duration", "0.06", "scene.closed_form=none",
              "scene.pins[0].release=0.02", "--quiet", "--out", "o", cwd=tmp_path)
     assert r.returncode == 0, r.stderr

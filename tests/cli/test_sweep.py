@@ -17,6 +17,26 @@ from chainfountain.study import run, with_changes
 from chainfountain.study.api import load
 
 
+class _InProcess:
+    """``chainfountain ARGS`` run in this process (no interpreter to start: a sweep of
+    single-process points costs its runs only), with its exit status and output."""
+
+    def __init__(self, capsys, monkeypatch, cwd) -> None:
+        self.capsys, self.monkeypatch, self.cwd = capsys, monkeypatch, cwd
+
+    def __call__(self, *args: str) -> subprocess.CompletedProcess:
+        from chainfountain.cli import main
+
+        self.monkeypatch.chdir(self.cwd)
+        self.capsys.readouterr()
+        try:
+            status = main(list(args))
+        except SystemExit as exc:  # argparse's refusals
+            status = exc.code
+        out = self.capsys.readouterr()
+        return subprocess.CompletedProcess(args, status, out.out, out.err)
+
+
 def _cli(*args: str, cwd=None) -> subprocess.CompletedProcess:
     return subprocess.run([sys.executable, "-m", "chainfountain", *args], cwd=cwd,
                           capture_output=True, text=True, timeout=600)
@@ -70,26 +90,28 @@ def _statuses(out) -> dict[str, str]:
     return {row["key"]: row["status"] for row in csv.DictReader((out / "results.csv").open())}
 
 
-def test_a_rerun_reuses_exactly_the_points_that_would_run_the_same(tmp_path):
+def test_a_rerun_reuses_exactly_the_points_that_would_run_the_same(tmp_path, capsys,
+                                                                    monkeypatch):
     """Points are identified by a hash of what they run: an extended grid runs only its new
     point, an edited base level (gravity) runs every point again and gives other numbers,
     a grid over a field that was fixed gets its column; nothing is reused by its place."""
+    sweep = _InProcess(capsys, monkeypatch, tmp_path)
     base = (library.shipped_dir() / "wide_low.toml").read_text()
     (tmp_path / "mine.toml").write_text(base)
     (tmp_path / "s.toml").write_text(
         'base = "mine.toml"\nduration = 0.2\n[grid]\n"feed.speed" = [4.0, 4.5]\n')
-    assert _cli("sweep", "s.toml", "--out", "out", "--quiet", cwd=tmp_path).returncode == 0
+    assert sweep("sweep", "s.toml", "--jobs", "1", "--out", "out", "--quiet").returncode == 0
     first = list(csv.DictReader((tmp_path / "out" / "results.csv").open()))
     (tmp_path / "s.toml").write_text(
         'base = "mine.toml"\nduration = 0.2\n[grid]\n"feed.speed" = [4.0, 4.2, 4.5]\n')
-    r = _cli("sweep", "s.toml", "--out", "out", "--quiet", cwd=tmp_path)
+    r = sweep("sweep", "s.toml", "--jobs", "1", "--out", "out", "--quiet")
     assert r.returncode == 0 and "2 recorded before, 1 to run" in r.stderr, r.stderr
     rows = list(csv.DictReader((tmp_path / "out" / "results.csv").open()))
     assert [row["point"] for row in rows] == ["p00000", "p00001", "p00002"]
     assert (rows[0], rows[2]) == (first[0], {**first[1], "point": "p00002"})
     # the base level edited: gravity 9.81 -> 9.0, every point runs again
     (tmp_path / "mine.toml").write_text(base.replace("gravity = 9.81", "gravity = 9.0"))
-    r = _cli("sweep", "s.toml", "--out", "out", "--quiet", cwd=tmp_path)
+    r = sweep("sweep", "s.toml", "--jobs", "1", "--out", "out", "--quiet")
     assert r.returncode == 0 and "0 recorded before, 3 to run" in r.stderr, r.stderr
     edited = list(csv.DictReader((tmp_path / "out" / "results.csv").open()))
     assert {row["key"] for row in edited}.isdisjoint(row["key"] for row in rows)
@@ -103,7 +125,7 @@ def test_a_rerun_reuses_exactly_the_points_that_would_run_the_same(tmp_path):
     # gravity swept: its own column, and only the new value runs
     (tmp_path / "s.toml").write_text('base = "mine.toml"\nduration = 0.2\n[grid]\n'
                                      '"feed.speed" = [4.0]\n"gravity" = [9.0, 3.0]\n')
-    r = _cli("sweep", "s.toml", "--out", "out", "--quiet", cwd=tmp_path)
+    r = sweep("sweep", "s.toml", "--jobs", "1", "--out", "out", "--quiet")
     assert r.returncode == 0 and "1 recorded before, 1 to run" in r.stderr, r.stderr
     swept = list(csv.DictReader((tmp_path / "out" / "results.csv").open()))
     assert [float(row["gravity"]) for row in swept] == [9.0, 3.0]
@@ -111,7 +133,7 @@ def test_a_rerun_reuses_exactly_the_points_that_would_run_the_same(tmp_path):
     # another duration: another run
     (tmp_path / "s.toml").write_text(
         'base = "mine.toml"\nduration = 0.25\n[grid]\n"feed.speed" = [4.0]\n')
-    r = _cli("sweep", "s.toml", "--out", "out", "--quiet", cwd=tmp_path)
+    r = sweep("sweep", "s.toml", "--jobs", "1", "--out", "out", "--quiet")
     assert r.returncode == 0 and "0 recorded before, 1 to run" in r.stderr, r.stderr
 
 
