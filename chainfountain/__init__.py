@@ -9,9 +9,9 @@ __version__ = "0.1.0"
 
 
 def __getattr__(name: str):  # noqa: ANN202 - lazy, so that `import chainfountain` stays light
-    """``chainfountain.run`` and ``chainfountain.with_changes``: :mod:`chainfountain.study`'s
-    Python API (imported on first use)."""
-    if name in ("run", "with_changes", "RunResult"):
+    """``chainfountain.run``, ``chainfountain.start``, ``chainfountain.with_changes``:
+    :mod:`chainfountain.study`'s Python API (imported on first use)."""
+    if name in ("run", "start", "with_changes", "RunResult", "Stepper"):
         from chainfountain import study
 
         return getattr(study, name)

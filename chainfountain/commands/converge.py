@@ -6,7 +6,8 @@ import argparse
 import json
 import sys
 
-from chainfountain.commands.args import integer, number, path_arg
+from chainfountain.commands.args import integer, number, path_arg, writable_file
+from chainfountain.errors import OutputError
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -84,11 +85,17 @@ def run(args: argparse.Namespace) -> int:
     from chainfountain.refine import refine
 
     level = io.load(library.resolve(args.level))
+    if args.json is not None:
+        writable_file(args.json, "--json")  # before the refinements, not after them
     name = level.meta.name
     res = refine(level.sim, name, refinements=args.refinements, settle=args.settle,
                  window=args.window, progress=lambda m: print(m, file=sys.stderr, flush=True))
     print(format_table(res))
     if args.json is not None:
-        atomic.write_text(args.json, json.dumps(json_safe(res.as_dict()), indent=1))
+        try:
+            atomic.write_text(args.json, json.dumps(json_safe(res.as_dict()), indent=1))
+        except OSError as exc:
+            raise OutputError(f"argument --json: cannot write {str(args.json)!r} "
+                              f"({exc.strerror or exc}); the table is printed above") from None
         print(f"wrote {args.json}")
     return 0

@@ -1,19 +1,31 @@
-"""``chainfountain check`` and ``chainfountain schema``: validate and document level files."""
+"""``chainfountain levels``, ``chainfountain check`` and ``chainfountain schema``: list,
+validate and document level files."""
 
 from __future__ import annotations
 
 import argparse
+import sys
 
 from chainfountain import atomic
 from chainfountain.commands.args import path_arg, writable_file
-from chainfountain.errors import OutputError
+from chainfountain.errors import OutputError, UserError
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
+    lv = sub.add_parser(
+        "levels",
+        help="list the levels this installation has (shipped and the user's)",
+        description="List every level a name on the command line finds: the ones shipped "
+        "inside the package, then the user's ($CHAINFOUNTAIN_HOME/levels, or "
+        "~/.local/share/chainfountain/levels), each with its kind and file.",
+        allow_abbrev=False,
+    )
+    lv.set_defaults(func=run_levels)
     p = sub.add_parser(
         "check",
         help="validate level files",
-        description="Validate level TOML files; exits non-zero on the first bad one.",
+        description="Validate level TOML files: one line for each, 'ok' or what is wrong; "
+        "exits 2 when any is bad.",
         allow_abbrev=False,
     )
     p.add_argument("levels", nargs="+", metavar="LEVEL", help="level .toml files")
@@ -30,13 +42,38 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     s.set_defaults(func=run_schema)
 
 
+def run_levels(args: argparse.Namespace) -> int:
+    from chainfountain.level import io, library
+
+    found = library.available()
+    if not found:
+        raise UserError(f"no levels found in {library.shipped_dir()} or {library.user_dir()}; "
+                        "the installation is broken: reinstall chainfountain")
+    width = max(len(p.stem) for p in found)
+    for path in found:
+        try:
+            level = io.load(path)
+            what = level.sim.kind
+        except UserError as exc:
+            what = f"bad: {exc}"
+        where = "shipped" if path.parent == library.shipped_dir() else "yours"
+        print(f"{path.stem:<{width}}  {what:<9}  {where:<7}  {path}")
+    return 0
+
+
 def run_check(args: argparse.Namespace) -> int:
     from chainfountain.level import io
 
+    bad = 0
     for path in args.levels:
-        level = io.load(path)  # LevelError propagates as one line, exit 2
+        try:
+            level = io.load(path)
+        except UserError as exc:  # each file its line; the others are still checked
+            print(f"chainfountain: error: {exc}", file=sys.stderr)
+            bad += 1
+            continue
         print(f"{path}: ok ({level.sim.kind}: {level.meta.name})")
-    return 0
+    return 2 if bad else 0
 
 
 def run_schema(args: argparse.Namespace) -> int:

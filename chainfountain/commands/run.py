@@ -8,6 +8,7 @@ import sys
 
 from chainfountain.commands.args import integer, number, path_arg
 from chainfountain.errors import UserError
+from chainfountain.options import DURATION, SEED
 
 EXIT_HELP = ("Exit status: 0 a complete run; 2 bad input (one line naming it; nothing "
              "run); 3 the run ended early (a machine's table used up, the fold collapsed, "
@@ -23,14 +24,21 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         description="Run LEVEL (a .toml path or a shipped level name) without a window. "
         "Writes summary.json, tensions.csv, speed.csv and snapshot.png into --out (apparatus "
         "levels also apparatus.csv; the 'open' arrangement reaction.png; a scene level "
-        "summary.json, probe_<name>.csv per probe and scene.png). " + EXIT_HELP,
+        "summary.json, probe_<name>.csv per probe and scene.png). FIELD=VALUE arguments "
+        "change the level's fields first (chainfountain run paper_tall feed.speed=6 "
+        "initial.seed=2), as a sweep's [changes] do. " + EXIT_HELP,
         allow_abbrev=False,
     )
     p.add_argument("level", metavar="LEVEL", help="level file or name (e.g. paper_tall)")
+    p.add_argument("overrides", nargs="*", metavar="FIELD=VALUE",
+                   help="set level fields first, checked as the level file is: any path of "
+                   "docs/levels.md, list items included (feed.speed=6, carts[0].mass=0.2, "
+                   "scene.pins[0].release=0.1, feed.drive=ideal_floor)")
     p.add_argument("--headless", action="store_true",
                    help="run without a window (the only mode of 'run'; accepted for clarity)")
-    p.add_argument("--duration", type=number("a duration in s", min=0, min_inclusive=False,
-                                             max=3600),
+    p.add_argument("--duration", type=number(DURATION.what, min=DURATION.min,
+                                             min_inclusive=DURATION.min_inclusive,
+                                             max=DURATION.max),
                    default=None, help="simulated seconds (default 8; 20 for a fed level that "
                    "starts from its stub, to form and then be averaged, 40 for an ideal "
                    "machine's, which settles after its starter; 20 for an apparatus level "
@@ -38,7 +46,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    "scene or beaker: its own duration)")
     p.add_argument("--out", type=path_arg("an output folder"), default=None,
                    help="output folder (default runs/<level name>)")
-    p.add_argument("--seed", type=integer("a seed", min=0), default=None,
+    p.add_argument("--seed", type=integer(SEED.what, min=SEED.min), default=None,
                    help="override the level's random seed (kind 'feed'; kind 'scene' with "
                    "scene.jitter; kinds 'beaker' and 'apparatus': a seed above 0 nudges "
                    "every moving body by 1e-12 of its velocity, which picks another of "
@@ -53,6 +61,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from chainfountain.headless import (
+        check_run,
         default_duration,
         default_out_dir,
         describe_outputs,
@@ -62,12 +71,8 @@ def run(args: argparse.Namespace) -> int:
     )
     from chainfountain.level import io, library
 
-    level = io.load(library.resolve(args.level))
-    if args.seed is not None and level.sim.kind == "scene" and level.sim.scene.jitter == 0:
-        raise UserError(
-            f"argument --seed: {args.seed} has no effect on {level.meta.name!r} (its "
-            "scene.jitter is 0: no random angles to seed); allowed: only with a scene whose "
-            "scene.jitter is above 0")
+    level = overridden(io.load(library.resolve(args.level)), args.overrides)
+    check_run(level, args.duration, args.seed, names=("argument --duration", "argument --seed"))
     if args.error_bars:
         from chainfountain.refine import refined_config
 
@@ -91,3 +96,21 @@ def run(args: argparse.Namespace) -> int:
                      error_bars=bars)
     print(describe_outputs(path))
     return exit_status(json.loads(path.read_text()))
+
+
+def overridden(level, overrides: list[str]):
+    """``level`` with the command line's ``FIELD=VALUE`` arguments set (each value read as
+    its field's type; validated as a level file: one line naming the field otherwise)."""
+    from chainfountain.level import paths
+    from chainfountain.study import with_changes
+
+    if not overrides:
+        return level
+    changes = {}
+    for arg in overrides:
+        field, eq, text = arg.partition("=")
+        if not eq or not field:
+            raise UserError(f"argument FIELD=VALUE: {arg!r} has no '='; allowed: a field "
+                            "path, '=' and a value, e.g. feed.speed=6")
+        changes[field] = paths.parse_value(field, text, "argument FIELD=VALUE")
+    return with_changes(level, changes, where="argument FIELD=VALUE")

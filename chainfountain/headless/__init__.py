@@ -23,6 +23,7 @@ from chainfountain.headless.run import (
     EXIT_STATUS,
     FORMING_DURATION,
     MACHINE_FORMING_DURATION,
+    check_run,
     default_duration,
     default_out_dir,
     describe_outputs,
@@ -30,22 +31,24 @@ from chainfountain.headless.run import (
     prepare_out_dir,
     run_and_record,
     run_level,
+    write_outputs,
 )
+from chainfountain.headless.stepper import FOUNTAIN_SERIES, SceneRun, Stepper, seeded, simulate
 from chainfountain.headless.stepping import (
     LOG_PROGRESS_EVERY,
     MAX_PROFILES,
     MAX_SAMPLES,
     Ending,
     Interrupted,
-    simulate,
 )
 from chainfountain.headless.summary import json_safe, summarize
 
 __all__ = [
     "DEFAULT_DURATION", "DEFAULT_OUTPUTS", "EXIT_STATUS", "FORMING_DURATION",
     "MACHINE_FORMING_DURATION", "LOG_PROGRESS_EVERY", "MAX_PROFILES", "MAX_SAMPLES",
-    "MAX_TENSION_SAMPLES", "Ending",
-    "Interrupted", "default_duration", "default_out_dir", "describe_outputs", "exit_status",
+    "MAX_TENSION_SAMPLES", "Ending", "Interrupted", "check_run", "default_duration",
+    "default_out_dir", "describe_outputs", "exit_status",
     "json_safe", "prepare_out_dir", "run_and_record", "run_level", "simulate", "summarize",
-    "write_reaction_figure", "write_snapshot",
+    "write_reaction_figure", "write_snapshot", "FOUNTAIN_SERIES", "SceneRun", "Stepper",
+    "seeded", "write_outputs",
 ]

@@ -14,8 +14,9 @@ from typing import Any
 from chainfountain import atomic
 from chainfountain.errors import UserError
 from chainfountain.headless import files
-from chainfountain.headless.scene import SceneRun, describe_scene, run_scene
-from chainfountain.headless.stepping import Ending, _signals_deferred, simulate
+from chainfountain.headless.scene import _write, describe_scene, run_scene
+from chainfountain.headless.stepper import SceneRun, Stepper, simulate
+from chainfountain.headless.stepping import Ending, _signals_deferred
 from chainfountain.headless.summary import _attempt, _f, json_safe, model_error, summarize
 from chainfountain.level.io import Level
 from chainfountain.sim.recorder import Recorder
@@ -54,6 +55,37 @@ def default_duration(level: Level) -> float:
     if sim.kind == "feed" and sim.initial.mode == "stub":
         return FORMING_DURATION if sim.feed.drive == "motor" else MACHINE_FORMING_DURATION
     return DEFAULT_DURATION
+
+
+def check_run(level: Level, duration: float | None = None, seed: int | None = None, *,
+              where: str = "", names: tuple[str, str] = ("duration", "seed")) -> float:
+    """Check a run's options against ``level`` before anything is written, as the command
+    line and the Python API both do; returns the duration the run takes (``None``: the
+    level's default). :class:`~chainfountain.errors.UserError` naming the option
+    (``names``: how the caller calls them, e.g. ``--duration``), or
+    :class:`~chainfountain.level.model.LevelError` naming the field, in one line."""
+    from chainfountain.level.model import LevelError
+    from chainfountain.options import DURATION, SEED
+
+    d = default_duration(level) if duration is None else DURATION.check(duration, names[0])
+    if seed is not None:
+        SEED.check(seed, names[1])
+        if level.sim.kind == "scene" and level.sim.scene.jitter == 0:
+            raise UserError(
+                f"{names[1]}: {seed} has no effect on {level.meta.name!r} (its scene.jitter is "
+                "0: no random angles to seed); allowed: only with a scene whose scene.jitter "
+                "is above 0")
+    interval = level.sim.recording.sample_interval
+    if interval > d:
+        at = f"{where}: " if where else f"{level.meta.name}: "
+        if duration is None:
+            raise LevelError(f"{at}recording.sample_interval: {interval:g} s is longer than "
+                             f"the run ({d:g} s), which would record nothing; allowed: at "
+                             "most the run's duration")
+        raise LevelError(f"{names[0]}: {d:g} s is shorter than {at}recording.sample_interval "
+                         f"({interval:g} s), so the run would record nothing; allowed: a "
+                         f"duration of at least {interval:g} s")
+    return d
 
 
 def default_out_dir(level: Level) -> Path:
@@ -131,6 +163,21 @@ def run_and_record(level: Level, out_dir: Path, duration: float | None = None, *
         path = _write_outputs(level, out_dir, duration, sim, rec, wall, ended, error_bars,
                               snapshot)
     return path, rec
+
+
+def write_outputs(run: Stepper, out_dir: Path, duration: float | None = None, *,
+                  error_bars: dict | None = None, snapshot: bool = True) -> Path:
+    """Write a :class:`~chainfountain.headless.stepper.Stepper`'s run into ``out_dir`` as
+    ``chainfountain run`` does (the folder is made and checked first); returns
+    ``summary.json``. ``duration``: the seconds asked for (default: the time run). A
+    signal while writing is noted, not obeyed."""
+    asked = run.time if duration is None else float(duration)
+    out_dir = prepare_out_dir(Path(out_dir))
+    with _signals_deferred([]):
+        if run.kind == "scene":
+            return _write(run.level, out_dir, asked, run.scene_run(), snapshot)
+        return _write_outputs(run.level, out_dir, asked, run.sim, run.recorder, run.wall,
+                              run.ended, error_bars, snapshot)
 
 
 def _write_outputs(level: Level, out_dir: Path, duration: float, sim: Simulation,

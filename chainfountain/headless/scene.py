@@ -5,10 +5,7 @@ time)."""
 
 from __future__ import annotations
 
-import dataclasses
 import io as _io
-import signal
-import time
 from pathlib import Path
 from typing import Any
 
@@ -16,35 +13,17 @@ import numpy as np
 
 from chainfountain import atomic
 from chainfountain.headless import files, scene_compare
+from chainfountain.headless.stepper import SceneRun, Stepper
 from chainfountain.headless.stepping import (
-    MAX_SAMPLES,
-    Ending,
-    Interrupted,
     _progress,
     _signals_deferred,
     _signals_raise,
 )
 from chainfountain.headless.summary import _attempt, _f
 from chainfountain.level.model import Level
-from chainfountain.sim.probe_log import ProbeLog
-from chainfountain.sim.scene_sim import SceneSimulation
 
 SHAPES = 6
 """Chain shapes kept for the picture, evenly over the run."""
-
-
-@dataclasses.dataclass
-class SceneRun:
-    """What stepping a scene gave: the simulation, its probes' series, the chain at the
-    start and at a few moments, the wall time and why it ended early (or ``None``)."""
-
-    sim: SceneSimulation
-    log: ProbeLog
-    start: np.ndarray
-    shapes: list[tuple[float, np.ndarray]]
-    interval: float
-    wall: float
-    ended: Ending | None
 
 
 def simulate_scene(level: Level, duration: float, *, seed: int | None = None,
@@ -52,42 +31,14 @@ def simulate_scene(level: Level, duration: float, *, seed: int | None = None,
     """Build the scene and step it for ``duration`` simulated seconds, sampling every
     ``recording.sample_interval``, or less often to keep at most
     :data:`~chainfountain.headless.stepping.MAX_SAMPLES` per probe (``summary.json``
-    gives the interval used)."""
-    cfg = level.sim
-    if seed is not None:
-        cfg = dataclasses.replace(cfg, scene=dataclasses.replace(cfg.scene, seed=int(seed)))
-    sim = SceneSimulation(cfg)
-    start = sim.scene.points()
-    n_steps = int(round(duration / sim.dt))
-    every = max(1, int(round(max(cfg.recording.sample_interval, duration / MAX_SAMPLES)
-                             / sim.dt)))
-    log = ProbeLog(cfg.scene.probes + scene_compare.probes(cfg), n_steps // every + 1)
-    shape_at = set(np.linspace(0, n_steps, SHAPES).round().astype(int).tolist())
-    shapes = [(0.0, start)]
-    ended: Ending | None = None
-    t0 = time.perf_counter()
+    gives the interval used), keeping the chain's shape at :data:`SHAPES` moments
+    (:class:`~chainfountain.headless.stepper.Stepper`)."""
+    run = Stepper(level, seed=seed, duration=duration)
+    n_steps = int(round(duration / run.dt))
+    run.shape_at = set(np.linspace(0, n_steps, SHAPES).round().astype(int).tolist())
     with _progress(duration, progress, level.meta.name) as bar, _signals_raise():
-        try:
-            for k in range(1, n_steps + 1):
-                sim.step()
-                if k % every == 0:
-                    sim.end_sample()
-                    log.sample(sim)
-                    if not sim.finite():
-                        ended = Ending("diverged", f"the chain blew up at t = {sim.time:.3f} s "
-                                       "(a link end is not a finite number); try a smaller "
-                                       "solver.dt or more solver.substeps")
-                        break
-                if k in shape_at:
-                    shapes.append((sim.time, sim.scene.points()))
-                if k % 200 == 0:
-                    bar.update(200 * sim.dt)
-        except (Interrupted, KeyboardInterrupt) as exc:
-            signum = exc.signum if isinstance(exc, Interrupted) else signal.SIGINT
-            ended = Ending("interrupted", f"interrupted by {signal.Signals(signum).name} at "
-                           f"t = {sim.time:.3f} s", signum)
-    return SceneRun(sim=sim, log=log, start=start, shapes=shapes,
-                    interval=every * sim.dt, wall=time.perf_counter() - t0, ended=ended)
+        run.advance(duration, bar)
+    return run.scene_run()
 
 
 def run_scene(level: Level, out_dir: Path, duration: float, *, seed: int | None = None,

@@ -1,9 +1,9 @@
-"""Stepping a level headless: progress display, signals, the run loop (:func:`simulate`)."""
+"""Stepping a level headless: progress display, signals and why a run ended (the run loop
+is :mod:`chainfountain.headless.stepper`)."""
 
 from __future__ import annotations
 
 import contextlib
-import dataclasses
 import math
 import signal
 import sys
@@ -11,11 +11,6 @@ import threading
 import time
 from collections.abc import Iterator
 from dataclasses import dataclass
-
-from chainfountain.errors import RunEnded
-from chainfountain.level.io import Level
-from chainfountain.sim.recorder import Recorder
-from chainfountain.sim.world import Simulation
 
 MAX_PROFILES = 2000
 """Per-link profiles kept in memory by a headless run (thinned evenly beyond; 40 s at 50 Hz)."""
@@ -120,46 +115,3 @@ def _signals_deferred(received: list[int]) -> Iterator[None]:
     finally:
         for sig, h in old.items():
             signal.signal(sig, h)
-
-
-def simulate(level: Level, duration: float, *, seed: int | None = None,
-             progress: bool = True) -> tuple[Simulation, Recorder, float, Ending | None]:
-    """Build and run a level for ``duration`` simulated seconds.
-
-    Returns sim, recorder, wall seconds and why the run ended early (a
-    :class:`~chainfountain.errors.RunEnded`: a table used up, the fold collapsed, the
-    watchdog; or SIGINT/SIGTERM), or None if it ran for the whole ``duration``."""
-    from chainfountain.sim.watchdog import Diverged
-
-    sim_cfg = level.sim
-    if seed is not None:
-        sim_cfg = dataclasses.replace(
-            sim_cfg, initial=dataclasses.replace(sim_cfg.initial, seed=int(seed)))
-    sim = Simulation(sim_cfg)
-    rec = Recorder(sim, max_profiles=MAX_PROFILES, max_samples=MAX_SAMPLES)
-    n_steps = int(round(duration / sim.dt))
-    chunk = max(1, int(round(0.05 / sim.dt)))
-    t0 = time.perf_counter()
-    ended: Ending | None = None
-    with _progress(duration, progress, level.meta.name) as bar, _signals_raise():
-        done = 0
-        step = sim.step
-        try:
-            while done < n_steps:
-                m = min(chunk, n_steps - done)
-                for _ in range(m):
-                    step()
-                done += m
-                bar.update(m * sim.dt)
-                if done % (20 * chunk) < chunk:  # analyse as we go: raw states are large
-                    rec.samples  # noqa: B018 - property access processes the raw samples
-        except Diverged as exc:
-            ended = Ending("diverged", str(exc))
-        except RunEnded as exc:
-            ended = Ending("machine", str(exc))
-        except (Interrupted, KeyboardInterrupt) as exc:
-            signum = exc.signum if isinstance(exc, Interrupted) else signal.SIGINT
-            ended = Ending("interrupted", f"interrupted by {signal.Signals(signum).name} at "
-                           f"t = {sim.time:.3f} s", signum)
-    wall = time.perf_counter() - t0
-    return sim, rec, wall, ended

@@ -91,6 +91,20 @@ def _convert_scalar(value: Any, tp: Any, meta: dict[str, Any], where: str, field
     raise TypeError(f"unsupported field type {tp!r} for {field}")  # programming error
 
 
+def _allowed_for(tp: Any, meta: dict[str, Any]) -> str:
+    """What a field of type ``tp`` allows (a text field: a text string, not a number)."""
+    if meta.get("choices"):
+        return allowed_text(meta)
+    if tp is str:
+        return "a text string"
+    if tp is bool:
+        return "true or false"
+    if tp is int:
+        return "a whole number" + (f", {allowed_text(meta)}" if meta.get("min") is not None
+                                   or meta.get("max") is not None else "")
+    return allowed_text(meta)
+
+
 def from_mapping(cls: type, data: Any, where: str, prefix: str = "", skip: frozenset = frozenset()):
     """Build dataclass ``cls`` from a TOML table, validating every field."""
     label = prefix.rstrip(".") or "top level"
@@ -112,7 +126,7 @@ def from_mapping(cls: type, data: Any, where: str, prefix: str = "", skip: froze
             if f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING:
                 meta = dict(f.metadata)
                 _fail(where, path, "missing; required"
-                      + (f", {allowed_text(meta)}" if meta else ""))
+                      + (f", {_allowed_for(tp, meta)}" if meta else ""))
             continue
         value = data[name]
         item_tp = tuple_item_type(tp)
@@ -165,7 +179,7 @@ def shown_path(path: str | Path) -> str:
 def _parse_toml(text: str, where: str) -> dict[str, Any]:
     """The TOML document in ``text``; :class:`LevelError` (one line) when it is not one."""
     try:
-        return tomllib.loads(text)
+        return tomllib.loads(text.removeprefix("\ufeff"))  # a byte-order mark: no content
     except ValueError as exc:  # TOMLDecodeError, and an integer of more than 4300 digits
         raise LevelError(f"{where}: not valid TOML ({exc})") from None
     except RecursionError:
@@ -188,7 +202,7 @@ def load(path: str | Path) -> Level:
     except ValueError as exc:  # a NUL byte in the name
         raise LevelError(f"{where}: cannot read ({exc})") from None
     try:
-        text = raw.decode("utf-8")
+        text = raw.decode("utf-8-sig")  # a byte-order mark (Windows editors) is no content
     except UnicodeDecodeError:
         raise LevelError(f"{where}: not a UTF-8 text file") from None
     return parse_level(_parse_toml(text, where), where)

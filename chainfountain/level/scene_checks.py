@@ -216,9 +216,14 @@ def _check_probes(sc: SceneConfig, n: int, where: str) -> None:
         if probe.kind == "tension" and any(q > p for q in pinned):
             # the tension is the momentum balance of the links from the last point to p:
             # a pin among them would add a force it does not see
+            last = max(pinned)
+            allowed = (f"a point beyond the last pin, {last + 1} .. {n - 1}" if last + 1 <= n - 1
+                       else f"none while point {last}, the chain's end, is pinned: no interior "
+                       "point lies beyond it; read that pin's force with a 'pin_force' probe, "
+                       "or pin another point")
             _fail(where, f"{at}.point", f"{probe.point} has a pinned point beyond it (toward "
-                  f"point {n}), which the tension's momentum balance cannot see; allowed: a "
-                  f"point beyond the last pin, {max(pinned) + 1} .. {n - 1}")
+                  f"point {n}), which the tension's momentum balance cannot see; allowed: "
+                  + allowed)
         if probe.kind == "pin_force" and p not in pinned:
             _fail(where, f"{at}.point", f"{probe.point} is not pinned; allowed: a point of "
                   "scene.pins (" + (", ".join(str(x) for x in sorted(pinned)) or "none") + ")")

@@ -2,51 +2,22 @@
 
 from __future__ import annotations
 
-import re
-import tomllib
 from collections.abc import Mapping
 from typing import Any
 
-from chainfountain.level import io
-from chainfountain.level.model import Level, LevelError
-
-_PATH = re.compile(r"^(?:[a-z_]+)(?:\.[a-z_0-9]+|\[\d+\]\.[a-z_0-9]+)?$")
+from chainfountain.level import paths
+from chainfountain.level.model import Level
 
 
 def with_changes(level: Level, changes: Mapping[str, Any], where: str = "change") -> Level:
-    """``level`` with each dotted field of ``changes`` set (``"feed.speed"``, ``"gravity"``,
-    ``"carts[0].mass"``, ``"meta.name"``), checked as a level file is: a field that does not
-    exist, a value out of its range, or a combination the loader refuses raises
+    """``level`` with each field of ``changes`` set (``"feed.speed"``, ``"gravity"``,
+    ``"carts[0].mass"``, ``"scene.pins[0].release"``, ``"meta.name"``: any path of
+    :mod:`chainfountain.level.paths`), checked as a level file is: a field that does not
+    exist, a value of another type or out of its range, an index beyond an array's end,
+    or a combination the loader refuses raises
     :class:`~chainfountain.level.model.LevelError` naming the field. The result is a new
     level (``solver.accuracy`` applied again); ``level`` is untouched."""
-    data = tomllib.loads(io.dumps(level))
-    for path, value in changes.items():
-        if not isinstance(path, str) or not _PATH.match(path):
-            raise LevelError(f"{where}: {path!r} is not a field path; allowed: a dotted path "
-                             "as in docs/levels.md, e.g. 'feed.speed' or 'carts[0].mass'")
-        _set(data, path, value, where)
-    return io.parse_level(data, where)
-
-
-def _set(data: dict[str, Any], path: str, value: Any, where: str) -> None:
-    head, _, rest = path.partition(".")
-    m = re.match(r"^([a-z_]+)\[(\d+)\]$", head)
-    if m:
-        items = data.get(m.group(1))
-        i = int(m.group(2))
-        if not isinstance(items, list) or i >= len(items):
-            n = len(items) if isinstance(items, list) else 0
-            raise LevelError(f"{where}: {path}: the level has {n} {m.group(1)}; allowed: an "
-                             f"index below {n}")
-        items[i][rest] = value
-    elif rest:
-        table = data.setdefault(head, {})
-        if not isinstance(table, dict):
-            raise LevelError(f"{where}: {path}: {head!r} is not a table; allowed: a field "
-                             "path as in docs/levels.md")
-        table[rest] = value
-    else:
-        data[head] = value
+    return paths.changed(level, changes, where)
 
 
 def laid_on_path(level: Level) -> Level:
