@@ -29,6 +29,7 @@ import pygame_gui
 from pygame_gui.elements import UIButton, UILabel, UIScrollingContainer, UITextEntryLine, UIWindow
 
 from chainfountain.app import layout, panel, paths, spans, text
+from chainfountain.app.camera import Camera
 from chainfountain.app.capture import BackgroundSaver, ClipRecorder, mp4_available, timestamp
 from chainfountain.app.capture import unique_path as _unique
 from chainfountain.app.controls import control_fields, spec_for, student_paths
@@ -127,7 +128,8 @@ class App(InputMixin, DrawMixin):
         self.show_panel = True
         """The panel beside the scene (Tab hides it: the scene fills the window)."""
         self.show_plots = False
-        """The graphs under the scene (V); on in the expert view."""
+        """The graphs under the scene (V); the expert view turns them on."""
+        self._plots_before = False
         self.projector = projector
         self.frame = 0
         self.draw_time = 0.004
@@ -164,6 +166,7 @@ class App(InputMixin, DrawMixin):
         """When a first Esc asked to quit (a second within :data:`QUIT_WINDOW` quits)."""
         self.came_from: list[tuple[Level, Path | None, Level, bool]] = []
         """The levels M left for their twin (M on the twin goes back)."""
+        self.camera: Camera | None = None
         self.scene_view = SceneView()
         self.timebar = TimeBar()
         self.ruler = Ruler()
@@ -179,14 +182,11 @@ class App(InputMixin, DrawMixin):
             self.toggle_clip()
             self.session.say("the window changed size: the clip is finished (G starts another)")
         text.set_text_scale(layout.text_scale(self.size, self.projector))
-        plots = self.show_plots or self.expert
-        self.lay = layout.compute(self.size, text.text_scale(), self.show_panel, plots)
+        self.lay = layout.compute(self.size, text.text_scale(), self.show_panel,
+                                  self.show_plots)
         self.scene_rect = self.lay.scene
         self.ui = pygame_gui.UIManager(self.size, panel.gui_theme(text.text_scale()))
-        self.camera = getattr(self, "camera", None)
         if self.camera is None:
-            from chainfountain.app.camera import Camera
-
             self.camera = Camera(self.scene_rect)
         self.camera.rect = self.scene_rect
         self.timebar.place(self.scene_rect)
@@ -295,7 +295,7 @@ class App(InputMixin, DrawMixin):
                                      self.expert)
         for row in self.rows:
             self._show_value(row)
-        for key, on in (("plots", self.show_plots or self.expert), ("expert", self.expert)):
+        for key, on in (("plots", self.show_plots), ("expert", self.expert)):
             b = self.buttons.get(key)
             if b is not None:
                 (b.select if on else b.unselect)()
@@ -367,6 +367,10 @@ class App(InputMixin, DrawMixin):
         """The expert view (every field, the paper's symbols, the graphs) or the student
         view (the level's sliders, plain words)."""
         self.expert = not self.expert
+        if self.expert:  # the expert view shows the graphs; leaving it restores them
+            self._plots_before, self.show_plots = self.show_plots, True
+        else:
+            self.show_plots = self._plots_before
         self.relayout()
         self.session.say("expert view: every field and the paper's symbols (E: student view)"
                          if self.expert else "student view: plain words (E: expert view)")
@@ -379,9 +383,8 @@ class App(InputMixin, DrawMixin):
                          else "panel shown")
 
     def toggle_plots(self) -> None:
-        self.show_plots = not (self.show_plots or self.expert)
-        if self.expert and not self.show_plots:
-            self.expert = False  # the expert view shows the graphs: leave it
+        """The graphs under the scene on or off (V), in either view."""
+        self.show_plots = not self.show_plots
         self.relayout()
 
     def toggle_ruler(self) -> None:
