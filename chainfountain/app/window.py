@@ -56,6 +56,8 @@ MIN_FPS = 30
 HEADROOM = 0.9
 """Share of one core the window's own work (the physics of real time and the drawing of
 every frame) may take before it draws fewer frames (:meth:`App.target_fps`)."""
+DRAW_SHARE = 1.0 / 3.0
+"""The most of a frame the drawing may take (:meth:`App.target_fps`)."""
 FOLLOW_EVERY = 30
 """Frames between checks that the view still shows the fountain (0.5 s at 60 frames/s)."""
 REBUILD_DELAY = 0.35
@@ -718,13 +720,17 @@ class App(InputMixin, DrawMixin):
 
     def target_fps(self) -> float:
         """The frame rate to aim for: :attr:`fps` while the physics leaves room, fewer
-        frames (down to :data:`MIN_FPS`) when the physics of real time and the drawing
-        of every frame would take more than :data:`HEADROOM` of the core."""
+        frames (down to :data:`MIN_FPS`) when the physics of real time and the drawing of
+        every frame would take more than :data:`HEADROOM` of the core, and never so many
+        that drawing takes more than :data:`DRAW_SHARE` of a frame (fewer frames are the
+        first way the window draws less before the physics falls behind)."""
         s = self.session
         if s.paused or self.offscreen:
             return float(self.fps)
         spare = HEADROOM - self.physics_cost * s.speed_factor
-        return max(float(MIN_FPS), min(float(self.fps), spare / max(self.overhead, 1e-4)))
+        by_physics = spare / max(self.overhead, 1e-4)
+        by_drawing = DRAW_SHARE / max(self.draw_time, 1e-4)
+        return max(float(MIN_FPS), min(float(self.fps), by_physics, by_drawing))
 
     def _physics_during_flip(self, wall_dt: float) -> None:
         """Run :meth:`physics` while the drawn frame goes to the screen (the copy waits on

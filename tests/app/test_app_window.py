@@ -673,13 +673,16 @@ def test_a_window_draws_fewer_frames_when_its_physics_needs_the_core(tmp_path, m
         for _ in range(5):
             a.run_frame(1.0 / 60.0)
         assert a.physics_cost > 0.0
-        a.overhead = 0.005
+        a.overhead, a.draw_time = 0.005, 0.004
         a.physics_cost = 0.2
         assert a.target_fps() == 60.0
         a.physics_cost = HEADROOM - 40 * 0.005
         assert a.target_fps() == pytest.approx(40.0)
         a.physics_cost = 0.95
         assert a.target_fps() == MIN_FPS
+        # and never so many frames that drawing takes more than a third of each
+        a.physics_cost, a.draw_time = 0.2, 0.008
+        assert a.target_fps() == pytest.approx(1.0 / (3 * 0.008))
         a.session.paused = True
         assert a.target_fps() == 60.0
     finally:
