@@ -44,13 +44,14 @@ def demo_levels() -> list[str]:
 
 
 def _window_id(timeout: float = 20.0) -> str:
+    """The window's X id, read off ``xwininfo -root -tree`` (the title is "chainfountain";
+    with no window manager ``xdotool search --name`` finds nothing)."""
     t0 = time.monotonic()
     while time.monotonic() - t0 < timeout:
-        r = subprocess.run(["xdotool", "search", "--name", "chainfountain"],
-                           capture_output=True, text=True)
-        ids = r.stdout.split()
-        if ids:
-            return ids[-1]
+        r = subprocess.run(["xwininfo", "-root", "-tree"], capture_output=True, text=True)
+        for line in r.stdout.splitlines():
+            if '"chainfountain"' in line:
+                return line.split()[0]
         time.sleep(0.3)
     raise RuntimeError("no chainfountain window appeared")
 
@@ -64,9 +65,11 @@ def _shot(path: Path) -> None:
 
 
 def _key(win: str, name: str) -> None:
-    subprocess.run(["xdotool", "windowactivate", "--sync", win], check=False,
+    """Press a key in the window as a person does (the focus on it, then XTEST; a key sent
+    to a window with ``--window`` is a synthetic event SDL ignores)."""
+    subprocess.run(["xdotool", "windowfocus", "--sync", win], check=False,
                    capture_output=True)
-    subprocess.run(["xdotool", "key", "--window", win, name], check=True)
+    subprocess.run(["xdotool", "key", name], check=True)
 
 
 def window(seconds: float) -> None:
@@ -154,23 +157,52 @@ def shrink(src: Path, dst: Path, scale: float) -> None:
 
 
 OFFSCREEN = (
-    ("ideal_fold", 600, "ideal_fold_window.png"),
-    ("ideal_special", 720, "ideal_special_window.png"),
-    ("apparatus_special", 240, "apparatus_special_window.png"),
-    ("ideal_open", 840, "ideal_open_window.png"),
-    ("apparatus_fold_gripped", 612, "apparatus_fold_gripped_window.png"),
+    # level, seconds, file, window size, expert view, (at s, field, value) or None
+    ("ideal_fold", 10.0, "ideal_fold_window.png", (1280, 760), True, None),
+    ("ideal_special", 12.0, "ideal_special_window.png", (1280, 760), True, None),
+    ("apparatus_special", 4.0, "apparatus_special_window.png", (1280, 760), True, None),
+    ("ideal_open", 14.0, "ideal_open_window.png", (1280, 760), True, None),
+    ("apparatus_fold_gripped", 10.2, "apparatus_fold_gripped_window.png", (1280, 760), True,
+     None),
+    ("apparatus_fold_gripped", 15.0, "apparatus_fold_gripped_follow.png", (1280, 760), True,
+     (3.0, "carts[0].mass", 0.027)),
+    ("beaker", 13.0, "beaker_window.png", (1280, 800), False, None),
+    ("apparatus_fountain_d_kmax", 1.03, "apparatus_fountain_d_kmax_window.png", (1280, 760),
+     False, None),
+    ("apparatus_fountain_d", 1.03, "apparatus_fountain_d_window.png", (1280, 760), False,
+     None),
 )
-"""docs/apparatus.md's pictures: level, frames (1/60 s each), file."""
+"""The docs' off-screen pictures of the window (docs/apparatus.md, docs/beaker.md): each
+frame 1/60 s of simulated time, so the same picture every time."""
 
 
 def offscreen() -> None:
-    """docs/apparatus.md's pictures, rendered off-screen at the times of their captions."""
+    """The docs' pictures, rendered off-screen at the times of their captions."""
+    os.environ["SDL_VIDEODRIVER"] = "dummy"
+    import pygame
+
+    from chainfountain.app.session import Session
+    from chainfountain.app.window import App
+    from chainfountain.level import io, library
+
     img = ROOT / "docs" / "img"
-    for name, frames, file in OFFSCREEN:
-        subprocess.run(CLI + ["play", name, "--frames", str(frames), "--screenshot",
-                              str(img / file)], check=True, cwd=ROOT,
-                       env=dict(os.environ, SDL_VIDEODRIVER="dummy"))
-        print(f"{file}: {frames / 60:.2f} s")
+    for name, seconds, file, size, expert, change in OFFSCREEN:
+        app = App(Session(io.load(library.resolve(name))), size=size, offscreen=True)
+        try:
+            if expert:
+                app.toggle_expert()
+            while app.session.sim.time < seconds - 1e-9:
+                if change is not None and app.session.sim.time >= change[0]:
+                    app.set_field(change[1], change[2])
+                    change = None
+                app.run_frame()
+            app.session.messages.clear()
+            app._plot_cache = app._ro = None
+            app.draw()
+            pygame.image.save(app.screen, str(img / file))
+        finally:
+            app.finish()
+        print(f"{file}: {app.session.sim.time:.2f} s")
     from_rest(img / "apparatus_fold_gripped_from_rest.png")
 
 
@@ -190,8 +222,10 @@ def from_rest(path: Path) -> None:
         for t in (0.77, 2.3, 12.0):
             while app.session.sim.time < t - 1e-9:
                 app.run_frame()
+            app._still_rect = app.scene_rect  # the scene as pictures take it: no overlays
             app.draw()
-            parts.append(app.screen.subsurface(app.scene_rect).copy())
+            app._still_rect = None
+            parts.append(app._still)
     finally:
         app.finish()
     w, h = parts[0].get_size()

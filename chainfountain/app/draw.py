@@ -34,6 +34,8 @@ STOP_ROWS = 12
 TOOLS = (("ruler", "ruler (U)"), ("stopwatch", "stopwatch (W)"))
 
 
+EXTRA_LINES = 3
+"""Lines the expert readout gives each of the machine's prediction and the note."""
 TITLE_LINES = 2
 """Lines the panel keeps for the level's title."""
 
@@ -351,10 +353,12 @@ class DrawMixin:
         if self.expert:
             width = self.readout_rect.w - px(16)
             f = font(18)
-            if ro.machine:
-                rows += [Row(part) for part in text.wrap(f, ro.machine, width)[:2]]
-            if ro.note:
-                rows += [Row(part, "dim") for part in text.wrap(f, ro.note, width)[:2]]
+            for line, colour in ((ro.machine, "text"), (ro.note, "dim")):
+                parts = text.wrap(f, line, width) if line else []
+                if len(parts) > EXTRA_LINES:  # the rest of the sentence: cut, never dropped
+                    parts = [*parts[:EXTRA_LINES - 1],
+                             text.fit_text(f, " ".join(parts[EXTRA_LINES - 1:]), width)]
+                rows += [Row(part, colour) for part in parts]
         self._draw_rows(rows, self.readout_rect)
 
     def _draw_rows(self, rows: list[Row], rect: pygame.Rect) -> int:

@@ -487,7 +487,7 @@ class MachineView:
         self.wheel(surf, cam, "upper", *up.roller, IDEAL_ROLLER, -self._travelled / R, out)
         rp = max(px(7), int(round(IDEAL_ROLLER * cam.scale)))
         box = self.cart(surf, cam, up.roller, rp, -1.0, math.radians(30.0),
-                        f.cart_force / (g * 0.5), f"{f.cart_force:.3g} N", out)
+                        f.cart_force / (g * 0.5), f"{f.cart_force:.2g} N", out)
         mid = up.channel[len(up.channel) // 2]
         out.labels += [
             PartLabel("pickup", "pick-up roller (ideal)" if not expert else
@@ -523,7 +523,7 @@ class MachineView:
         self.paths += [lo.moving, lo.resting]
         self.wheel(surf, cam, "lower", *lo.roller, IDEAL_ROLLER, -self._travelled / R, out)
         box = self.cart(surf, cam, lo.roller, rp, 1.0, math.radians(30.0),
-                        f.lower_cart_force / (g * 0.5), f"{f.lower_cart_force:.3g} N", out)
+                        f.lower_cart_force / (g * 0.5), f"{f.lower_cart_force:.2g} N", out)
         rise = f.xi3 * H
         out.labels += [
             PartLabel("fold", "folding roller (ideal)" if not expert else
@@ -559,10 +559,12 @@ class MachineView:
             chain_view.draw_along(surf, cam, shown, slid, sim.chain.L, every, width)
             self.paths.append(shown)
         d = sim.config.feed.turn_drop
+        moving = float(sim.slide_away.mass)
+        x_turn = float(path[0, 0]) + 0.25  # on the plate, just past the turn
         out.labels.append(PartLabel(
-            "plate_lo", "plate: the chain slides away" if not expert else
-            f"turn {d:g} m down, frictionless plate: Tbar_E = k d", float(path[-1, 0]) - 0.3,
-            float(path[-1, 1]), "below"))
+            "plate_lo", f"plate: the chain slides away ({moving:.1f} kg moving)"
+            if not expert else f"turn {d:g} m down, frictionless plate: Tbar_E = k d "
+            f"({moving:.2f} kg moving)", x_turn, float(path[-1, 1]), "below"))
 
 
 @dataclass(frozen=True)

@@ -245,7 +245,9 @@ class App(InputMixin, DrawMixin):
         f = readout_font(self.expert)
         room = width - text.px(16) - (text.px(60) if self.expert else 0)
         lines = sum(len(text.wrap(f, r.text, room)) for r in rows)
-        return lines + (4 if self.expert else 0)
+        from chainfountain.app.draw import EXTRA_LINES
+
+        return lines + (2 * EXTRA_LINES if self.expert else 0)
 
     def _build_panel(self) -> None:
         self.buttons: dict[str, UIButton] = {}
