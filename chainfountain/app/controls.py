@@ -105,6 +105,7 @@ STUDENT_LABELS: dict[str, str] = {
     "apparatus.bearing_drag": "friction in the bearings",
     "apparatus.fold_brake": "folding roller's brake",
     "apparatus.swing_damper": "swing damper",
+    "apparatus.floor_depth": "floor below the end",
     "feed.turn_drop": "drop onto the plate",
     "chain.friction": "chain's friction",
     "chain.bending_stiffness": "chain's stiffness",
