@@ -247,12 +247,6 @@ class MachineView:
             if len(wall) >= 2:
                 pygame.draw.lines(surf, GUIDE, False, wall.tolist(), max(2, px(2)))
 
-    def segments(self, surf: pygame.Surface, cam: Camera, segs, colour, width: int) -> None:
-        """Static segments of the model (walls, plates) as lines."""
-        for s in segs:
-            pygame.draw.line(surf, colour, cam.point(float(s.a.x), float(s.a.y)),
-                             cam.point(float(s.b.x), float(s.b.y)), width)
-
     def cart(self, surf: pygame.Surface, cam: Camera, carriage: tuple[float, float],
              roller_px: int, direction: float, incline: float, size: float,
              writing: str, out: Drawn) -> pygame.Rect:

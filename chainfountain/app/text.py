@@ -11,7 +11,6 @@ does not fit its box is recorded there.
 from __future__ import annotations
 
 from collections import OrderedDict
-from collections.abc import Sequence
 
 import pygame
 
@@ -134,16 +133,3 @@ def blit_in(surf: pygame.Surface, img: pygame.Surface, pos: tuple[int, int],
         if not box.contains(drawn):
             OVERFLOWS.append((what, tuple(drawn), tuple(box)))
     return r
-
-
-def text_block(surf: pygame.Surface, pos: tuple[int, int],
-               lines: Sequence[tuple[str, tuple]], size: int = 18,
-               line_h: int | None = None) -> int:
-    """Draw lines of text; returns the y below the last line."""
-    f = font(size)
-    x, y = pos
-    lh = line_h or int(size * 0.95)
-    for txt, col in lines:
-        surf.blit(text(f, txt, True, col), (x, y))
-        y += lh
-    return y
