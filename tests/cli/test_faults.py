@@ -184,3 +184,18 @@ def test_a_signal_leaves_complete_outputs_of_the_part_run(tmp_path, sig, status)
 def test_library_resolves_every_shipped_level():
     for p in sorted(LEVELS.glob("*.toml")):
         assert library.resolve(p.stem) is not None
+
+
+def test_a_reader_that_goes_away_ends_the_listing_quietly(tmp_path):
+    """``chainfountain levels | head -1``: the pipe closes under the listing; the command
+    stops without a traceback, as a Unix tool does."""
+    import subprocess
+    import sys
+
+    proc = subprocess.Popen([sys.executable, "-c", "from chainfountain.cli import "
+                             "console_main; console_main()", "levels"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, cwd=tmp_path)
+    proc.stdout.close()  # gone before the first line (the import takes a while)
+    err = proc.stderr.read().decode()
+    assert proc.wait(timeout=60) == 0
+    assert "Traceback" not in err and "BrokenPipe" not in err
