@@ -182,7 +182,7 @@ class DrawMixin:
 
     def _draw_about(self, box: pygame.Rect, title: str, rows: list[str]) -> None:
         scr = self.screen
-        scr.blit(shade(box.size, (10, 12, 18), 225), box.topleft)
+        scr.fill(pal.CARD, box)  # opaque: a translucent card costs a blit of its size
         pygame.draw.rect(scr, pal.DIM, box, 1, px(6))
         ft, f = font(21, bold=True), font(19)
         y = box.y + px(8)
@@ -291,8 +291,7 @@ class DrawMixin:
         box = rect.inflate(-px(8), 0)
         for m in rows:
             img = text.text(small, text.fit_text(small, m, width), True, pal.TEXT)
-            self.screen.blit(shade((img.get_width() + px(10), lh), (0, 0, 0), 170),
-                             (rect.x + px(8), y))
+            self.screen.fill(pal.CARD, (rect.x + px(8), y, img.get_width() + px(10), lh))
             blit_in(self.screen, img, (rect.x + px(13), y), box, m)
             y += lh
 
@@ -308,7 +307,7 @@ class DrawMixin:
         y0 = self.scene_rect.y + px(40) + (self.stopwatch.rect.h + px(8)
                                            if self.stopwatch.on else 0)
         box = pygame.Rect(self.scene_rect.right - w - px(10), y0, w, h)
-        self.screen.blit(shade(box.size, (8, 10, 14), 200), box.topleft)
+        self.screen.fill(pal.CARD, box)
         y = box.y + px(8)
         for r in rows:
             img = text.text(f, text.fit_text(f, r.text, w - px(20)), True, ROW_COLOURS[r.colour])

@@ -10,7 +10,11 @@ GRID = (30, 37, 49)
 TEXT = (226, 231, 240)
 DIM = (150, 160, 176)
 PANEL = (30, 36, 48)
-"""Panel and card backgrounds."""
+"""Panel backgrounds."""
+CARD = (10, 12, 18)
+"""The card's, the messages' and the big readout's backing over the scene."""
+LABEL_BG = (6, 8, 12)
+"""A label's backing."""
 CHAIN = (255, 168, 52)
 CHAIN_DARK = (150, 86, 18)
 """The joints between links and the chain's shading."""

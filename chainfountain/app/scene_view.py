@@ -14,9 +14,8 @@ from chainfountain.app import chain_view, labels
 from chainfountain.app.camera import Camera, nice_step
 from chainfountain.app.labels import LabelLayout, Placed, Request
 from chainfountain.app.machine_view import Drawn, MachineView, machine_bounds
-from chainfountain.app.palette import GRID, LABEL, SCENE_BG, TEXT, THEORY, VERTEX
+from chainfountain.app.palette import GRID, LABEL, LABEL_BG, SCENE_BG, TEXT, THEORY, VERTEX
 from chainfountain.app.readout import Readout
-from chainfountain.app.shade import shade
 from chainfountain.app.text import font, px, text
 
 DASH = (10, 7)
@@ -227,5 +226,5 @@ class SceneView:
         if math.hypot(end[0] - p.anchor[0], end[1] - p.anchor[1]) > px(5):
             pygame.draw.line(surf, colour, p.anchor, end, 1)
             pygame.draw.circle(surf, colour, p.anchor, max(2, px(2)))
-        surf.blit(shade(p.rect.size, (0, 0, 0), 150), p.rect.topleft)
+        surf.fill(LABEL_BG, p.rect)  # opaque: labels never lie over the chain anyway
         surf.blit(img, (p.rect.x + px(4), p.rect.y + px(2)))

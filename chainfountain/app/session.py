@@ -46,9 +46,10 @@ SLOW_FACTORS: tuple[float, ...] = (1.0, 0.5, 0.25)
 
 CATCH_UP = 0.1
 """Wall seconds of physics a window may fall behind and still make up in later frames."""
-APP_SAMPLE_INTERVAL = 0.02
-"""The app samples measurements at most this often (s): enough for the plots, and
-each sample costs two batch reads and a catenary fit."""
+APP_SAMPLE_INTERVAL = 0.04
+"""The app samples measurements at most this often (s): 25 a second are enough for the
+graphs (redrawn 15 times a second) and the readout (a 0.25-s mean), and each sample costs
+two batch reads and a catenary fit (a machine's also its sample's analysis, about 1 ms)."""
 
 
 def default_level() -> Level:
