@@ -116,14 +116,14 @@ def _draw_beads(surf: pygame.Surface, cam: Camera, f: np.ndarray, b: np.ndarray,
     link_px = float(np.median(np.hypot(*(f - b).T)))
     r = max(px(MIN_BEAD), min(int(0.42 * link_px), width))
     pts = np.vstack([f, b[-1:]]).tolist()
-    if len(pts) >= 2:
-        pygame.draw.lines(surf, HALO, False, pts, max(2, r) + px(3))
+    if len(pts) >= 2:  # the dark edge: one wide line under the beads, not a ring each
+        pygame.draw.lines(surf, HALO, False, pts, 2 * r + px(3))
         pygame.draw.lines(surf, CHAIN_DARK, False, pts, max(2, r // 2))
-    is_marked = np.zeros(len(f), dtype=bool)
-    is_marked[marked] = True
-    for (x, y), m in zip(f.tolist(), is_marked.tolist(), strict=True):
-        pygame.draw.circle(surf, HALO, (x, y), r + 1)
-        pygame.draw.circle(surf, MARK if m else CHAIN, (x, y), r)
+    circle = pygame.draw.circle
+    for x, y in f.tolist():
+        circle(surf, CHAIN, (x, y), r)
+    for x, y in f[marked].tolist():
+        circle(surf, MARK, (x, y), r)
 
 
 def draw_along(surf: pygame.Surface, cam: Camera, path: np.ndarray, travelled: float,

@@ -44,7 +44,7 @@ from chainfountain.sim.world import Simulation
 SLOW_FACTORS: tuple[float, ...] = (1.0, 0.5, 0.25)
 """Slow-motion cycle of the ``S`` key."""
 
-CATCH_UP = 0.1
+CATCH_UP = 0.25
 """Wall seconds of physics a window may fall behind and still make up in later frames."""
 APP_SAMPLE_INTERVAL = 0.04
 """The app samples measurements at most this often (s): 25 a second are enough for the

@@ -18,6 +18,7 @@ window's size.
 from __future__ import annotations
 
 import copy
+import gc
 import os
 import threading
 import time
@@ -174,8 +175,12 @@ class App(InputMixin, DrawMixin):
         self.ruler = Ruler()
         self.stopwatch = Stopwatch()
         self.rows: list[ControlRow] = []
+        self._events = 0
+        """Events the present frame handled (the whole window is copied to the screen)."""
+        self._gc_at = time.perf_counter()
         self._layout()
         self.fit_view()
+        settle_garbage()
 
     # ------------------------------------------------------------------ layout
     def _layout(self) -> None:
@@ -503,6 +508,7 @@ class App(InputMixin, DrawMixin):
         self.scene_view = SceneView()
         self._layout()
         self.fit_view()
+        settle_garbage()
 
     def open_twin(self) -> bool:
         """M: open the machine's twin in the other machine, or go back to the level M came
@@ -748,11 +754,36 @@ class App(InputMixin, DrawMixin):
         worker = threading.Thread(target=work, name="chainfountain-physics")
         worker.start()
         try:
-            pygame.display.flip()
+            self._present()
         finally:
             worker.join()
         if failure:
             raise failure[0]
+
+    def _present(self) -> None:
+        """Copy the frame to the screen: the whole window when the panel may have changed
+        (its readout is redrawn every :data:`~chainfountain.app.draw.PLOT_EVERY` frames, an
+        event may have moved a widget, a card may be over it), else only the scene (and the
+        graphs): under an X server that copies every pixel, a third fewer to copy."""
+        from chainfountain.app.draw import PLOT_EVERY
+
+        whole = (self._events or self.panel_rect is None or self.frame % PLOT_EVERY == 0
+                 or self.picker is not None or self.show_help or self.save_window is not None
+                 or self.quit_prompt is not None)
+        if whole:
+            pygame.display.flip()
+        elif self.plots_rect is not None:
+            pygame.display.update([self.scene_rect, self.plots_rect])
+        else:
+            pygame.display.update(self.scene_rect)
+
+    def collect(self) -> None:
+        """A full garbage collection every :data:`GC_EVERY` s of wall time, a second's
+        garbage at a time (a few ms), instead of Python's own every few seconds."""
+        now = time.perf_counter()
+        if now - self._gc_at >= GC_EVERY:
+            self._gc_at = now
+            gc.collect(2)
 
     def physics_budget(self) -> float:
         """Wall seconds the physics may use this frame: what is left of a frame at
@@ -763,10 +794,13 @@ class App(InputMixin, DrawMixin):
         """One frame: queued events, physics, drawing, clip capture, flip."""
         t0 = time.perf_counter()
         self.physics_time = 0.0
-        for ev in pygame.event.get():
+        events = pygame.event.get()
+        self._events = len(events)
+        for ev in events:
             self.handle(ev)
         self.update(wall_dt)
         self.draw()
+        self.collect()
         work = self.work_time = time.perf_counter() - t0 - self.physics_time
         if not self.offscreen:
             self._physics_during_flip(wall_dt)
@@ -816,6 +850,7 @@ class App(InputMixin, DrawMixin):
         for n in notes:
             print(f"chainfountain: {n}")
         pygame.display.quit()
+        restore_garbage()
         return notes
 
 
@@ -845,6 +880,32 @@ def twin_of(level: Level) -> tuple[Level, Path | None, str] | None:
     if twin is None:
         return None
     return twin, library.resolve(twin.meta.name), "the same arrangement with contact rollers"
+
+
+GC_THRESHOLDS = gc.get_threshold()
+"""Python's garbage-collection thresholds as the window found them."""
+GC_EVERY = 1.0
+"""Wall seconds between the window's own full garbage collections (:meth:`App.collect`)."""
+
+
+def settle_garbage() -> None:
+    """Collect once and freeze what is left (the level, the window's widgets and caches)
+    out of the garbage collector's sight, and leave the full collections to the window
+    (:meth:`App.collect`): left to Python they came every few seconds and took 40-100 ms
+    in one frame (the beaker at 1920x1080, where the links the floor takes are pymunk
+    objects held in cycles by their C handles, freed only by a full collection), time the
+    physics could not make up."""
+    gc.collect()
+    gc.freeze()
+    young, middle, _ = gc.get_threshold()
+    gc.set_threshold(young, middle, 1_000_000)
+
+
+def restore_garbage() -> None:
+    """Python's own garbage collection again (the window has closed)."""
+    gc.unfreeze()
+    gc.set_threshold(*GC_THRESHOLDS)
+    gc.collect()
 
 
 def _prune_autosaves(folder: Path) -> None:

@@ -150,7 +150,9 @@ def test_readout_and_history():
     assert not r0.measured and r0.curve is not None  # prediction from the feed settings
     s.advance(0.3)
     r = s.readout()
-    assert r.measured and len(s.history.t) > 10
+    from chainfountain.app.session import APP_SAMPLE_INTERVAL
+
+    assert r.measured and len(s.history.t) >= int(0.3 / APP_SAMPLE_INTERVAL) - 1
     assert r.v == pytest.approx(4.0, rel=0.05)
     assert 0 <= r.T0_theory < 1 and r.curve is not None and r.vertex is not None
     assert len(r.tension_bar) == len(r.tension_y) > 5
@@ -283,7 +285,7 @@ def test_apparatus_history_has_the_roller_speeds() -> None:
     assert np.mean(h["speed_in"][late]) == pytest.approx(v, rel=0.03)
     assert np.mean(h["speed_out"][late]) == pytest.approx(v, rel=0.03)
     f = Session(small_level())
-    f.advance(0.1)
+    f.advance(0.2)
     assert len(f.history.t) > 2 and np.isnan(f.history.arrays()["speed_in"]).all()
 
 

@@ -345,7 +345,7 @@ def test_open_arrangement_plots_the_plate_reaction(tmp_path, monkeypatch):
     monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
     app = App(Session(io.load(library.resolve("apparatus_open"))), offscreen=True)
     try:
-        for _ in range(20):
+        for _ in range(40):  # 0.67 s: 16 samples at the window's 25 a second
             app.run_frame()
         _assert_reaction_plot(app)
     finally:
