@@ -13,8 +13,10 @@ With a display (Xvfb: ``xvfb-run -s "-screen 0 1920x1080x24"``) it opens the rea
 of the window's own loop (the frame rate it chooses, the physics overlapping the copy to
 the screen) and prints, per level: the real-time factor reached, the frames per second,
 the wall time a frame spends drawing (the scene, the panel, the GUI) and its share of the
-frame, and the physics' cost per simulated second. ``--offscreen`` (SDL's dummy driver)
-times the drawing of one frame at the same size instead, with no physics in real time.
+frame, the physics' cost per simulated second, and the share of the CPU the host took
+from this virtual machine meanwhile (its "steal": a busy host slows everything down).
+``--offscreen`` (SDL's dummy driver) times the drawing of one frame at the same size
+instead, with no physics in real time.
 """
 
 from __future__ import annotations
@@ -38,6 +40,16 @@ def demo_levels() -> list[str]:
             break
         out.append(path.stem)
     return out
+
+
+def cpu_steal() -> tuple[int, int]:
+    """The host's stolen and all CPU time so far (jiffies, /proc/stat; zeros elsewhere): a
+    virtual machine whose host is busy runs everything slower, and says so here."""
+    try:
+        fields = [int(x) for x in Path("/proc/stat").read_text().split("\n")[0].split()[1:]]
+    except (OSError, ValueError):
+        return 0, 0
+    return (fields[7] if len(fields) > 7 else 0), sum(fields)
 
 
 def time_window(name: str, size: tuple[int, int], projector: bool, warmup: float,
@@ -109,15 +121,18 @@ def main() -> int:
     print(f"{w}x{h}{'' if args.no_projector else ', projector mode'}, {mode}; "
           f"{args.warmup:g} s from each level's start, then {args.seconds:g} s timed")
     for name in names:
+        steal0, all0 = cpu_steal()
         r = time_window(name, (w, h), not args.no_projector, args.warmup, args.seconds,
                         args.offscreen)
+        steal1, all1 = cpu_steal()
+        stolen = 100.0 * (steal1 - steal0) / max(all1 - all0, 1)
         if args.offscreen:
             print(f"  {name:28s} drawing {r['draw_ms']:5.1f} ms a frame")
             continue
         note = f"  (stopped: {r['stopped'][:60]})" if r["stopped"] else ""
         print(f"  {name:28s} real-time x{r['rtf']:.2f}  {r['fps']:5.1f} frames/s  drawing "
               f"{r['draw_ms']:5.1f} ms = {100 * r['draw_share']:3.0f} % of a frame  physics "
-              f"{r['physics_cost']:.2f} s per simulated s{note}")
+              f"{r['physics_cost']:.2f} s per simulated s  host steal {stolen:.0f} %{note}")
     return 0
 
 
