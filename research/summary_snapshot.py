@@ -12,6 +12,7 @@ Usage::
     python research/summary_snapshot.py --out before.json          # on the old code
     python research/summary_snapshot.py --out after.json           # on the new code
     python research/summary_snapshot.py --compare before.json after.json
+    python research/summary_snapshot.py --hashes --out before_h.json   # link states
 
 About 8 minutes at the default 3 s, long enough for the steady-state path (the
 near-critical fountain D presets dominate).
@@ -54,6 +55,28 @@ def snapshot(duration: float) -> dict[str, dict]:
     return out
 
 
+def state_hashes(duration: float) -> dict[str, str]:
+    """A SHA-256 of every body's position, velocity, angle and spin in each shipped level
+    after ``duration`` simulated seconds from its start (``chainfountain.start``): equal
+    hashes mean the refactored code steps the same bodies to the last bit."""
+    import hashlib
+
+    import chainfountain
+
+    out: dict[str, str] = {}
+    for path in sorted(LEVELS.glob("*.toml")):
+        sim = chainfountain.start(str(path))
+        ended = sim.advance(duration)
+        space = getattr(sim.sim, "space", None) or sim.sim.scene.space
+        h = hashlib.sha256()
+        for b in space.bodies:
+            h.update(repr((tuple(b.position), tuple(b.velocity), b.angle,
+                           b.angular_velocity)).encode())
+        out[path.stem] = f"{h.hexdigest()[:16]} t={sim.time:.4f} ended={ended is not None}"
+        print(f"{path.stem}: {out[path.stem]}", file=sys.stderr, flush=True)
+    return out
+
+
 def _flatten(obj, prefix: str = "") -> dict[str, object]:
     if isinstance(obj, dict):
         items: dict[str, object] = {}
@@ -88,8 +111,11 @@ def compare(a: dict, b: dict) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--duration", type=float, default=3.0)
+    ap.add_argument("--duration", type=float, default=None,
+                    help="simulated seconds (default 3 for figures, 2 for --hashes)")
     ap.add_argument("--out", type=Path)
+    ap.add_argument("--hashes", action="store_true",
+                    help="link-state hashes after --duration (default 2 s) instead of figures")
     ap.add_argument("--compare", nargs=2, type=Path, metavar=("BEFORE", "AFTER"))
     a = ap.parse_args(argv)
     if a.compare:
@@ -97,7 +123,8 @@ def main(argv: list[str] | None = None) -> int:
         return 1 if compare(before, after) else 0
     if a.out is None:
         ap.error("--out FILE or --compare BEFORE AFTER")
-    a.out.write_text(json.dumps(snapshot(a.duration), indent=1, sort_keys=True))
+    data = state_hashes(a.duration or 2.0) if a.hashes else snapshot(a.duration or 3.0)
+    a.out.write_text(json.dumps(data, indent=1, sort_keys=True))
     print(f"wrote {a.out}")
     return 0
 
