@@ -25,7 +25,7 @@ def _time_steps(sim: Simulation, seconds: float, *, bare: bool) -> float:
     dt = sim.dt
     t0 = time.perf_counter()
     if bare:
-        space_step, after = sim.space.step, sim.feed.after_step
+        space_step, after = sim.space.step, sim.ends.after_step
         for _ in range(n):
             space_step(dt)
             after(dt)

@@ -1,5 +1,7 @@
 """Errors that reach the user as one clear line instead of a traceback."""
 
+from typing import NoReturn
+
 
 class UserError(Exception):
     """Bad input from a user (flag, level file, GUI value).
@@ -7,6 +9,16 @@ class UserError(Exception):
     The message names the field, the value and what is allowed. The CLI prints
     it as one line and exits with status 2.
     """
+
+
+class LevelError(UserError):
+    """A level file or level value is not acceptable."""
+
+
+def fail(where: str, field: str, msg: str) -> NoReturn:
+    """Raise the one-line :class:`LevelError` ``"<where>: <field>: <msg>"`` (``msg`` names
+    the value and what is allowed)."""
+    raise LevelError(f"{where}: {field}: {msg}")
 
 
 class RunEnded(UserError):

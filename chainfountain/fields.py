@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 import typing
 from typing import Any
 
@@ -129,3 +130,43 @@ def iter_numeric_fields(obj: Any, prefix: str = "") -> typing.Iterator[tuple[str
                     yield from iter_numeric_fields(item, f"{path}[{i}].")
         elif tp in (int, float):
             yield path, tp, dict(f.metadata)
+
+
+_TOKEN = re.compile(r"([A-Za-z_][A-Za-z0-9_]*)(?:\[(\d+)\])?")
+
+
+def parse_path(path: str) -> list[tuple[str, int | None]]:
+    """``"carts[1].mass"`` -> ``[("carts", 1), ("mass", None)]``."""
+    out: list[tuple[str, int | None]] = []
+    for part in path.split("."):
+        m = _TOKEN.fullmatch(part)
+        if m is None:
+            raise KeyError(path)
+        out.append((m.group(1), None if m.group(2) is None else int(m.group(2))))
+    return out
+
+
+def _owner(obj: Any, path: str) -> tuple[Any, str]:
+    parts = parse_path(path)
+    for name, idx in parts[:-1]:
+        obj = getattr(obj, name)
+        if idx is not None:
+            obj = obj[idx]
+    name, idx = parts[-1]
+    if idx is not None:
+        raise KeyError(path)
+    if not hasattr(obj, name):
+        raise KeyError(path)
+    return obj, name
+
+
+def get_value(config: Any, path: str) -> Any:
+    """Value of a dotted field path (``"carts[1].mass"``) in a config dataclass."""
+    obj, name = _owner(config, path)
+    return getattr(obj, name)
+
+
+def set_value(config: Any, path: str, value: Any) -> None:
+    """Set a dotted field path in a (mutable) config dataclass in place."""
+    obj, name = _owner(config, path)
+    setattr(obj, name, value)

@@ -17,7 +17,7 @@ import re
 from dataclasses import dataclass
 from typing import Any
 
-from chainfountain.fields import allowed_text, iter_numeric_fields
+from chainfountain.fields import allowed_text, get_value, iter_numeric_fields
 
 CONTROL_PATTERNS: tuple[str, ...] = (
     r"(feed|apparatus)\.speed",
@@ -148,46 +148,6 @@ def student_paths(level: Any) -> list[str]:
 LINEAR: frozenset[str] = frozenset({"apparatus.fold_clearance"})
 """Fields whose slider stays linear although their range starts at zero (a gap of a few
 millimetres: a logarithmic slider would spend most of its travel below a micrometre)."""
-
-
-_TOKEN = re.compile(r"([A-Za-z_][A-Za-z0-9_]*)(?:\[(\d+)\])?")
-
-
-def parse_path(path: str) -> list[tuple[str, int | None]]:
-    """``"carts[1].mass"`` -> ``[("carts", 1), ("mass", None)]``."""
-    out: list[tuple[str, int | None]] = []
-    for part in path.split("."):
-        m = _TOKEN.fullmatch(part)
-        if m is None:
-            raise KeyError(path)
-        out.append((m.group(1), None if m.group(2) is None else int(m.group(2))))
-    return out
-
-
-def _owner(obj: Any, path: str) -> tuple[Any, str]:
-    parts = parse_path(path)
-    for name, idx in parts[:-1]:
-        obj = getattr(obj, name)
-        if idx is not None:
-            obj = obj[idx]
-    name, idx = parts[-1]
-    if idx is not None:
-        raise KeyError(path)
-    if not hasattr(obj, name):
-        raise KeyError(path)
-    return obj, name
-
-
-def get_value(config: Any, path: str) -> Any:
-    """Value of a dotted field path in a config dataclass."""
-    obj, name = _owner(config, path)
-    return getattr(obj, name)
-
-
-def set_value(config: Any, path: str, value: Any) -> None:
-    """Set a dotted field path in a (mutable) config dataclass in place."""
-    obj, name = _owner(config, path)
-    setattr(obj, name, value)
 
 
 @dataclass(frozen=True)
@@ -458,7 +418,7 @@ def unused_fields(config: Any) -> set[str]:
     kind = getattr(config, "kind", None)
     bend = set() if kind == "beaker" else {"chain.bend_limit"}
     if kind == "feed":
-        from chainfountain.level.checks import DRIVE_FIELDS
+        from chainfountain.sim.kinds.fed import DRIVE_FIELDS
 
         drive = config.feed.drive
         unused = {f"feed.{name}" for name, drives in DRIVE_FIELDS.items() if drive not in drives}

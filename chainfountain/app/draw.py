@@ -457,7 +457,7 @@ class DrawMixin:
                     xlim: tuple[float, float], ex: bool) -> None:
         s = self.session
         t = hist["t"]
-        fs = s.sim.feed.speed
+        fs = s.sim.ends.speed
         sp = [plots.Series(t[sel], hist["speed"][sel], pal.SPEED_COL, "chain")]
         extra = [(k, col, label) for k, col, label in (
             ("speed_in", pal.T0_COL, "pick-up 2 v_R" if ex else "at pick-up"),

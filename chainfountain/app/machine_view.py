@@ -142,7 +142,7 @@ class MachineView:
             self._t_last = sim.time
         self.frame_dt = max(0.0, sim.time - self._t_last)
         self._t_last = sim.time
-        self._travelled += float(sim.feed.speed) * self.frame_dt
+        self._travelled += float(sim.ends.speed) * self.frame_dt
         out = Drawn()
         self.paths = []
         cfg = sim.config
@@ -179,8 +179,8 @@ class MachineView:
         """Where an ideal machine's end guide is drawn: where the chain lands once it has
         (smoothed over :data:`LANDING_SMOOTHING` s of simulated time), else where the
         paper's fountain lands."""
-        if sim.feed.absorbed == 0 or not sim.chain.links or self._x_land is None:
-            self._x_land = predicted if sim.feed.absorbed == 0 else \
+        if sim.ends.absorbed == 0 or not sim.chain.links or self._x_land is None:
+            self._x_land = predicted if sim.ends.absorbed == 0 else \
                 float(sim.chain.links[0].body.position.x)
             return self._x_land
         x = float(sim.chain.links[0].body.position.x)
@@ -375,7 +375,7 @@ class MachineView:
         self.wheel(surf, cam, "motor", mx, my, 0.8 * size / 2 / cam.scale,
                    -self._travelled / max(r, 1e-3), out)
         out.boxes.append(box)
-        v = sim.feed.speed
+        v = sim.ends.speed
         out.labels.append(PartLabel("motor", f"motor: feeds the chain at {v:.1f} m/s"
                                     if not expert else f"feed motor {v:.2f} m/s", mx, my,
                                     "below"))
@@ -497,7 +497,7 @@ class MachineView:
                       "right")]
         piston = sim.piston
         if piston is not None and piston.starting:
-            out.labels.append(PartLabel("starter", f"starter motor: {sim.feed.speed:.1f} m/s "
+            out.labels.append(PartLabel("starter", f"starter motor: {sim.ends.speed:.1f} m/s "
                                         "until the machine takes over", 0.0, 0.0, "left"))
         if f.drive == "ideal_floor":
             self.floor(surf, cam, -H, "real floor: takes the chain, no pull", out,

@@ -125,7 +125,7 @@ class SceneView:
         if sim.beaker is not None:
             speed = math.sqrt(2.0 * cfg.gravity * cfg.beaker.drop)
         else:
-            speed = float(sim.feed.speed)
+            speed = float(sim.ends.speed)
         self.marks_every = chain_view.mark_spacing(speed, float(sim.chain.L))
 
     def draw(self, surf: pygame.Surface, cam: Camera, sim, readout: Readout | None,

@@ -27,17 +27,18 @@ from typing import Any
 import numpy as np
 
 from chainfountain.app import budget, paths
-from chainfountain.app.controls import FieldSpec, get_value, set_value, spec_for
+from chainfountain.app.controls import FieldSpec, spec_for
 from chainfountain.app.readout import (
     History,
     Readout,
     compute_readout,
 )
 from chainfountain.errors import RunEnded, UserError
+from chainfountain.fields import get_value, set_value
 from chainfountain.level import io, library
 from chainfountain.level.io import Level, LevelError
 from chainfountain.sim.config import SimConfig
-from chainfountain.sim.machine_rules import follow
+from chainfountain.sim.live import plan
 from chainfountain.sim.recorder import Recorder
 from chainfountain.sim.world import Simulation
 
@@ -308,9 +309,11 @@ class Session:
         v, clamp_msg = spec.clamp(value)
         if spec.integer:
             v = int(v)
+        changes = plan(self.level.sim, path, v)  # with what follows it (the upper cart)
         cand = copy.deepcopy(self.level.sim)
-        set_value(cand, path, v)
-        followed = follow(cand, path)  # a loss-free full machine's upper cart keeps the balance
+        for p, value in changes.items():
+            set_value(cand, p, value)
+        followed = changes.get("feed.cart_force") if path != "feed.cart_force" else None
         by_hand = path in HAND_SETTINGS and cand.solver.accuracy > 0.0 and v != old
         if by_hand:
             # the user takes over what solver.accuracy chose; saved, the level keeps it
@@ -328,7 +331,9 @@ class Session:
                         f"fastest the window runs, {spec.fmt(fast)}{spec.shown_unit}")
                 clamp_msg = f"{clamp_msg}; {rail}" if clamp_msg else rail
                 v = fast
-                set_value(cand, path, v)
+                changes = plan(self.level.sim, path, v)
+                for p, value in changes.items():
+                    set_value(cand, p, value)
                 why = None
         if why is not None:
             return Applied(path, old, False, False, self.say(f"refused: {why}"))
@@ -337,7 +342,7 @@ class Session:
         self.level.sim = cand
         self.dirty = True
         shown = f"{spec.label} = {spec.fmt(spec.to_display(v))}{spec.shown_unit}"
-        if spec.live and self._apply_live(path, v):
+        if spec.live and self._apply_live(changes):
             msg = f"{shown} (live)"
             live = True
         else:
@@ -354,28 +359,13 @@ class Session:
             msg += f"; the upper cart follows to {followed:.4g} N to keep the machine balanced"
         return Applied(path, float(v), True, live, self.say(msg))
 
-    def _apply_live(self, path: str, v: float) -> bool:
-        sim = self.sim
-        setter = getattr(sim, "set_param", None)  # a generic live setter, when the sim has one
-        if callable(setter):
-            try:
-                setter(path, v)
-                return True
-            except (KeyError, ValueError, AttributeError):
-                pass
-        if path == "feed.speed":
-            sim.set_feed_speed(v)
-        elif path == "chain.bending_stiffness":
-            sim.set_bending(stiffness=v)
-        elif path == "chain.bending_damping":
-            sim.set_bending(damping=v)
-        elif path == "solver.iterations":
-            sim.set_iterations(int(v))
-        elif path.startswith("rollers[") and path.endswith("].angular_speed"):
-            sim.set_roller_speed(int(path[len("rollers["):path.index("]")]), v)
-        else:
+    def _apply_live(self, changes: dict[str, float]) -> bool:
+        """Apply planned live ``changes`` to the running simulation (one path:
+        :meth:`~chainfountain.sim.world.Simulation.apply`); ``False``: a field needs a rebuild."""
+        try:
+            self.sim.apply(changes)
+        except KeyError:
             return False
-        set_value(sim.config, path, v)
         return True
 
     # ------------------------------------------------------------------ time

@@ -26,7 +26,8 @@ import dataclasses
 from collections.abc import Callable
 
 from chainfountain.app import budget
-from chainfountain.app.controls import FieldSpec, get_value, set_value
+from chainfountain.app.controls import FieldSpec
+from chainfountain.fields import get_value, set_value
 from chainfountain.level import io
 from chainfountain.level.io import Level, LevelError
 from chainfountain.sim.apparatus.laws import floor_runs_on, fold_cart_span, fold_runs_on

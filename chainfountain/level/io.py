@@ -33,7 +33,7 @@ import tomli_w
 
 from chainfountain import atomic
 from chainfountain.fields import allowed_text, in_range, tuple_item_type
-from chainfountain.level.checks import MAX_LINKS, apply_accuracy, check_consistency
+from chainfountain.level.checks import MAX_LINKS, check_consistency
 from chainfountain.level.model import (
     _SKIP_TOP,
     SCHEMA_VERSION,
@@ -44,6 +44,7 @@ from chainfountain.level.model import (
     _hints,
     _is_dataclass_type,
 )
+from chainfountain.level.resolve import resolve
 from chainfountain.level.schema_doc import field_meta, schema_markdown
 from chainfountain.sim.config import KINDS, SimConfig
 
@@ -164,8 +165,9 @@ def parse_level(data: dict[str, Any], where: str = "<level>") -> Level:
     sim = dataclasses.replace(sim, name=meta.name)
     level = Level(meta=meta, sim=sim)
     check_consistency(level, where)
-    if apply_accuracy(level, where) is not None:
-        check_consistency(level, where)
+    level, estimate = resolve(level, where)
+    if estimate is not None:
+        check_consistency(level, where)  # the chosen settings, as any level's
     return level
 
 

@@ -9,17 +9,14 @@ import typing
 from dataclasses import dataclass
 from typing import Any
 
-from chainfountain.errors import UserError
+from chainfountain.errors import LevelError
+from chainfountain.errors import fail as _fail
 from chainfountain.fields import REQUIRED, param
 from chainfountain.sim.config import SimConfig
 
 SCHEMA_VERSION = 1
 _SKIP_TOP = frozenset({"name"})  # SimConfig.name mirrors meta.name
 """Top-level config fields a level file does not carry."""
-
-
-class LevelError(UserError):
-    """A level file or level value is not acceptable."""
 
 
 @dataclass
@@ -64,13 +61,12 @@ class Level:
         return self.meta.name
 
 
-def _fail(where: str, field: str, msg: str) -> typing.NoReturn:
-    raise LevelError(f"{where}: {field}: {msg}")
-
-
 def _hints(cls: type) -> dict[str, Any]:
     return typing.get_type_hints(cls)
 
 
 def _is_dataclass_type(tp: Any) -> bool:
     return isinstance(tp, type) and dataclasses.is_dataclass(tp)
+
+
+__all__ = ["SCHEMA_VERSION", "Level", "LevelError", "Meta", "_fail"]

@@ -50,9 +50,9 @@ import dataclasses
 import math
 
 from chainfountain.level import io, library
-from chainfountain.level.checks import IDEAL_MIN_KQ
 from chainfountain.level.model import Level, LevelError, Meta
 from chainfountain.sim.config import FeedConfig, SimConfig
+from chainfountain.sim.kinds.ideal.checks import IDEAL_MIN_KQ
 from chainfountain.theory.apparatus import balanced_cart_force, ideal_fold_TE_bar, settings_for
 
 TWIN_SUFFIX = " (ideal twin)"
@@ -109,7 +109,8 @@ def _template(level: Level, drive: str) -> Level:
 def _check_not_near_critical(level: Level) -> None:
     """Refuse a fountain too near critical for the ideal machines: ``k/q = cos(alpha0) (1 -
     Tbar_0)`` at the launch (``Tbar_0 = Tbar_E + k H``, ``Tbar_E`` 0 for a floor, else the
-    source's end tension) below :data:`~chainfountain.level.checks.IDEAL_MIN_KQ`. The level
+    source's end tension) below
+    :data:`~chainfountain.sim.kinds.ideal.checks.IDEAL_MIN_KQ`. The level
     checks apply that bound to the full machine, where it was measured; it is applied to
     every twin, because near critical the simulated chain's back force grows as the machine
     slows, and the checks let an ideal floor pass at any ``k/q``. Measured from rest, 30 s,

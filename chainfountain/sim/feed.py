@@ -41,7 +41,8 @@ end of a chain still forming from its stub is not."""
 class Feed:
     """Guide (kinematic links) at the launch point plus the absorbing floor bookkeeping."""
 
-    def __init__(self, chain: Chain, cfg: FeedConfig) -> None:
+    def __init__(self, chain: Chain, cfg: FeedConfig,
+                 end_pull: Callable[[float], float] | None = None) -> None:
         self.chain = chain
         self.cfg = cfg
         self.u = (math.cos(cfg.launch_angle), math.sin(cfg.launch_angle))
@@ -58,7 +59,7 @@ class Feed:
         """Unit direction of the floor's pull (the predicted landing tangent)."""
         self.end_force: tuple[float, float] | None = None
         """World force the floor applied to the end link (link 0) in the last step."""
-        self.end_pull: Callable[[float], float] | None = None
+        self.end_pull = end_pull
         """The floor's pull (N) as a function of the chain's speed, when a machine sets it
         (:class:`chainfountain.sim.put_down.PutDown`); ``None``: ``end_tension*lambda*v^2``."""
         self.launch_omega = 0.0

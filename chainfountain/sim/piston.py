@@ -25,6 +25,7 @@ import pymunk
 from chainfountain.errors import RunEnded
 from chainfountain.sim.apparatus.stall_watch import STALL_FRACTION, STALL_TIME, ChainStalled
 from chainfountain.sim.chain import Link
+from chainfountain.sim.feed import Feed
 
 RUNAWAY_FACTOR = 2.5
 """The chain counts as running away above this multiple of its start speed, for
@@ -38,11 +39,16 @@ GROOVE_REACH = 100.0
 class Piston:
     """Turns the fed level's kinematic guide of ``sim`` into the ideal machine's piston."""
 
-    def __init__(self, sim: Any) -> None:
-        """``sim``: the :class:`~chainfountain.sim.world.Simulation` being built (its feed
-        laid out); the piston takes over the feed's steps."""
+    def __init__(self, sim: Any, feed: Feed, tail: Any = None) -> None:
+        """``sim``: the :class:`~chainfountain.sim.world.Simulation` being built, ``feed``
+        its laid-out :class:`~chainfountain.sim.feed.Feed` (the piston drives the guide
+        and keeps the feed's floor: it is the level's :class:`~chainfountain.sim.ends.Ends`);
+        ``tail``: the open arrangement's
+        :class:`~chainfountain.sim.slide_away.SlideAway`, told after each step how many
+        links the floor has taken."""
         self.sim = sim
-        feed, chain = sim.feed, sim.chain
+        self.feed = feed
+        chain = sim.chain
         self.u = feed.u
         self.n_nominal = feed.n_guide
         self.grooves: dict[int, pymunk.GrooveJoint] = {}
@@ -54,18 +60,13 @@ class Piston:
         self.carried = 0.0
         """Mass (kg) the piston moves besides the machine's own (``feed.machine_mass``):
         the open arrangement's chain sliding on its plate (:meth:`carry`)."""
-        self.tail: Any = None
-        """The open arrangement's :class:`~chainfountain.sim.slide_away.SlideAway`, told
-        after each step how many links the floor has taken."""
+        self.tail = tail
         self._hand_over: float | None = None
         n = len(chain.links)
         for i in range(n - feed.n_guide, n):
             self._hold(chain.links[i])
         for i in range(n - feed.n_guide, n - 1):
             chain.join(i)  # no spring: neither link can turn (Chain refits none)
-        self._floor_pull = feed.before_step
-        feed.before_step = self.before_step
-        feed.after_step = self.after_step
 
     def _hold(self, link: Link) -> None:
         """Make ``link`` a piston link: dynamic, on the groove, unable to turn."""
@@ -110,12 +111,35 @@ class Piston:
     def held_links(self) -> list[Link]:
         """The piston's links (those held on the launch line)."""
         chain = self.sim.chain
-        return chain.links[len(chain.links) - self.sim.feed.n_guide:]
+        return chain.links[len(chain.links) - self.feed.n_guide:]
 
     @property
-    def speed(self) -> float:
-        """The chain's speed in the guide (m/s)."""
+    def chain_speed(self) -> float:
+        """The chain's speed in the guide (m/s), measured now."""
         return float(self.sim.chain.links[-1].body.velocity.dot(self.u))
+
+    # ------------------------------------------------------------------ the ends
+    @property
+    def speed(self) -> float:
+        """The chain's speed (m/s) at the end of the last step (the feed's)."""
+        return self.feed.speed
+
+    @property
+    def n_free(self) -> int:
+        return self.feed.n_free
+
+    @property
+    def absorbed(self) -> int:
+        return self.feed.absorbed
+
+    @property
+    def floor_y(self) -> float:
+        return self.feed.floor_y
+
+    @property
+    def end_force(self) -> tuple[float, float] | None:
+        """The floor's pull on the end link in the last step (the feed's)."""
+        return self.feed.end_force
 
     def law_force(self, v: float) -> float:
         """The machine's pull back on the chain at speed ``v`` (N, along the launch line)."""
@@ -128,7 +152,7 @@ class Piston:
         """Push the chain to ``v`` (m/s): every link's velocity and turning rate scale by
         ``v`` over the present speed (the whole chain speeds up along itself, as a push
         on the machine does); the machine then settles back to its own speed."""
-        now = self.speed
+        now = self.chain_speed
         if now <= 0.0 or v <= 0.0:
             return
         f = v / now
@@ -136,31 +160,31 @@ class Piston:
             b = link.body
             b.velocity = (f * b.velocity.x, f * b.velocity.y)
             b.angular_velocity = f * b.angular_velocity
-        self.sim.feed.cfg.speed = float(v)
+        self.feed.cfg.speed = float(v)
 
     def before_step(self) -> None:
         chain, g = self.sim.chain, self.sim.g
-        guide = chain.links[len(chain.links) - self.sim.feed.n_guide:]
+        guide = chain.links[len(chain.links) - self.feed.n_guide:]
         if self.starting:  # the starter: a motor at the start speed
             vx, vy = self.v_start * self.u[0], self.v_start * self.u[1]
             for link in guide:
                 link.body.velocity = (vx, vy)
-            self._floor_pull()
+            self.feed.before_step()
             return
         for link in guide:  # the law carries the lift: cancel the guide links' weight
             b = link.body
             b.apply_force_at_world_point((0.0, b.mass * g), b.position)
-        F = -self.law_force(self.speed)
+        F = -self.law_force(self.chain_speed)
         ux, uy = self.u
         rear = guide[-1].body
         rear.apply_force_at_world_point((F * ux, F * uy), rear.position)
-        self._floor_pull()
+        self.feed.before_step()
 
     def after_step(self, dt: float) -> None:
-        chain, feed = self.sim.chain, self.sim.feed
+        chain, feed = self.sim.chain, self.feed
         L = chain.L
         ux, uy = self.u
-        v = self.speed
+        v = self.chain_speed
         feed.cfg.speed = v
         front = chain.links[len(chain.links) - feed.n_guide]
         if front.body.position.dot(self.u) >= 0.0:  # centre past the launch point: release
@@ -204,7 +228,7 @@ class Piston:
     def _start_up(self) -> None:
         """Hand the chain to the machine's laws ``feed.starter`` seconds after it landed."""
         sim = self.sim
-        if self._hand_over is None and sim.feed.absorbed > 0:
+        if self._hand_over is None and self.feed.absorbed > 0:
             self._hand_over = sim.time + float(sim.config.feed.starter)
         if self._hand_over is not None and sim.time >= self._hand_over:
             self.starting = False

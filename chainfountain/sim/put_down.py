@@ -20,12 +20,12 @@ from typing import Any
 
 
 class PutDown:
-    """Sets the fed level's floor pull of ``sim`` to the lower half's law."""
+    """The lower half's law as the floor's pull on the chain end (:meth:`pull`, the feed's
+    ``end_pull``)."""
 
     def __init__(self, sim: Any) -> None:
         """``sim``: the :class:`~chainfountain.sim.world.Simulation` being built."""
         self.sim = sim
-        sim.feed.end_pull = self.pull
 
     def pull(self, v: float) -> float:
         """The pull ``T_E`` (N, at least 0) on the chain end at speed ``v`` (m/s)."""

@@ -148,14 +148,14 @@ class Recorder:
             self._raw.append(("apparatus", sim.time, pre.velocity, post, contacts, roller,
                               pivots, pre.angular_velocity, lower, pivot_x))
             return
-        end_force = sim.feed.end_force
+        end_force = sim.ends.end_force
         if end_force is not None:  # the floor's pull is an external force on link 0
             if contacts is None:
                 contacts = np.zeros((len(post.angle), 2))
             contacts[0] += np.asarray(end_force) * sim.dt
         tail = sim.slide_away  # its reaction is recorded from the first landed link on
         reaction = tail.plate_reaction if tail is not None and tail.links else float("nan")
-        self._raw.append((sim.time, n, sim.feed.speed, sim.feed.floor_y, pre.velocity, post,
+        self._raw.append((sim.time, n, sim.ends.speed, sim.ends.floor_y, pre.velocity, post,
                           contacts, reaction))
 
     @property

@@ -34,17 +34,15 @@ PLATE_REACH = 50.0
 
 
 class SlideAway:
-    """Sets the fed level's floor pull of ``sim`` to the turn's weight and hands the landed
-    chain's mass to its piston."""
+    """The turn's weight as the floor's pull (:meth:`pull`, the feed's ``end_pull``); hands
+    the landed chain's mass to the level's piston (:meth:`landed`, called by it)."""
 
     def __init__(self, sim: Any) -> None:
-        """``sim``: the :class:`~chainfountain.sim.world.Simulation` being built, its
-        :class:`~chainfountain.sim.piston.Piston` in place."""
+        """``sim``: the :class:`~chainfountain.sim.world.Simulation` being built (its
+        :attr:`~chainfountain.sim.world.Simulation.piston` is in place once it runs)."""
         self.sim = sim
         self.links = 0
         """Links landed on the plate so far (they slide away with the chain)."""
-        sim.feed.end_pull = self.pull
-        sim.piston.tail = self
 
     @property
     def mass(self) -> float:

@@ -28,7 +28,6 @@ import pymunk
 import pymunk.batch as pb
 
 from chainfountain.errors import RunEnded
-from chainfountain.sim.config import SimConfig
 
 CHECK_INTERVAL = 2e-3
 """Simulated seconds between two checks (a diverging run is stopped within this)."""
@@ -55,25 +54,6 @@ class Limits:
         ten times the scene plus 20 m."""
         v_max = math.sqrt(speed**2 + 2.0 * max(g, 0.0) * max(height, 0.0))
         return cls(speed=max(50.0, 10.0 * v_max), radius=20.0 + 10.0 * max(height, 1.0))
-
-
-def limits_for(cfg: SimConfig) -> Limits:
-    """The limits of a level: its chain speed and a scene of its drop and rise (a feed's
-    whole chain; an apparatus's tables and run) plus the height ``v**2/g`` the chain can
-    climb."""
-    g = float(cfg.gravity)
-    if cfg.kind == "apparatus":
-        a = cfg.apparatus
-        v = float(a.speed)
-        size = a.drop * (1.0 + a.xi2 + a.xi3) + a.floor_depth + v * a.duration
-    elif cfg.kind == "beaker":
-        b = cfg.beaker
-        v = math.sqrt(4.0 * g * b.drop)  # twice the free fall over the drop
-        size = b.drop + b.pot_width + b.pot_depth
-    else:
-        v = float(cfg.feed.speed)
-        size = cfg.feed.drop + cfg.feed.chain_length
-    return Limits.for_level(v, size + v * v / max(g, 1e-9), g)
 
 
 class Watchdog:

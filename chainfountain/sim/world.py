@@ -15,19 +15,22 @@ from typing import Protocol
 import numpy as np
 import pymunk
 
+from chainfountain.fields import set_value
+from chainfountain.sim import live
 from chainfountain.sim.apparatus import Apparatus
 from chainfountain.sim.beaker import Beaker
 from chainfountain.sim.bodies import Cart, Floor, Roller, nudge_bodies
 from chainfountain.sim.chain import Chain
 from chainfountain.sim.config import SimConfig
+from chainfountain.sim.ends import Ends
 from chainfountain.sim.feed import Feed
-from chainfountain.sim.machine_rules import MACHINE_FIELDS, follow, keeps_any_speed
+from chainfountain.sim.kinds import kind_of, limits_for
+from chainfountain.sim.machine_rules import keeps_any_speed
 from chainfountain.sim.measure import ChainReader, ChainState, link_ends, polyline
 from chainfountain.sim.piston import Piston
-from chainfountain.sim.put_down import PutDown
 from chainfountain.sim.reference import LaunchReference
 from chainfountain.sim.slide_away import SlideAway
-from chainfountain.sim.watchdog import CHECK_INTERVAL, Limits, Watchdog, limits_for
+from chainfountain.sim.watchdog import CHECK_INTERVAL, Limits, Watchdog
 
 FOLLOW_TOLERANCE = 1e-3
 """The ideal full machine's reference follows its speed in steps of this fraction."""
@@ -79,13 +82,13 @@ class Simulation:
     """
 
     def __init__(self, config: SimConfig) -> None:
-        if config.kind == "scene":
-            raise ValueError(f"{config.name or 'this level'} is a scene (kind 'scene'): scenes "
-                             "run headless only, with chainfountain run "
-                             f"{config.name or 'LEVEL'}")
-        if config.kind not in ("feed", "apparatus", "beaker"):
-            raise ValueError(f"unsupported level kind {config.kind!r} "
-                             "(supported: 'feed', 'apparatus', 'beaker')")
+        self.kind = kind_of(config)
+        """The level's :class:`~chainfountain.sim.kinds.base.Kind` (it builds the chain and
+        its ends)."""
+        if self.kind.build is None:
+            raise ValueError(f"{config.name or 'this level'} is {self.kind.title} (kind "
+                             f"{config.kind!r}): it runs headless only, with chainfountain "
+                             f"run {config.name or 'LEVEL'}")
         self.config = copy.deepcopy(config)
         self.recorder: Observer | None = None
         self.probe: Probe | None = None
@@ -108,6 +111,14 @@ class Simulation:
         self._check_every = max(1, int(round(CHECK_INTERVAL / self._dt)))
         self.watchdog = Watchdog(space, self._limits())
         """Stops the run when it diverges (:mod:`chainfountain.sim.watchdog`)."""
+        self.chain: Chain
+        """The chain (every kind builds one)."""
+        self.ends: Ends
+        """What drives the chain's two ends (:class:`~chainfountain.sim.ends.Ends`): the
+        feed, the ideal machine's piston, the apparatus or the beaker."""
+        self.feed: Feed | None = None
+        """A fed level's guide and floor (its motor's feed, or the feed an ideal machine's
+        piston holds); ``None`` for other kinds."""
         self.apparatus: Apparatus | None = None
         self.piston: Piston | None = None
         self.slide_away: SlideAway | None = None
@@ -118,33 +129,9 @@ class Simulation:
         self.carts: list[Cart] = []
         self.reference: LaunchReference | None = None
         """The paper's fountain for a fed level (``None`` for an apparatus or a beaker)."""
-        if cfg.kind == "apparatus":
-            self._build_apparatus()
-            return
-        if cfg.kind == "beaker":
-            self._build_beaker()
-            return
-        needs_shapes = (cfg.feed.floor == "solid" or bool(cfg.rollers) or bool(cfg.carts)
-                        or cfg.chain.self_collision)
-        self.chain = Chain(space, cfg.chain, cfg.solver, shapes=needs_shapes,
-                           wave_damping=self._wave_damping(cfg.feed.speed))
-        if cfg.feed.floor == "solid":
-            w = cfg.feed.floor_width
-            self.floor = Floor.add(space, -cfg.feed.drop, -0.5 * w, 0.5 * w,
-                                   friction=cfg.chain.friction)
-        self.rollers = [Roller.add(space, r) for r in cfg.rollers]
-        self.carts = [Cart.add(space, c, error_bias=cfg.solver.joint_error_bias)
-                      for c in cfg.carts]
-        self.reference = self.reference_at(cfg.feed.speed)
-        self.feed = Feed(self.chain, cfg.feed)
-        self.feed.initialise(cfg.initial, self.reference)
-        self.feed.set_reference(self.reference)
-        if cfg.feed.drive != "motor":
-            self.piston = Piston(self)
-        if cfg.feed.drive == "ideal_fold":
-            PutDown(self)
-        if cfg.feed.drive == "ideal_open":
-            self.slide_away = SlideAway(self)
+        build = self.kind.build
+        assert build is not None  # checked in __init__
+        build(self)
         self._start()
 
     def _start(self) -> None:
@@ -158,43 +145,7 @@ class Simulation:
         if self.recorder is not None:
             self.recorder.clear()
 
-    def _build_apparatus(self) -> None:
-        """``kind = "apparatus"``: the paper's pulley apparatus
-        (:mod:`chainfountain.sim.apparatus`).
-
-        ``self.feed`` is the :class:`Apparatus` too (it offers the feed's interface:
-        ``speed``, ``n_free``, ``floor_y``, ``absorbed``); ``reference`` is ``None``
-        (the apparatus chooses its speed; see ``apparatus.fountain`` for the layout).
-        ``initial.seed`` > 0 nudges every moving body by 1e-12 of its velocity
-        (:meth:`nudge`): another of the machine's chaotic runs, for ensembles."""
-        cfg = self.config
-        space = self.space
-        self.chain = Chain(space, cfg.chain, cfg.solver, shapes=True,
-                           wave_damping=self._wave_damping(cfg.apparatus.speed))
-        self.apparatus = Apparatus(space, self.chain, cfg)
-        if cfg.initial.seed:  # a chaotic machine: a seed picks another of its runs
-            nudge_bodies(space, cfg.initial.seed)
-        self.feed = self.apparatus  # type: ignore[assignment]
-        self._start()
-
-    def _build_beaker(self) -> None:
-        """``kind = "beaker"``: a chain piled in a pot rises over the rim and falls to an
-        absorbing floor (:mod:`chainfountain.sim.beaker`). ``self.feed`` is the
-        :class:`Beaker` (it offers the feed's interface); ``reference`` is ``None`` (the
-        chain chooses its own speed; the window fits the paper's curve to the measured
-        ends)."""
-        cfg = self.config
-        b = cfg.beaker
-        v_guess = math.sqrt(2.0 * cfg.gravity * b.drop)
-        self.chain = Chain(self.space, cfg.chain, cfg.solver, shapes=True,
-                           wave_damping=self._wave_damping(v_guess))
-        self.beaker = Beaker(self.space, self.chain, b, friction=cfg.chain.friction)
-        if cfg.initial.seed:  # the pile is chaotic: a seed picks one of its runs
-            nudge_bodies(self.space, cfg.initial.seed)
-        self.feed = self.beaker  # type: ignore[assignment]
-        self._start()
-
-    def _wave_damping(self, speed: float) -> float:
+    def wave_damping_at(self, speed: float) -> float:
         """The numerical joint damper ``D*lambda*v*L**2`` (N*m*s/rad) at chain speed ``v``
         (:attr:`chainfountain.sim.config.SolverConfig.wave_damping`)."""
         cfg = self.config
@@ -237,7 +188,7 @@ class Simulation:
         pre: ChainState | None = self.reader.read() if sample else None
         read_contacts = sample and self.chain.shapes
         contacts: np.ndarray | None = None
-        before = self.feed.before_step
+        before = self.ends.before_step
         probe = self.probe
         space_step, h = self.space.step, self._h
         for _ in range(self._substeps):
@@ -258,7 +209,7 @@ class Simulation:
             rec.take(pre, self.reader.read(), contacts)
         if self.steps % self._check_every == 0:
             self.watchdog.check(self.time)
-        self.feed.after_step(self._dt)
+        self.ends.after_step(self._dt)
 
     def advance(self, seconds: float) -> int:
         """Step for ``seconds`` of simulated time (rounded to whole steps); returns steps taken."""
@@ -291,7 +242,7 @@ class Simulation:
         """Keep the reference on the loss-free full machine's present speed ``v`` (it keeps
         whatever speed it has, so the paper's fountain moves with it): recomputed when ``v``
         has moved by :data:`FOLLOW_TOLERANCE` of the reference's speed."""
-        if not keeps_any_speed(self.config):
+        if not keeps_any_speed(self.config) or self.feed is None:
             return
         ref = self.reference
         if ref is not None and abs(v - ref.v) <= FOLLOW_TOLERANCE * ref.v:
@@ -302,6 +253,8 @@ class Simulation:
     def set_feed_speed(self, v: float) -> None:
         """Change the feed speed live (m/s); the reference is recomputed. With the ideal
         floor machine this pushes the chain to ``v``, and the machine settles back."""
+        if self.feed is None:
+            raise KeyError("feed.speed: this level has no feed")
         if self.piston is not None:
             self.piston.set_speed(v)
         else:
@@ -309,88 +262,51 @@ class Simulation:
         self.watchdog.limits = self._limits()
         self.reference = self.reference_at(v)
         self.feed.set_reference(self.reference)
-        self.chain.wave_damping = self._wave_damping(v)
+        self.chain.wave_damping = self.wave_damping_at(v)
         self.chain.set_bending()  # refits every damper to the new speed
 
-    def set_machine(self, path: str, value: float) -> None:
-        """Change an ideal machine's offset, cart or bearing drag (:data:`MACHINE_FIELDS`)
-        live: the laws read them every step, so
-        the chain feels the change at once. In the full machine (``"ideal_fold"``) a change
-        of ``xi2``, ``xi3`` or the lower cart moves the upper cart to the balance
-        (:func:`~chainfountain.theory.apparatus.balanced_cart_force`) when the machine is
-        loss-free, so it keeps its speed and the fountain takes its new shape; a change of
-        the upper cart itself leaves it unbalanced, and the chain speeds up or slows down.
-        With bearing drag nothing follows: the machine moves to the speed it now selects."""
-        f = self.config.feed
-        setattr(f, path.split(".", 1)[1], float(value))
-        follow(self.config, path)
-        v = self.piston.speed if self.piston is not None else f.speed
+    def machine_changed(self) -> None:
+        """An ideal machine's offset, cart or bearing drag (:data:`MACHINE_FIELDS`) has
+        changed in :attr:`config`: the laws read them every step, so the chain feels the
+        change at once; the reference moves to the paper's fountain at the present speed."""
+        if self.feed is None:
+            return
+        v = self.piston.chain_speed if self.piston is not None else self.feed.speed
         self.reference = self.reference_at(v)
         self.feed.set_reference(self.reference)
 
     def set_bending(self, stiffness: float | None = None, damping: float | None = None) -> None:
         """Change the joint spring ``c`` (N*m/rad) and/or damper ``d`` (N*m*s/rad) live."""
-        self.chain.set_bending(stiffness, damping)
+        self.apply({p: v for p, v in (("chain.bending_stiffness", stiffness),
+                                      ("chain.bending_damping", damping)) if v is not None})
 
-    def set_iterations(self, iterations: int) -> None:
-        """Change the solver iterations live."""
-        self.config.solver.iterations = int(iterations)
-        self.space.iterations = int(iterations)
-
-    def set_roller_speed(self, index: int, angular_speed: float) -> None:
-        """Spin roller ``index`` at ``angular_speed`` (rad/s) live."""
-        self.rollers[index].set_angular_speed(angular_speed)
-
-    def set_param(self, path: str, value: float) -> None:
-        """Apply a change of the level field ``path`` (e.g. ``"chain.friction"``) live.
-
-        Only fields declared ``live`` in :mod:`chainfountain.sim.config` can be
-        changed this way; the value is written back into :attr:`config`.
-        Raises ``KeyError`` for a field that needs a rebuild (call
-        :meth:`reset` after changing :attr:`config` instead).
-        """
-        v = float(value)
-        if path == "feed.speed":
-            self.set_feed_speed(v)
-            self.config.feed.speed = v
-        elif path == "feed.end_tension":
-            self.config.feed.end_tension = v
-            self.set_feed_speed(self.config.feed.speed)  # recomputes the reference
-        elif path in MACHINE_FIELDS:
-            self.set_machine(path, v)
-        elif path == "chain.bending_stiffness":
-            self.set_bending(stiffness=v)
-        elif path == "chain.bending_damping":
-            self.set_bending(damping=v)
-        elif path == "chain.friction":
-            self.chain.set_friction(v)
-            self.config.chain.friction = v
-        elif path == "solver.iterations":
-            self.set_iterations(int(v))
-        elif path == "solver.joint_error_bias":
-            self.chain.set_error_bias(v)
-            self.config.solver.joint_error_bias = v
-        elif path == "solver.collision_slop":
-            self.space.collision_slop = v
-            self.config.solver.collision_slop = v
-        elif path.startswith("carts[") and path.endswith("].mass") and \
-                self.apparatus is not None:
-            i = int(path[len("carts["):path.index("]")])
-            unit = (self.apparatus.upper, self.apparatus.lower)[i]
-            if unit is None or unit.cart is None:
-                raise KeyError(f"{path}: no such cart in this apparatus")
-            unit.set_cart_mass(v, self.config.apparatus.carriage_mass)
-        elif path in ("apparatus.bearing_drag", "apparatus.fold_brake", "apparatus.swing_damper"):
-            setattr(self.config.apparatus, path.split(".")[1], v)
-            if self.apparatus is not None:
-                self.apparatus.set_losses()  # the carriages' springs
-        elif path.startswith("rollers[") and path.endswith("].angular_speed"):
-            i = int(path[len("rollers["):path.index("]")])
-            self.set_roller_speed(i, v)
-            self.config.rollers[i].angular_speed = v
-        else:
+    def set_param(self, path: str, value: float) -> dict[str, float]:
+        """Change the level field ``path`` (e.g. ``"chain.friction"``) live: the change and
+        what follows it (:func:`chainfountain.sim.live.plan`), applied by :meth:`apply`;
+        returns the fields written. ``KeyError`` for a field that needs a rebuild (change
+        :attr:`config` and call :meth:`reset` instead)."""
+        if live.setter_for(self.config, path) is None:
             raise KeyError(f"{path} cannot be changed while running; change the config and "
                            "reset()")
+        changes = live.plan(self.config, path, live.number(path, value))
+        self.apply(changes)
+        return changes
+
+    def apply(self, changes: dict[str, float]) -> None:
+        """Write planned live ``changes`` (field path -> value, :func:`chainfountain.sim.live.plan`)
+        into :attr:`config` and run each field's setter once. ``KeyError`` (nothing
+        changed) when one of them needs a rebuild."""
+        setters = []
+        for path in changes:
+            setter = live.setter_for(self.config, path)
+            if setter is None:
+                raise KeyError(f"{path} cannot be changed while running; change the config "
+                               "and reset()")
+            setters.append((setter, live.split(path)[1]))
+        for path, value in changes.items():
+            set_value(self.config, path, value)
+        for (setter, index), value in zip(setters, changes.values(), strict=True):
+            setter(self, index, value)
 
     def nearest_link(self, point: tuple[float, float]) -> int:
         """Index (chain order) of the link whose centre is nearest to ``point``."""
@@ -447,7 +363,7 @@ class Simulation:
     @property
     def n_free(self) -> int:
         """Number of dynamic (free) links, counted from the downstream end."""
-        return self.feed.n_free
+        return self.ends.n_free
 
     @property
     def n_links(self) -> int:
@@ -468,7 +384,7 @@ class Simulation:
 
     def guide_geometry(self) -> tuple[tuple[float, float], tuple[float, float]]:
         """Launch point and unit launch direction."""
-        return (0.0, 0.0), self.feed.u
+        return (0.0, 0.0), self.ends.u
 
     @property
     def drop(self) -> float:
@@ -509,8 +425,8 @@ class Simulation:
         tail = self.slide_away
         if tail is None:
             return None
-        y = self.feed.floor_y
-        if self.feed.absorbed > 0 and self.chain.links:
+        y = self.ends.floor_y
+        if self.ends.absorbed > 0 and self.chain.links:
             x = float(self.chain.links[0].body.position.x)
         elif self.reference is not None:
             x = float(self.reference.landing_x)
@@ -570,5 +486,5 @@ class Simulation:
         r = self.reference
         pred = "" if r is None else f", predicted h={r.h:.3f} m, l={r.landing_x:.3f} m"
         return (f"{self.config.name or 'feed'}: t={self.time:.3f} s, {self.n_free} free links "
-                f"of {self.chain.L * 1e3:.1f} mm, v={self.feed.speed:.2f} m/s, "
+                f"of {self.chain.L * 1e3:.1f} mm, v={self.ends.speed:.2f} m/s, "
                 f"alpha0={math.degrees(self.config.feed.launch_angle):.1f} deg{pred}")

@@ -52,7 +52,7 @@ def _loss_free_special() -> io.Level:
 
 def test_a_loss_free_machines_upper_cart_has_one_value() -> None:
     lvl = _loss_free_special()
-    from chainfountain.level.checks import BALANCE_TOLERANCE
+    from chainfountain.sim.kinds.ideal.checks import BALANCE_TOLERANCE
 
     lo, hi = spans.admissible(lvl, _spec(lvl, "feed.cart_force"))
     tol = BALANCE_TOLERANCE * 0.05 * 9.81 * 1.0  # the check's tolerance, lambda g H units

@@ -23,8 +23,8 @@ import numpy as np
 import pytest
 
 from chainfountain.level import io, library, twins
-from chainfountain.level.checks import IDEAL_MIN_KQ
 from chainfountain.sim import Recorder, Simulation
+from chainfountain.sim.kinds.ideal.checks import IDEAL_MIN_KQ
 from chainfountain.sim.machine_rules import keeps_any_speed
 from chainfountain.sim.reference import LaunchReference
 from chainfountain.theory import apparatus as ap

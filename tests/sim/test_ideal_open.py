@@ -123,7 +123,7 @@ def test_the_run_ends_in_one_sentence_when_the_table_is_empty() -> None:
     """A finite table (``feed.chain_length``) ends the run when it is all picked up: about
     the table's extra metres over the speed after the start."""
     from chainfountain.errors import RunEnded
-    from chainfountain.level.checks import TABLE_MARGIN
+    from chainfountain.sim.kinds.ideal.checks import TABLE_MARGIN
 
     lvl = _level()
     sim = Simulation(lvl.sim)

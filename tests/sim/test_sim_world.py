@@ -95,8 +95,8 @@ def test_live_commands_and_reset() -> None:
         else:
             assert both and lk.up_spring.stiffness == 0.0
             assert lk.up_spring.damping == pytest.approx(d_wave)
-    sim.set_iterations(12)
-    assert sim.space.iterations == 12
+    sim.set_param("solver.iterations", 12)
+    assert sim.space.iterations == sim.config.solver.iterations == 12
     sim.reset()
     assert sim.time == 0.0 and sim.config.feed.speed == 4.5
 
@@ -133,8 +133,8 @@ def test_views_and_building_blocks() -> None:
     assert len(cart.shape.get_vertices()) == 4 and cart.track_start != cart.track_end
     front, back = sim.link_endpoints()
     assert front.shape == back.shape == (sim.n_links, 2)
-    sim.set_roller_speed(0, -3.0)
-    assert sim.rollers[0].body.angular_velocity == -3.0
+    sim.set_param("rollers[0].angular_speed", -3.0)
+    assert sim.rollers[0].body.angular_velocity == sim.config.rollers[0].angular_speed == -3.0
 
 
 def test_finite_chain_runs_out() -> None:

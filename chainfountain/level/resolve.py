@@ -1,0 +1,47 @@
+"""The settings a level runs with: the named step between its checks and its run.
+
+A level with ``solver.accuracy`` above 0 asks for its link length, step and iterations to
+be chosen for that accuracy (:mod:`chainfountain.sim.accuracy`'s error model);
+:func:`resolve` returns the level with them, which is what runs and what is recorded.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+
+from chainfountain.level.model import Level, _fail
+from chainfountain.sim import accuracy
+from chainfountain.sim.accuracy import Estimate
+from chainfountain.sim.kinds import kind_of
+from chainfountain.sim.reference import LaunchReference
+
+
+def resolve(level: Level, where: str) -> tuple[Level, Estimate | None]:
+    """The level that runs: ``level`` itself when ``solver.accuracy`` is 0, else a copy
+    whose link length, step and iterations are the cheapest the error model gives for
+    the accuracy asked, with the model's estimate for them (``level`` is not changed).
+
+    A fountain the model cannot reach the accuracy for is refused with the best bound it
+    can reach (:func:`chainfountain.sim.accuracy.choose`)."""
+    acc = level.sim.solver.accuracy
+    if acc == 0.0 or kind_of(level.sim).accuracy_refusal(level.sim) is not None:
+        return level, None
+    level = copy.deepcopy(level)
+    sim = level.sim
+    f = sim.feed
+    ref = LaunchReference.of_feed(f, sim.gravity)
+    try:
+        est = accuracy.choose(ref, acc)
+    except accuracy.OutOfReach as exc:
+        least = (f"at least {math.ceil(exc.best * 1e4) / 1e4:g}, or 0" if math.isfinite(exc.best)
+                 else "0")
+        _fail(where, "solver.accuracy", f"{acc!r}: {exc}; allowed: {least} (0: the level's own "
+              "settings, with `chainfountain converge LEVEL` for their error)")
+    s = est.settings
+    sim.chain.link_length = s.link_length
+    sim.chain.link_radius = min(sim.chain.link_radius, 0.4 * s.link_length)
+    sim.solver.dt = s.dt
+    sim.solver.substeps = 1
+    sim.solver.iterations = s.iterations
+    return level, est
