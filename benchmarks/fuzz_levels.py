@@ -9,8 +9,10 @@ mutants (spread over all of them) are built and run ``--seconds`` headless; it p
 how many ran, stopped themselves (RunEnded, by reason), were cut at the wall-time limit,
 or gave a traceback (must be 0). Exit status 1 when any traceback was seen.
 
-    .venv/bin/python benchmarks/fuzz_levels.py                 # 10000 mutants, 300 runs
-    .venv/bin/python benchmarks/fuzz_levels.py --examples 2000 --run-accepted 50 --seed 3
+Run it from the repository root as a module (it imports ``tests.level.levelfuzz``)::
+
+    .venv/bin/python -m benchmarks.fuzz_levels                 # 10000 mutants, 300 runs
+    .venv/bin/python -m benchmarks.fuzz_levels --examples 2000 --run-accepted 50 --seed 3
 """
 
 from __future__ import annotations
@@ -23,10 +25,10 @@ import time
 import traceback
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "level"))
-import levelfuzz as lf  # noqa: E402
-from hypothesis import HealthCheck, Phase, given, settings  # noqa: E402
-from hypothesis import seed as hypothesis_seed  # noqa: E402
+from hypothesis import HealthCheck, Phase, given, settings
+from hypothesis import seed as hypothesis_seed
+
+from tests.level import levelfuzz as lf
 
 
 def _refusal_kind(msg: str, where: str) -> str:

@@ -9,8 +9,8 @@ pull ``Tbar_E`` 0-0.25, kept when inside the model's domain and at most 10 m in 
 
 Usage::
 
-    python research/accuracy_check.py --accuracy 0.01 0.005 --random 8 --jobs 2
-    python research/accuracy_check.py --only-random --seed 2 --random 12   # fresh launches
+    python -m research.accuracy_check --accuracy 0.01 0.005 --random 8 --jobs 2
+    python -m research.accuracy_check --only-random --seed 2 --random 12   # fresh launches
 """
 
 from __future__ import annotations
@@ -23,8 +23,7 @@ import sys
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
-sys.path.insert(0, __file__.rsplit("/", 1)[0])
-import error_model  # noqa: E402
+from research import error_model
 
 KEYS = {"vertex_y": "h", "vertex_x": "vertex_x", "landing_x": "l"}
 

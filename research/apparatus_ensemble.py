@@ -12,8 +12,8 @@ is measured here, and its figures are quoted in ``docs/apparatus.md`` ("Ensemble
 
 Usage::
 
-    python research/apparatus_ensemble.py                  # every reading, 8 seeds
-    python research/apparatus_ensemble.py fountain_d --seeds 4 --jobs 2
+    python -m research.apparatus_ensemble                  # every reading, 8 seeds
+    python -m research.apparatus_ensemble fountain_d --seeds 4 --jobs 2
 
 Fountain D's two presets take about 30 s a run, the others 2-15 s.
 """
@@ -68,8 +68,8 @@ def cart_step(seed: int) -> dict[str, float]:
     """The heavier cart's step on the floor preset (tests/apparatus/test_apparatus_carts.py)."""
     from chainfountain.level import io
     from chainfountain.sim.apparatus import CART_GAIN_2CM
-    from chainfountain.sim.cart_step import cart_step as step
     from chainfountain.study.changes import laid_on_path
+    from research.rigs.cart_step import cart_step as step
 
     cfg = laid_on_path(io.load(LEVELS / "apparatus_floor.toml")).sim
     cfg = dataclasses.replace(cfg, apparatus=dataclasses.replace(cfg.apparatus, plate_links=0))

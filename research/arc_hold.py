@@ -17,7 +17,7 @@ laid on its path, from the level's start.
 
 Usage::
 
-    python research/arc_hold.py --level apparatus_fold_gripped --hold project bias \\
+    python -m research.arc_hold --level apparatus_fold_gripped --hold project bias \\
         --bias 1e-10 --dt-factor 1 0.5 --window 1 4
 """
 
@@ -26,23 +26,17 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import math
-import sys
 import time
-from pathlib import Path
 
 import numpy as np
 
-from chainfountain.level.library import shipped_dir
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-
-from gripped_fold import _value  # noqa: E402
-
-from chainfountain.errors import RunEnded  # noqa: E402
+from chainfountain.errors import RunEnded
 from chainfountain.level import io
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation, guide
 from chainfountain.sim.apparatus import fold, joints, upper_guide
 from chainfountain.study.changes import laid_on_path, with_changes
+from research.gripped_fold import _value
 
 LEVELS = shipped_dir()
 ORIG_KEEP = joints.keep_on_arcs

@@ -1,6 +1,6 @@
 """The beaker's energy: what the floor takes against the weight's work from the pick-up.
 
-    .venv/bin/python research/beaker_energy.py [--dt 0.00025 0.0000625] [--form 8] [--seconds 6]
+    .venv/bin/python -m research.beaker_energy [--dt 0.00025 0.0000625] [--form 8] [--seconds 6]
 
 Each run forms the fountain from rest for ``--form`` s, then for ``--seconds`` s tallies
 the kinetic energy (translation and rotation) of every link the floor takes, against the

@@ -1,7 +1,7 @@
 """The beaker level against Biggins and Warner, with its error bars: nudged starts (the
 pile is chaotic), half the time step and twice the solver iterations.
 
-    .venv/bin/python research/beaker_refinement.py [--level beaker] [--seconds 30]
+    .venv/bin/python -m research.beaker_refinement [--level beaker] [--seconds 30]
         [--seeds 0 1 2] [--jobs 2] [--set beaker.drop=1.5 ...]
 
 Each run starts from rest and is averaged over its last ``--window`` seconds (the fountain

@@ -9,7 +9,7 @@ tension and the vertex's offset from the catenary through the measured ends.
 
 Usage::
 
-    python research/bookkeeping_cadence.py [apparatus_floor] [--seeds 1 2 3]
+    python -m research.bookkeeping_cadence [apparatus_floor] [--seeds 1 2 3]
 
 About 20 s for three seeds on one core.
 """

@@ -1,6 +1,6 @@
 """A step in the upper cart's force against the energy balance (issue 4, step 2).
 
-Runs :func:`chainfountain.sim.cart_step.cart_step` on ``apparatus_floor`` (long strand,
+Runs :func:`research.rigs.cart_step.cart_step` on ``apparatus_floor`` (long strand,
 ``plate_links = 0``, unless ``--plate-links``) for each cart mass and prints, per window,
 the measured deceleration over the predicted one for the energy balance (gain 1/2, with
 and without the pick-up's speed dependence), ``CART_GAIN_2CM`` (the rig law's steady
@@ -9,10 +9,10 @@ gain for these links, 0.526; 0.68 when read through biased contacts:
 law (gain 1), beside the pair's tension readings. ``docs/apparatus.md``,
 "Unbalanced carts", quotes it::
 
-    .venv/bin/python research/cart_step_study.py                  # 60 g, about 10 s
-    .venv/bin/python research/cart_step_study.py --masses 0.025 0.04 0.06
-    .venv/bin/python research/cart_step_study.py --plate-links 20   # the treadmill
-    .venv/bin/python research/cart_step_study.py --figure docs/img/cart_step.png
+    .venv/bin/python -m research.cart_step_study                  # 60 g, about 10 s
+    .venv/bin/python -m research.cart_step_study --masses 0.025 0.04 0.06
+    .venv/bin/python -m research.cart_step_study --plate-links 20   # the treadmill
+    .venv/bin/python -m research.cart_step_study --figure docs/img/cart_step.png
 """
 
 from __future__ import annotations
@@ -27,8 +27,8 @@ from chainfountain.level import io
 from chainfountain.level.io import LevelError
 from chainfountain.level.library import shipped_dir
 from chainfountain.sim.apparatus import CART_GAIN_2CM, RunEnded
-from chainfountain.sim.cart_step import CartStep, cart_step
 from chainfountain.study.changes import laid_on_path
+from research.rigs.cart_step import CartStep, cart_step
 
 LEVELS = shipped_dir()
 

@@ -8,9 +8,9 @@ swing (max - min of the folding roller's chain speed), then when and why the run
 
 Usage::
 
-    python research/contact_holds.py apparatus_special --duration 60 \
+    python -m research.contact_holds apparatus_special --duration 60 \
         --set apparatus.bearing_drag=0.05 --dt-factor 0.5
-    python research/contact_holds.py apparatus_fold_gripped --duration 600 --seed 1 --laid
+    python -m research.contact_holds apparatus_fold_gripped --duration 600 --seed 1 --laid
 """
 
 from __future__ import annotations

@@ -15,7 +15,7 @@ Points the level check refuses (no fountain at that start) are listed, not drawn
 
 Usage::
 
-    python research/contact_tuning.py --out /tmp/contact_tuning --jobs 2 \\
+    python -m research.contact_tuning --out /tmp/contact_tuning --jobs 2 \\
         --figure docs/img/contact_tuning.png
 
 Cost: 15 points of 20 s at about 3x real time: about 1 min on two cores.
@@ -26,7 +26,8 @@ from __future__ import annotations
 import sys
 
 import numpy as np
-from ideal_tuning import (  # sibling script (research/ on sys.path)
+
+from research.ideal_tuning import (
     run_grid,
     save_figure,
     tuning_args,

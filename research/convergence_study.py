@@ -1,6 +1,6 @@
 """Convergence study of the fed fountain against the paper's catenary (not a test).
 
-Usage: ``.venv/bin/python research/convergence_study.py [--quick]``
+Usage: ``.venv/bin/python -m research.convergence_study [--quick]``
 
 Scans link length, time step and solver iterations around the defaults for the
 shipped presets, prints a markdown table of the errors against

@@ -9,7 +9,7 @@ and how the run ended.
 
 Usage::
 
-    python research/end_follow.py --seconds 40 --change 4 carts[0].mass=0.024 [--gain 0]
+    python -m research.end_follow --seconds 40 --change 4 carts[0].mass=0.024 [--gain 0]
         [--dt-factor 0.5] [--set apparatus.fold_brake=1.5]
 """
 
@@ -18,21 +18,15 @@ from __future__ import annotations
 import argparse
 import math
 import os
-import sys
-from pathlib import Path
 
 import numpy as np
 
-from chainfountain.level.library import shipped_dir
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-
-from gripped_fold import _value  # noqa: E402
-
-from chainfountain.errors import RunEnded  # noqa: E402
+from chainfountain.errors import RunEnded
 from chainfountain.level import io
+from chainfountain.level.library import shipped_dir
 from chainfountain.sim.apparatus import Apparatus
 from chainfountain.study.changes import laid_on_path, with_changes
+from research.gripped_fold import _value
 
 LEVELS = shipped_dir()
 

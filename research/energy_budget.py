@@ -1,8 +1,8 @@
 """Energy budget of the floor presets: where the chain loses the tension the rig law lacks.
 
-    .venv/bin/python research/energy_budget.py                      # both presets, ~20 s
-    .venv/bin/python research/energy_budget.py --radius 0.075 0.15 0.25 --only 9g
-    .venv/bin/python research/energy_budget.py --only open          # 'open', ~6 s
+    .venv/bin/python -m research.energy_budget                      # both presets, ~20 s
+    .venv/bin/python -m research.energy_budget --radius 0.075 0.15 0.25 --only 9g
+    .venv/bin/python -m research.energy_budget --only open          # 'open', ~6 s
 
 Runs each preset (optionally with other upper-guide radii, ``apparatus.channel_radius``)
 and sums the losses between the plate's upstream end and the free end with

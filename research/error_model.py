@@ -18,8 +18,8 @@ on fountains they were not fitted on.
 
 Usage::
 
-    python research/error_model.py --jobs 2 --json /tmp/grid.json     # measure (10-15 min)
-    python research/error_model.py --fit /tmp/grid.json /tmp/check2.json   # fit and print
+    python -m research.error_model --jobs 2 --json /tmp/grid.json     # measure (10-15 min)
+    python -m research.error_model --fit /tmp/grid.json /tmp/check2.json   # fit and print
 """
 
 from __future__ import annotations

@@ -10,7 +10,7 @@ depends on the time step").
 
 Usage::
 
-    python research/fold_balance.py apparatus_fold --clearance 0.002 \\
+    python -m research.fold_balance apparatus_fold --clearance 0.002 \\
         --lower-carts 20 22 24 26 28 --dt 0.5 0.25 --seeds 3 --duration 30
 
 About 10-50 s of wall time per run (two at once; more at smaller steps).

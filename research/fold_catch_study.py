@@ -14,9 +14,9 @@ ended, the last ``--tail`` s of the catch (0.1-s rows).
 
 Usage::
 
-    python research/fold_catch_study.py --seconds 60 --dt-factor 1 0.5 --seeds 0 1 \\
+    python -m research.fold_catch_study --seconds 60 --dt-factor 1 0.5 --seeds 0 1 \\
         --set carts[0].mass=0.019 carts[1].mass=0.002 [--capture 0.10 3] [--close 5]
-    python research/fold_catch_study.py --snap 5.0,5.2 --dt-factor 0.5 \\
+    python -m research.fold_catch_study --snap 5.0,5.2 --dt-factor 0.5 \\
         --set carts[0].mass=0.019 carts[1].mass=0.004   # draws the mouth (png)
 
 One core: about 1.5 s of wall time per simulated second at 0.5 ms, 3 s at 0.25 ms.
@@ -28,19 +28,14 @@ from __future__ import annotations
 
 import argparse
 import math
-import sys
 import time
-from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-
-from gripped_fold import _value, build  # noqa: E402
-
-from chainfountain.errors import RunEnded  # noqa: E402
-from chainfountain.sim.apparatus import Apparatus  # noqa: E402
-from chainfountain.sim.fastbody import pos  # noqa: E402
+from chainfountain.errors import RunEnded
+from chainfountain.sim.apparatus import Apparatus
+from chainfountain.sim.fastbody import pos
+from research.gripped_fold import _value, build
 
 
 class Watch:

@@ -9,7 +9,7 @@ lambda v^2, against the loss-free law 1/4 + F_c/(2 lambda v^2) + g R/v^2 (grippe
 
 Usage::
 
-    python research/fold_entry_step.py --level apparatus_fold --h 5e-4 2.5e-4 \
+    python -m research.fold_entry_step --level apparatus_fold --h 5e-4 2.5e-4 \
         --set apparatus.fold_roller=gripped apparatus.fold_roller_radius=0.1 \
         carts[0].mass=0.019 carts[1].mass=0.002 apparatus.plate_links=0 [--patch NAME=VALUE ...]
 

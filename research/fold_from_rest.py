@@ -10,8 +10,8 @@ top and the landing's offset from the first turn's radius.
 
 Usage::
 
-    python research/fold_from_rest.py --seconds 40 --seeds 0 1 2 3
-    python research/fold_from_rest.py --level apparatus_special_gripped --dt-factor 0.5
+    python -m research.fold_from_rest --seconds 40 --seeds 0 1 2 3
+    python -m research.fold_from_rest --level apparatus_special_gripped --dt-factor 0.5
 """
 
 from __future__ import annotations

@@ -1,14 +1,14 @@
 """Is the fold converged in the time step? The fold presets at several solver steps.
 
-    .venv/bin/python research/fold_step_study.py                  # ~1.5 min
-    .venv/bin/python research/fold_step_study.py --only special --dt 0.5 0.25
-    .venv/bin/python research/fold_step_study.py --rig            # put-down rig, ~30 s
-    .venv/bin/python research/fold_step_study.py --only special --clearance 0.002 \
+    .venv/bin/python -m research.fold_step_study                  # ~1.5 min
+    .venv/bin/python -m research.fold_step_study --only special --dt 0.5 0.25
+    .venv/bin/python -m research.fold_step_study --rig            # put-down rig, ~30 s
+    .venv/bin/python -m research.fold_step_study --only special --clearance 0.002 \
         --lower-cart 0.046                                          # the clamp removed
-    .venv/bin/python research/fold_step_study.py --only special --seconds 6 --dt 0.5 \
+    .venv/bin/python -m research.fold_step_study --only special --seconds 6 --dt 0.5 \
         --speeds 2.94 2.97 3.0 3.03 3.06                            # perturbed starts
-    .venv/bin/python research/fold_step_study.py --rig --feed groove --push 0.632
-    .venv/bin/python research/fold_step_study.py --rig --feed groove --push 0.632 \
+    .venv/bin/python -m research.fold_step_study --rig --feed groove --push 0.632
+    .venv/bin/python -m research.fold_step_study --rig --feed groove --push 0.632 \
         --clearance 0.002 --dt 0.5 0.1 0.025 --iterations 10 40
 
 Runs each 'fold' preset (real geometry or treadmills, as shipped) for ``--seconds`` at
@@ -44,7 +44,7 @@ from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import report
 from chainfountain.sim.config import ChainConfig, SimConfig, SolverConfig
-from chainfountain.sim.pickup import RigConfig, run_rig
+from research.rigs.pickup import RigConfig, run_rig
 
 ROOT = Path(__file__).resolve().parents[1]
 FOLD_PRESETS = ("apparatus_fold", "apparatus_special")

@@ -15,7 +15,7 @@ sliders allow the ringed pairs
 
 Usage::
 
-    python research/fold_tuning.py --out /tmp/fold_tuning --jobs 2 --seeds 0 1 \\
+    python -m research.fold_tuning --out /tmp/fold_tuning --jobs 2 --seeds 0 1 \\
         --figure docs/img/fold_tuning.png
 
 Cost: 30 pairs, two seeds, 30 s each at about 1.6x real time: about 10 min on two cores.
@@ -29,13 +29,13 @@ import sys
 from pathlib import Path
 
 import numpy as np
-from ideal_tuning import (  # sibling script (research/ on sys.path)
+
+from chainfountain.level.library import shipped_dir
+from research.ideal_tuning import (
     run_grid,
     save_figure,
     tuning_args,
 )
-
-from chainfountain.level.library import shipped_dir
 
 UPPER = (0.008, 0.013, 0.019, 0.024, 0.027)
 LOWER = (0.296, 0.301, 0.306, 0.311, 0.326, 0.341)

@@ -12,11 +12,11 @@ read high there: they ring at the laying rate; ``research/fold_entry_step.py``.)
 
 Usage::
 
-    python research/gripped_fold.py --seconds 60 --dt-factor 1 0.5 \\
+    python -m research.gripped_fold --seconds 60 --dt-factor 1 0.5 \\
         --set carts[0].mass=0.019 carts[1].mass=0.002 apparatus.end_tension=0.2
-    python research/gripped_fold.py --entry --seconds 2 --dt-factor 1 0.5 \\
+    python -m research.gripped_fold --entry --seconds 2 --dt-factor 1 0.5 \\
         --set carts[0].mass=0.019 carts[1].mass=0.002 apparatus.plate_links=0
-    python research/gripped_fold.py --entry --contact --level apparatus_special \\
+    python -m research.gripped_fold --entry --contact --level apparatus_special \\
         --set apparatus.fold_clearance=0.002 carts[1].mass=0.044 --seconds 2
 
 One core: about 1.5 s of wall time per simulated second at 0.5 ms, twice that at

@@ -11,9 +11,9 @@ the run's second half. The level starts on the predicted catenary at ``--v0``.
 
 Usage::
 
-    python research/ideal_floor.py                       # H 1 m, xi2 0.3, no cart, from 3.5 m/s
-    python research/ideal_floor.py --xi2 0.1 --seconds 10
-    python research/ideal_floor.py --xi2 0.3 --cart 0.05 --v0 3.7 --seconds 10
+    python -m research.ideal_floor                       # H 1 m, xi2 0.3, no cart, from 3.5 m/s
+    python -m research.ideal_floor --xi2 0.1 --seconds 10
+    python -m research.ideal_floor --xi2 0.3 --cart 0.05 --v0 3.7 --seconds 10
 """
 
 from __future__ import annotations

@@ -17,8 +17,8 @@ in any 10-s window, mean speeds within 1 %).
 
 Usage::
 
-    python research/ideal_machine_holds.py                        # every ideal level, 600 s
-    python research/ideal_machine_holds.py ideal_special --duration 60 --half --jobs 2
+    python -m research.ideal_machine_holds                        # every ideal level, 600 s
+    python -m research.ideal_machine_holds ideal_special --duration 60 --half --jobs 2
 
 Cost: about 3x real time per run on one core (600 s: 3-4 min; at half the step twice that).
 """

@@ -13,8 +13,8 @@ speed, no starter), at the level's ``solver.dt`` and at half of it, and prints f
 
 Usage::
 
-    python research/ideal_open.py                   # as shipped, dt and dt/2, 2 processes
-    python research/ideal_open.py --from-fountain --duration 30
+    python -m research.ideal_open                   # as shipped, dt and dt/2, 2 processes
+    python -m research.ideal_open --from-fountain --duration 30
 
 Cost: about 3x real time at the level's step, 1.5x at half of it (47 s: about 15 s and
 30 s of wall time).

@@ -9,7 +9,7 @@ refuses (no fountain at the speed they would select) are listed, not drawn.
 
 Usage::
 
-    python research/ideal_tuning.py --out /tmp/tuning --jobs 2 --figure docs/img/ideal_tuning.png
+    python -m research.ideal_tuning --out /tmp/tuning --jobs 2 --figure docs/img/ideal_tuning.png
 
 Cost: 15 points of 25 s at about 2-3x real time: 2-3 min on two cores.
 """

@@ -66,10 +66,10 @@ polygon and the kinematic port), and without a cart its strand drifts off the po
 
 Usage::
 
-    python research/joint_pickup_weld.py --radius 0.1 --drive pull --pull 0.25
-    python research/joint_pickup_weld.py --radius 0.1 --drive pull --pull 0.3056 --cart 0.05
-    python research/joint_pickup_weld.py --drive pull --pull 0.25            # 30-mm roller
-    python research/joint_pickup_weld.py --radius 0.1 --cart 0.05            # port drive
+    python -m research.joint_pickup_weld --radius 0.1 --drive pull --pull 0.25
+    python -m research.joint_pickup_weld --radius 0.1 --drive pull --pull 0.3056 --cart 0.05
+    python -m research.joint_pickup_weld --drive pull --pull 0.25            # 30-mm roller
+    python -m research.joint_pickup_weld --radius 0.1 --cart 0.05            # port drive
 """
 
 from __future__ import annotations

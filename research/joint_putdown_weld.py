@@ -1,6 +1,7 @@
 """The joint-gripped folding roller as a one-freedom linkage: gripped links welded to it.
 
-A redesign of ``research/joint_putdown.py`` (the first rig, which locks within 0.2 s).
+A redesign of ``research/joint_putdown.py`` (the first rig, which locks within 0.2 s;
+deleted, in git history: ``git show c48f91db91fb:research/joint_putdown.py``).
 Same scene: no gravity, ``alpha = 0``, the strand arrives horizontally over the roller's
 top at ``v``, pushed in by a row of kinematic port links that travel with the roller; a
 cart force ``F_c`` pushes the roller along its motion; the loss-free balance is
@@ -59,9 +60,9 @@ excess over ``v/2`` is the joints' O(dt) stretch under ``error_bias`` 1e-10); 10
 
 Usage::
 
-    python research/joint_putdown_weld.py --radius 0.1              # catch, no cart: converged
-    python research/joint_putdown_weld.py --radius 0.1 --cart 0.05 --seconds 10
-    python research/joint_putdown_weld.py --grip rimonly --cart 0.05   # the rig's 30-mm roller
+    python -m research.joint_putdown_weld --radius 0.1              # catch, no cart: converged
+    python -m research.joint_putdown_weld --radius 0.1 --cart 0.05 --seconds 10
+    python -m research.joint_putdown_weld --grip rimonly --cart 0.05   # the rig's 30-mm roller
 """
 
 from __future__ import annotations

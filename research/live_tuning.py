@@ -11,12 +11,12 @@ a last line per value says how many held.
 
 Usage::
 
-    python research/live_tuning.py apparatus_special 'carts[1].mass' 0.054 0.056 0.059 0.060
-    python research/live_tuning.py apparatus_floor 'carts[0].mass' 0.015 0.020 0.025 \\
+    python -m research.live_tuning apparatus_special 'carts[1].mass' 0.054 0.056 0.059 0.060
+    python -m research.live_tuning apparatus_floor 'carts[0].mass' 0.015 0.020 0.025 \\
         --at 8 --after 30
-    python research/live_tuning.py apparatus_fold 'carts[1].mass' 0.039 0.043 \\
+    python -m research.live_tuning apparatus_fold 'carts[1].mass' 0.039 0.043 \\
         --starts 3 --after 40 --every 10
-    python research/live_tuning.py apparatus_special 'carts[1].mass' 0.056 0.059 \\
+    python -m research.live_tuning apparatus_special 'carts[1].mass' 0.056 0.059 \\
         --also 'carts[0].mass=0.019' --starts 3 --after 40 --every 10
 
 About 50 s of wall time per fold run of 70 simulated seconds, 15 s per floor run.

@@ -16,8 +16,8 @@ and the worst window of each figure:
 
 Usage::
 
-    python research/long_runs.py                          # every ordinary fed level
-    python research/long_runs.py classroom wide_low --duration 60 --jobs 2
+    python -m research.long_runs                          # every ordinary fed level
+    python -m research.long_runs classroom wide_low --duration 60 --jobs 2
 
 Cost: the ordinary levels run at 1-5x real time (2-2.5 min for 120 s of
 ``paper_tall_fine``); fountain D's presets at about 0.05x (40 min each), so they

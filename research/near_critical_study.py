@@ -1,6 +1,6 @@
 """Vertex creep of a near-critical fountain against the time step (not a test).
 
-Usage: ``.venv/bin/python research/near_critical_study.py [--seconds 0.9]``
+Usage: ``.venv/bin/python -m research.near_critical_study [--seconds 0.9]``
 
 The paper's fountain D (``l = 0.33``, ``h = 0.28``, ``H = 2`` m, ``k = 0.377``)
 has ``1 - Tbar = k/q = 0.017`` at its vertex: close to the critical tension

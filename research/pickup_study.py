@@ -1,14 +1,14 @@
 """Pick-up and put-down forces of a roller rolling on a resting chain, against the paper.
 
-Runs :class:`chainfountain.sim.pickup.RollerRig` (paper section "Pick-Up and
+Runs :class:`research.rigs.pickup.RollerRig` (paper section "Pick-Up and
 Pull-Down Forces") at alpha = 0, 45, 90 deg, with and without a cart force,
 prints a Markdown table and writes ``docs/img/pickup.png``::
 
-    .venv/bin/python research/pickup_study.py            # ~1 min
-    .venv/bin/python research/pickup_study.py --no-figure
-    .venv/bin/python research/pickup_study.py --putdown-2cm   # ~25 s, no figure
-    .venv/bin/python research/pickup_study.py --pickup-2cm --iterations 20
-    .venv/bin/python research/pickup_study.py --pickup-2cm-law   # ~4 min, no figure
+    .venv/bin/python -m research.pickup_study            # ~1 min
+    .venv/bin/python -m research.pickup_study --no-figure
+    .venv/bin/python -m research.pickup_study --putdown-2cm   # ~25 s, no figure
+    .venv/bin/python -m research.pickup_study --pickup-2cm --iterations 20
+    .venv/bin/python -m research.pickup_study --pickup-2cm-law   # ~4 min, no figure
 
 ``--pickup-2cm``: pick-up at alpha = 0 with the same chain, 3 m/s, dt 0.5 ms, for cart
 forces 0-0.3, and the line ``Tbar = p + G*Fbar_c`` (carriage mass ``0.02 + F/(g sin 30
@@ -36,7 +36,7 @@ import time
 import numpy as np
 
 from chainfountain.sim.config import ChainConfig
-from chainfountain.sim.pickup import RigConfig, RigResult, lossless_bar, run_rig
+from research.rigs.pickup import RigConfig, RigResult, lossless_bar, run_rig
 
 LAM, V = 0.05, 5.0
 

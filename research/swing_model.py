@@ -1,7 +1,7 @@
 """The landing swing against the linear model of the stored-length mode.
 
-    .venv/bin/python research/swing_model.py                  # ~10 s
-    .venv/bin/python research/swing_model.py --level apparatus_fold --seconds 2
+    .venv/bin/python -m research.swing_model                  # ~10 s
+    .venv/bin/python -m research.swing_model --level apparatus_fold --seconds 2
 
 Runs a 'fold' level for ``--seconds`` (default 3) to read what the model needs: the
 moving chain on either side of the fountain at 1 s (links faster than ``v/4``, left of

@@ -1,13 +1,13 @@
 """The landing swing of the fold presets run long: how fast it grows, when the fold fails.
 
-    .venv/bin/python research/swing_study.py                      # ~30 s
-    .venv/bin/python research/swing_study.py --speeds 2.94 3.0 3.06
-    .venv/bin/python research/swing_study.py --lower-cart 0.054 0.058 0.062
-    .venv/bin/python research/swing_study.py --dt 0.5 0.1 --clearance 0.002 \
+    .venv/bin/python -m research.swing_study                      # ~30 s
+    .venv/bin/python -m research.swing_study --speeds 2.94 3.0 3.06
+    .venv/bin/python -m research.swing_study --lower-cart 0.054 0.058 0.062
+    .venv/bin/python -m research.swing_study --dt 0.5 0.1 --clearance 0.002 \
         --lower-cart 0.044 --speeds 2.97 --seconds 8
-    .venv/bin/python research/swing_study.py --close-rate 2 20 100
-    .venv/bin/python research/swing_study.py --upper-drag 0.2 --band 0.06 0.1
-    .venv/bin/python research/swing_study.py --figure docs/img/fold_catch.png   # ~25 s
+    .venv/bin/python -m research.swing_study --close-rate 2 20 100
+    .venv/bin/python -m research.swing_study --upper-drag 0.2 --band 0.06 0.1
+    .venv/bin/python -m research.swing_study --figure docs/img/fold_catch.png   # ~25 s
 
 Runs a 'fold' level (default ``apparatus_special``, both plates treadmills, so nothing
 runs out) for up to ``--seconds`` and samples the chain speed (the upper plate strand)
@@ -39,7 +39,6 @@ import sys
 import time
 
 import numpy as np
-from fold_step_study import fold_config, positive  # sibling script (research/ on sys.path)
 from scipy.optimize import curve_fit
 
 from chainfountain.errors import RunEnded
@@ -47,6 +46,7 @@ from chainfountain.sim import Simulation, fastbody
 from chainfountain.sim.apparatus import Apparatus
 from chainfountain.sim.apparatus.tuning import CATCH_LOST
 from chainfountain.sim.config import SimConfig
+from research.fold_step_study import fold_config, positive
 
 SAMPLE = 0.01
 

@@ -2,9 +2,9 @@
 
 Usage::
 
-    xvfb-run -s "-screen 0 1920x1080x24" .venv/bin/python research/window_pictures.py window
-    .venv/bin/python research/window_pictures.py offscreen
-    xvfb-run -s "-screen 0 1920x1080x24" .venv/bin/python research/window_pictures.py clip
+    xvfb-run -s "-screen 0 1920x1080x24" .venv/bin/python -m research.window_pictures window
+    .venv/bin/python -m research.window_pictures offscreen
+    xvfb-run -s "-screen 0 1920x1080x24" .venv/bin/python -m research.window_pictures clip
 
 ``window`` opens the real window (1920x1080, projector mode) on every demonstration level
 (the picker's levels that form from rest), lets it run ``--seconds`` of wall time from its
@@ -108,7 +108,7 @@ def write_page(names: list[str], seconds: float) -> None:
              "view",
              "(E: every field, the paper's symbols, the graphs). Made by `xvfb-run -s "
              '"-screen 0',
-             '1920x1080x24" .venv/bin/python research/window_pictures.py window`.', ""]
+             '1920x1080x24" .venv/bin/python -m research.window_pictures window`.', ""]
     for name in names:
         title = paths.level_title(library.resolve(name))
         lines += [f"## {title} (`{name}`)", "",

@@ -17,7 +17,7 @@ Cart mass: a cart that carries a roller adds the tension ``dT = cart_gain*F_c``
 for a force ``F_c = m*g*sin(beta)`` along its track. The paper takes ``cart_gain = 1``
 (``Tbar_c = m*g*sin(beta)/(lambda*v^2)``). A loss-free power balance (``F_c*v_R = dT*v``)
 gives ``cart_gain = v_R/v = 1/(1 + cos(alpha))``, i.e. 1/2 for the apparatus' rollers,
-and that is what the simulated roller rig (``chainfountain.sim.pickup``,
+and that is what the simulated roller rig (``research/rigs/pickup.py``,
 ``docs/apparatus.md``) measures: pick-up at alpha = 0 0.49, put-down 0.50, with the
 strand tension read from the solver's pivot impulses. (A reading summed through the
 contacts gives about 1.0 unless pymunk's stale impulses of contacts that touch again are

@@ -23,13 +23,13 @@ What the runs show:
 So the prediction is the energy balance of the strand and roller unit
 (:func:`chainfountain.theory.apparatus.cart_step_speed` with ``gain = 1/2``, the mass of
 :func:`~chainfountain.theory.apparatus.referred_mass` and the rig's ``d(p lambda v^2)/dv``
-as ``drag``; :mod:`chainfountain.sim.cart_step` runs and reads the pair):
+as ``drag``; :mod:`research.rigs.cart_step` runs and reads the pair):
 measured/predicted 1.027 over the 0.6-s window (the first 0.2 s carry axial waves along
 the 8-m strand; ``research/cart_step_study.py`` gives the 0.3- and 1.0-s windows); with
 the rig's gain 0.526 instead of 1/2: 0.976.
 
 The step is chaotic, with two outcomes about equally often (16 starts nudged by 1e-12,
-``python research/apparatus_ensemble.py cart_step`` and ``pytest --perturb N``: 8 and 8).
+``python -m research.apparatus_ensemble cart_step`` and ``pytest --perturb N``: 8 and 8).
 In one the strand's closure holds (effective mass 0.95-0.98 of the counted one) and
 measured/predicted is 1.03-1.04 (gain 1/2) and 0.98-0.99 (rig gain); in the other the
 closure reads 0.81-0.85 and the ratios 1.19-1.21 and 1.13-1.15. The pick-up's gain
@@ -46,7 +46,7 @@ from apparatus_runs import load_on_path, load_undamped
 
 from chainfountain.level.library import shipped_dir
 from chainfountain.sim.apparatus import CART_GAIN_2CM
-from chainfountain.sim.cart_step import CartStep, cart_step
+from research.rigs.cart_step import CartStep, cart_step
 
 LEVEL = shipped_dir() / "apparatus_floor.toml"
 T_SWITCH, WINDOW, HEAVY = 1.0, 0.6, 0.06

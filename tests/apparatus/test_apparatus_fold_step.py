@@ -1,7 +1,7 @@
 """The fold is not converged in the time step (issue 4).
 
 A physical result must not depend on the solver step once the step is small enough.
-The put-down rig alone (:mod:`chainfountain.sim.pickup`, 2 cm links, 3 m/s, push
+The put-down rig alone (:mod:`research.rigs.pickup`, 2 cm links, 3 m/s, push
 ``0.4 lambda v^2``) is converged: entry tension 0.489, 0.467, 0.459, 0.451 at dt 0.5,
 0.25, 0.1, 0.03 ms, the roller at ``v_R/v`` 0.503-0.509. The apparatus's fold is not:
 ``apparatus_special`` (3 s, window 0.5-3 s) with the channel's walls holds at dt 0.5,

@@ -3,7 +3,7 @@ bookkeeping runs in every pymunk step or in every second one (``solver.substeps`
 
 A joint's impulse is what it applied in the last pymunk step ``h = solver.dt /
 solver.substeps``: the energy budget (:mod:`chainfountain.sim.budget`) and the cart step
-(:mod:`chainfountain.sim.cart_step`) divide by ``h``, not by ``dt``. Read with ``dt`` at
+(:mod:`research.rigs.cart_step`) divide by ``h``, not by ``dt``. Read with ``dt`` at
 ``substeps = 2`` the tensions come out halved and the budget's weight term doubled.
 
 ``apparatus_floor`` laid along its path: pymunk at 0.5 ms in both runs, the Python
@@ -24,8 +24,8 @@ from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import report
 from chainfountain.sim.budget import EnergyBudget
-from chainfountain.sim.cart_step import run as cart_step_run
 from chainfountain.study.changes import with_changes
+from research.rigs.cart_step import run as cart_step_run
 
 LEVEL = shipped_dir() / "apparatus_floor.toml"
 

@@ -19,8 +19,8 @@ is the downstream end, as for the feed):
    slides on a horizontal groove (vertical play through a slot). The chain
    comes off the table at the bottom contact, wraps around the back of the
    roller and leaves on top in ``+x``, the roller following at ``v/2``
-   (paper: ``v_R = v/(1 + cos alpha)``). The upper cart is the rope-tied
-   weight of :mod:`chainfountain.sim.pickup`: a constant force
+   (paper: ``v_R = v/(1 + cos alpha)``). The upper cart is a rope-tied weight,
+   as on the roller rig (``research/rigs/pickup.py``): a constant force
    ``m*g*sin(beta)`` on the carriage against its motion, the cart mass added to
    the carriage (an ideal rope over an ideal pulley to a cart on an incline).
 3. **Upper plate**: a frictionless static segment at the roller-top height

@@ -180,7 +180,7 @@ FOLLOW_CART_BAND = ((-11.0 * _GRAM_AT_30, 8.0 * _GRAM_AT_30),
 """As :data:`BRAKED_CART_BAND`, with an end guide that follows the landing
 (``apparatus.end_follow``): the catch no longer sets the band, the landing swing does.
 Measured on ``apparatus_fold_gripped`` (19 / 311 g, ``end_follow = 2``), each pair of
-carts set in the level and started from rest, 30 s (``python research/fold_tuning.py``,
+carts set in the level and started from rest, 30 s (``python -m research.fold_tuning``,
 two starts each; docs/apparatus.md, "Tuning both carts"): every pair these bands allow
 held both starts (15 pairs, lower carts 306-341 g); outside them, with lower carts of
 296-301 g, 8 of 20 starts lost the chain 2-25 s in. The speed then spans 2.9-3.3 m/s."""
@@ -192,7 +192,7 @@ FOLLOW_LIGHT_CORNER = (2.0, -22.0 * _GRAM_AT_30)
 """``(c, m)``: with a following end guide, both carts lighter at once must keep
 ``dF_lc + c*dF_uc >= m`` (N): the two carts far below the level's together lose the
 chain. Measured on ``apparatus_fold_gripped`` (19 / 311 g) from rest
-(``python research/fold_tuning.py``, two starts each): upper 8 g with lower 296 g held
+(``python -m research.fold_tuning``, two starts each): upper 8 g with lower 296 g held
 one start of two, with 301 g neither, with 306 and 311 g both; 13 g with 296 g neither,
 with 301 g both. With the upper cart at 8 g the lower slider starts at 311 g, one grid
 step inside the lightest pair that held."""

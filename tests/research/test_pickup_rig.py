@@ -1,5 +1,5 @@
 """Pick-up and put-down by a roller rolling on a resting chain (paper section
-"Pick-Up and Pull-Down Forces"), measured with :mod:`chainfountain.sim.pickup`.
+"Pick-Up and Pull-Down Forces"), measured with :mod:`research.rigs.pickup`.
 
 What is asserted is the measured law (see ``docs/apparatus.md``), not a fit. The strand
 tension is read from the solver's pivot impulses (:attr:`RigResult.pivot_bar`). The
@@ -27,7 +27,7 @@ import math
 
 import pytest
 
-from chainfountain.sim.pickup import RigConfig, RigResult, lossless_bar, run_rig
+from research.rigs.pickup import RigConfig, RigResult, lossless_bar, run_rig
 
 LAM, V = 0.05, 5.0
 _cache: dict[tuple, RigResult] = {}
@@ -118,7 +118,7 @@ def test_contact_reading_corrects_retouching_contacts(monkeypatch) -> None:
 
 
 def test_rig_refuses_to_run_out_of_chain() -> None:
-    from chainfountain.sim.pickup import RollerRig
+    from research.rigs.pickup import RollerRig
 
     rig = RollerRig(RigConfig(rest_length=0.2))
     with pytest.raises(RuntimeError, match="resting chain is used up"):
@@ -131,7 +131,7 @@ def test_grooved_feed_holds_the_strand_until_the_roller() -> None:
     groove line (``clearance`` above the roller-top centre line) without shapes, and each
     leaves its groove, shape back, once it is ``release`` links from the roller's top."""
     from chainfountain.sim.config import ChainConfig, SolverConfig
-    from chainfountain.sim.pickup import RollerRig
+    from research.rigs.pickup import RollerRig
 
     ch = ChainConfig(link_length=0.02, linear_density=0.05, friction=0.6, link_radius=0.002)
     cfg = RigConfig(mode="putdown", speed=3.0, cart_force=0.4 * 0.05 * 9.0, chain=ch,
@@ -162,7 +162,7 @@ def test_grooved_feed_holds_the_strand_until_the_roller() -> None:
 @pytest.mark.parametrize("bad", [dict(feed="rail"), dict(feed="groove", mode="pickup"),
                                  dict(feed="groove", mode="putdown", angle=0.5)])
 def test_grooved_feed_refuses_other_geometries(bad: dict) -> None:
-    from chainfountain.sim.pickup import RollerRig
+    from research.rigs.pickup import RollerRig
 
     with pytest.raises(ValueError, match="feed"):
         RollerRig(RigConfig(**bad))

@@ -1,0 +1,75 @@
+"""Every research script still starts: ``python -m research.NAME --help`` from the repository
+root, and every ``chainfountain``/``research`` name a research module imports (at the top
+or inside a function) still exists.
+
+Nothing else runs the scripts (they take minutes to hours), so without this a script whose
+imports rot is only found when someone next needs it. ``--help`` parses the arguments and
+exits before any study runs; it needs no display.
+"""
+
+from __future__ import annotations
+
+import ast
+import importlib
+import os
+import subprocess
+import sys
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+RESEARCH = ROOT / "research"
+SCRIPTS = sorted(p.stem for p in RESEARCH.glob("*.py") if p.stem != "__init__")
+FIRST_PARTY = ("chainfountain", "research")
+
+
+def _help(name: str) -> tuple[str, int, str]:
+    env = dict(os.environ, SDL_VIDEODRIVER="dummy", MPLBACKEND="Agg")
+    env.pop("DISPLAY", None)
+    r = subprocess.run([sys.executable, "-m", f"research.{name}", "--help"], cwd=ROOT,
+                       env=env, capture_output=True, text=True, timeout=120)
+    return name, r.returncode, r.stdout + r.stderr
+
+
+@pytest.mark.slow
+def test_every_script_answers_help() -> None:
+    assert SCRIPTS, "no research scripts found"
+    with ThreadPoolExecutor(max_workers=4) as pool:
+        results = list(pool.map(_help, SCRIPTS))
+    failed = [f"research.{n} (exit {rc}):\n{out[-1500:]}" for n, rc, out in results
+              if rc != 0 or "usage:" not in out]
+    assert not failed, "\n\n".join(failed)
+
+
+def _imported_names(path: Path) -> list[tuple[str, str | None]]:
+    """``(module, name)`` for every absolute first-party import in ``path`` (``name`` is
+    ``None`` for ``import module``)."""
+    out: list[tuple[str, str | None]] = []
+    for node in ast.walk(ast.parse(path.read_text(), str(path))):
+        if isinstance(node, ast.Import):
+            out += [(a.name, None) for a in node.names if a.name.startswith(FIRST_PARTY)]
+        elif (isinstance(node, ast.ImportFrom) and node.level == 0 and node.module
+              and node.module.startswith(FIRST_PARTY)):
+            out += [(node.module, a.name) for a in node.names]
+    return out
+
+
+@pytest.mark.parametrize("path", sorted(RESEARCH.rglob("*.py")),
+                         ids=lambda p: str(p.relative_to(ROOT)))
+def test_every_imported_name_exists(path: Path) -> None:
+    missing = []
+    for module, name in _imported_names(path):
+        try:
+            mod = importlib.import_module(module)
+        except ImportError as e:
+            missing.append(f"{module}: {e}")
+            continue
+        if name is None or name == "*" or hasattr(mod, name):
+            continue
+        try:
+            importlib.import_module(f"{module}.{name}")
+        except ImportError:
+            missing.append(f"{module}.{name}")
+    assert not missing, f"{path.relative_to(ROOT)} imports names that are gone: {missing}"
