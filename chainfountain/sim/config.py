@@ -68,10 +68,9 @@ class ChainConfig:
         False, unit="", doc="Let links collide with each other (costly; off for fountains)"
     )
     bend_limit: float = param(
-        0.0, unit="rad", doc="Largest bend between two neighbouring links, as a real ball "
-        "chain has (a rotary limit joint; beaker and scene levels). A joint bent further at "
-        "the start (a pile's U-turn) is free until it has straightened within 90 % of the "
-        "limit. 0: free pivots", min=0.0, max=3.0,
+        0.0, unit="rad", doc="Largest bend between two neighbouring links, as a real ball chain "
+        "has (a rotary limit joint; beaker and scene levels); a joint bent further at the start "
+        "is free until it straightens. 0: free pivots", min=0.0, max=3.0,
     )
 
 
@@ -163,18 +162,9 @@ class FeedConfig:
     )
     drive: str = param(
         "motor", unit="", doc="What moves the chain: 'motor', the guide runs at feed.speed; "
-        "'ideal_floor', the paper's idealized beaker with a real floor: the chain is picked "
-        "up at the loss-free rate (lambda*v^2/2), lifted feed.xi2*H and held back by a cart "
-        "(feed.cart_force), so the fountain selects v^2 = 2g(H(1 - xi2) - F_uc/(lambda*g)); "
-        "'ideal_fold', the paper's full machine with ideal rollers: the same pick-up, and "
-        "after landing the chain is lifted feed.xi3*H and put down at the loss-free rate "
-        "with a lower cart (feed.lower_cart_force), so the floor pulls "
-        "lambda*v^2/2 + F_lc - lambda*g*xi3*H; balanced carts keep any speed; "
-        "'ideal_open', the paper's open arrangement with ideal rollers: the same pick-up, "
-        "and the landed chain runs down a loss-free turn feed.turn_drop onto a frictionless "
-        "plate and slides away, so more and more chain moves and the plate's reaction grows "
-        "at lambda*g*v; it selects v^2 = 2g(H(1 - xi2) + turn_drop) - 2F_uc/lambda. With "
-        "the ideal machines feed.speed is the start speed",
+        "'ideal_floor', 'ideal_fold' or 'ideal_open', one of the paper's machines with ideal "
+        "parts, its laws alone setting the speed from feed.speed at the start (see "
+        "docs/apparatus.md#the-ideal-machines)",
         choices=("motor", "ideal_floor", "ideal_fold", "ideal_open"),
     )
     xi2: float = param(
@@ -198,9 +188,9 @@ class FeedConfig:
     )
     bearing_drag: float = param(
         0.0, unit="N*s/m", doc="Drive 'ideal_fold': viscous drag c of the rollers' bearings, "
-        "c*v/2 at each roller. 0: the paper's loss-free machine, balanced carts keep any "
-        "speed; above 0 the machine selects v = (F_lc + lambda*g*H*(1 - xi2 - xi3) - F_uc)/c "
-        "and returns to it after a push", min=0.0, max=100.0, live=True,
+        "c*v/2 at each roller; above 0 the machine selects a speed and returns to it after a "
+        "push. 0: the paper's loss-free machine (see docs/apparatus.md#the-ideal-machines)",
+        min=0.0, max=100.0, live=True,
     )
     turn_drop: float = param(
         0.0, unit="m", doc="Drive 'ideal_open': height d of the loss-free turn from the "
@@ -215,11 +205,10 @@ class FeedConfig:
         min=0.001, max=100.0,
     )
     starter: float = param(
-        0.0, unit="s", doc="The ideal machines from a stub "
-        "(initial.mode = 'stub'): the guide runs as a motor at feed.speed until the chain has "
-        "landed and this long after, then the machine's laws take over (a real machine is "
-        "started by hand: its laws need a fountain to drive them). 0: no starter, the level "
-        "starts with its fountain (initial.mode = 'catenary')", min=0.0, max=60.0,
+        0.0, unit="s", doc="The ideal machines from a stub (initial.mode = 'stub'): how long the "
+        "guide runs on as a motor at feed.speed after the chain has landed, before the machine's "
+        "laws take over. 0: no starter (see docs/apparatus.md#the-ideal-machines)",
+        min=0.0, max=60.0,
     )
 
 
@@ -252,18 +241,16 @@ class SolverConfig:
         1e-4, unit="m", doc="Allowed contact overlap", min=0.0, max=0.01, live=True
     )
     accuracy: float = param(
-        0.0, unit="1", doc="Accuracy wanted of a fed fountain (relative, e.g. 0.005): when "
-        "above 0, chain.link_length, solver.dt and solver.iterations are chosen when the level "
-        "loads, the cheapest whose error-model bounds on vertex height, vertex x and landing "
-        "are all within it (chainfountain.sim.accuracy; fed levels with an absorbing floor "
-        "only); 0 keeps the level's own settings", min=0.0, max=0.1,
+        0.0, unit="1", doc="Relative accuracy wanted of a motor-fed fountain on an absorbing "
+        "floor (e.g. 0.005): above 0, the cheapest link_length, dt and iterations within it are "
+        "chosen at load. 0: the level's own (see "
+        "docs/convergence.md#error-model-and-solveraccuracy)", min=0.0, max=0.1,
     )
     wave_damping: float = param(
-        1e-3, unit="1", doc="Damping D of link-scale bending waves: every joint between two "
-        "moving links gets a rotary damper D*lambda*v*L**2 (v the level's speed, L the link "
-        "length) besides chain.bending_damping. Without it a wave about 2.4 links long grows "
-        "near the vertex wherever the scaled tension exceeds 1/2; 1e-3 stops it and moves "
-        "the fountain's shape by at most 0.02 % (docs/convergence.md)", min=0.0, max=1.0,
+        1e-3, unit="1", doc="Damping D of link-scale bending waves: a rotary damper "
+        "D*lambda*v*L**2 at each joint between moving links (v the level's speed, L the link "
+        "length), besides chain.bending_damping (see "
+        "docs/convergence.md#choices-that-matter-and-defaults)", min=0.0, max=1.0,
     )
 
 
@@ -284,9 +271,9 @@ class InitialConfig:
         min=0.0, max=0.5,
     )
     seed: int = param(
-        0, unit="1", doc="Random seed for the initial perturbation (kinds 'apparatus' and "
-        "'beaker': a seed above 0 nudges every moving body by 1e-12 of its velocity, which "
-        "picks another of the run's chaotic outcomes; 0: no nudge)", min=0,
+        0, unit="1", doc="Random seed of the initial perturbation; in apparatus and beaker levels "
+        "a seed above 0 nudges every moving body by 1e-12 of its velocity, which picks another "
+        "of the run's chaotic outcomes. 0: no nudge", min=0,
     )
 
 
@@ -435,27 +422,24 @@ class ApparatusConfig:
                                min=0.1, max=100.0)
     end: str = param(
         "absorbing", unit="", doc="Floor of the 'floor' variant: 'absorbing' removes a link when "
-        "its centre reaches the floor height (free end, Tbar_E = 0, the paper's real floor "
-        "where chain elements just stop); 'solid': a static floor the chain piles on",
+        "its centre reaches the floor (a free end, Tbar_E = 0); 'solid', a static floor the "
+        "chain piles on",
         choices=("absorbing", "solid"),
     )
     floor_depth: float = param(
-        0.0, unit="m", doc="'floor' with end = 'absorbing' only: the absorbing floor lies this "
-        "far below the fountain end (drop below the start). The hanging strand's weight gives "
-        "the fountain end the tension lambda*g*floor_depth, Tbar_E = g*floor_depth/v**2 (the "
-        "paper's floor reaction set by a height, Fig. 'pulley_experiment_cutting'); 0: the "
-        "floor is at the fountain end (Tbar_E = 0)", min=0.0, max=10.0,
+        0.0, unit="m", doc="'floor' with end = 'absorbing' only: depth d of the absorbing floor "
+        "below the fountain end; the hanging strand gives Tbar_E = g*d/v**2. 0: the floor at the "
+        "fountain end", min=0.0, max=10.0,
     )
     plate: str = param(
-        "groove", unit="", doc="Upper plate (roller to channel): 'groove' holds each link centre "
-        "on the plate line with a frictionless groove joint (two-sided, cheap); 'contact' is a "
-        "frictionless static segment the strand slides on (one contact per link)",
+        "groove", unit="", doc="Upper plate (roller to channel): 'groove', a frictionless groove "
+        "joint holds each link centre on the plate line; 'contact', a frictionless static "
+        "segment the strand slides on",
         choices=("groove", "contact"),
     )
     end_pull: float = param(
-        0.0, unit="N", doc="'open' only: constant horizontal force pulling the downstream end "
-        "of the chain away (a light weight on a string over an ideal pulley); gives the "
-        "chain a positive tension Tbar_E at the end channel so it enters without buckling",
+        0.0, unit="N", doc="'open' only: constant horizontal force pulling the chain's downstream "
+        "end away (a light weight over an ideal pulley), so the chain enters the end channel taut",
         min=0.0, max=100.0,
     )
     rest_links: int = param(
@@ -464,45 +448,25 @@ class ApparatusConfig:
         "pickup_rest_links is set", min=5, max=10000,
     )
     pickup_rest_links: int = param(
-        0, unit="1", doc="Resting links kept in the solver ahead of the pick-up roller (the "
-        "rest enter as the roller comes); 0: as rest_links. The presets with a fold use 8: "
-        "same physics within the runs' spread, 8 % fewer solver instructions per step "
-        "(docs/apparatus.md)", min=0, max=10000,
+        0, unit="1", doc="Resting links kept in the solver ahead of the pick-up roller (the rest "
+        "enter as the roller comes). 0: as rest_links", min=0, max=10000,
     )
     plate_links: int = param(
-        0, unit="1", doc="Treadmill (needs plate = 'groove'): keep the upper plate strand at "
-        "about this many links. Each time the pick-up roller has moved one link length, a "
-        "link is added to the middle of the strand and the roller, its carriage and its "
-        "resting chain move back by one link, so the roller stays in place, the solver "
-        "keeps a short strand and runs may last any time. In 'fold' the lower plate strand "
-        "is held too (two links cut out of its middle each time the folding roller has "
-        "moved one link; the speed agrees with the real geometry within 0.5 %, Tbar_E "
-        "reads 0.03-0.08 higher, docs/apparatus.md). 0: the real geometry, the rollers "
-        "travel at v/2 and the tables are sized by duration",
+        0, unit="1", doc="Treadmill (needs plate = 'groove'): the upper plate strand (in 'fold' "
+        "the lower too) is kept at about this many links, so the rollers stay put and runs may "
+        "last any time. 0: the real geometry (see docs/apparatus.md#tables-plates-and-treadmills)",
         min=0, max=1000,
     )
     fold_clearance: float = param(
         0.0, unit="m", doc="'fold' with plate = 'groove' only: gap between the lower plate's "
-        "groove line and the chain centre line on the folding roller's top (the lower table "
-        "sits this much lower). 0 (the presets' build): the roller is clamped between the "
-        "rigid groove line and the chain on the table, and at solver steps below 0.35 ms "
-        "the clamp locks and the fold collapses. 0.002: the lower cart must be lighter "
-        "(apparatus_special: 44 g instead of 58 g); the fold then gives the same run at "
-        "0.5 and 0.25 ms (9 of 10 perturbed starts hold 6 s) but still collapses after "
-        "3-4 s at 0.1 ms (docs/apparatus.md)",
+        "groove line and the chain centre line on the folding roller's top; 0 (the presets' "
+        "build) clamps the roller (see docs/apparatus.md#the-fold-depends-on-the-time-step)",
         min=0.0, max=0.005,
     )
     fold_roller: str = param(
-        "contact", unit="", doc="'fold' with plate = 'groove': how the folding roller puts "
-        "the chain down. 'contact': it rolls on the laid chain and grips it by friction (the "
-        "presets' build; not converged in the step). 'gripped': each chain joint that reaches "
-        "the roller is welded to it where it is (the strand's last link caught onto the "
-        "rim), carried round, and pinned to the table where it comes down, so the chain "
-        "is laid at rest with no friction and no contact; the axle runs at a fixed height. "
-        "Loss-free it pulls the arriving strand with lambda*v^2/4 + F_lc/2 + lambda*g*R (R: "
-        "the chain's radius on the roller); converged in the step with a folding roller of "
-        "radius 5 link lengths or more "
-        "(apparatus.fold_roller_radius; docs/apparatus.md)",
+        "contact", unit="", doc="'fold' with plate = 'groove': how the folding roller puts the "
+        "chain down: 'contact' grips it by friction; 'gripped' welds each joint to the rim and "
+        "pins it to the table (see docs/apparatus.md#the-gripped-folding-roller)",
         choices=("contact", "gripped"),
     )
     fold_roller_radius: float = param(
@@ -515,52 +479,34 @@ class ApparatusConfig:
         "moving at u (about v/2). 0: loss-free bearings", min=0.0, max=10.0, live=True,
     )
     fold_brake: float = param(
-        0.0, unit="N*s/m", doc="Variant 'fold': a brake c on the folding roller's carriage "
-        "(an eddy-current brake, not in the paper), a force -c*u on it moving at u (about "
-        "v/2). The paper's machine is balanced at every speed and keeps whatever speed it "
-        "drifts to; with the brake the lower cart's force beyond the balance, c*v/2, selects "
-        "the speed (a heavier lower cart runs it faster), and a speed that wanders is pulled "
-        "back within about a second. The fountain is the paper's with the cart's force less "
-        "the brake's, F_lc - c*v/2. 0: none (docs/apparatus.md)",
+        0.0, unit="N*s/m", doc="'fold': a brake c on the folding roller's carriage, a force -c*u "
+        "at its speed u (not in the paper); with it the lower cart selects the speed. 0: none "
+        "(see docs/apparatus.md#a-brake-that-selects-the-speed)",
         min=0.0, max=10.0, live=True,
     )
     end_follow: float = param(
-        0.0, unit="1/s", doc="Variant 'fold' with plate = 'groove': the end guide (its "
-        "turn, rise and second turn) rides on a horizontal slide and follows where the "
-        "fountain lands, moving at this rate times the landing's offset from the turn's "
-        "radius (averaged over 0.5 s; at most 5 cm/s, 30 cm either way; not in the paper). "
-        "The paper's machine lands the fountain wherever its carts and offsets put it; "
-        "a fixed guide catches it only within a few centimetres, so a change of a cart by "
-        "more than a few grams loses the chain. 0: the guide stays where the level puts it "
-        "(docs/apparatus.md)", min=0.0, max=20.0,
+        0.0, unit="1/s", doc="'fold' with plate = 'groove': the end guide slides toward where the "
+        "fountain lands at this rate times the landing's offset (at most 5 cm/s and 30 cm; not "
+        "in the paper). 0: fixed (see docs/apparatus.md#an-end-guide-that-follows-the-landing)",
+        min=0.0, max=20.0,
     )
     swing_damper: float = param(
-        0.0, unit="N*s/m", doc="Variant 'fold': a dashpot c between the two roller "
-        "carriages, a force -c*(u_up - u_lo) on the upper and its opposite on the lower "
-        "(u: each carriage's speed). In a steady run both move at v/2 and it does nothing, "
-        "so the carts still choose the fountain; it damps the landing swing, in which the "
-        "pick-up and the fold run at different speeds (docs/apparatus.md). 0: none",
+        0.0, unit="N*s/m", doc="'fold': a dashpot c between the two roller carriages, a force "
+        "-c*(u_up - u_lo); idle in a steady run, it damps the landing swing (not in the paper). "
+        "0: none (see docs/apparatus.md#the-landing-swing)",
         min=0.0, max=10.0, live=True,
     )
     starter: float = param(
-        0.0, unit="s", doc="From rest (initial.mode = 'stub'): the chain lies at rest from "
-        "the upper table to a stub at the start ('floor'; in 'fold' its head waits 10 cm "
-        "inside the upper guide), and a starter motor in the upper guide runs it up to "
-        "apparatus.speed (over 0.5 s) and holds it there until the chain has landed (in "
-        "'fold': has been threaded through the end guide and round the folding roller onto "
-        "the lower table) and this long after; then the carts and the fall alone drive it "
-        "(a real machine is started by hand). Needs upper_guide = 'joints' ('fold': and the "
-        "gripped folding roller). 0: no starter, the chain starts laid along its path at "
-        "apparatus.speed",
+        0.0, unit="s", doc="From rest (initial.mode = 'stub'): how long a starter motor in the "
+        "upper guide runs the chain at apparatus.speed after it has landed (or, in 'fold', been "
+        "laid on the lower table). 0: none (see docs/apparatus.md#starting-from-rest)",
         min=0.0, max=60.0,
     )
     upper_guide: str = param(
-        "walls", unit="", doc="Upper guide channel (plate end to fountain start): 'walls' is "
-        "a frictionless two-sided channel of static segments (one contact per link; the "
-        "default); 'joints' (needs plate = 'groove') holds each link centre on the "
-        "channel's centre line with frictionless joints (groove joints on the straight "
-        "pieces, a slide joint to the bend's centre on the bend), as the 'fold' lower guide: "
-        "no wall contacts and no shapes in the channel (docs/apparatus.md)",
+        "walls", unit="", doc="Upper guide channel (plate end to fountain start): 'walls', a "
+        "frictionless two-sided channel of static segments; 'joints' (needs plate = 'groove'), "
+        "frictionless joints hold each link centre on the centre line (see "
+        "docs/apparatus.md#guides)",
         choices=("walls", "joints"),
     )
 

@@ -76,12 +76,10 @@ class ProbeConfig:
     name: str = param(REQUIRED, unit="", doc="Name of the probe (letters, digits, '_' and "
                       "'-'; names its file probe_<name>.csv)")
     kind: str = param(
-        REQUIRED, unit="", doc="'point': position and velocity of a point (x, y, vx, vy); "
-        "'tension': tension at an interior point (N, + = pull; from the momentum balance of "
-        "the links beyond it, so no pin may lie beyond it); 'pin_force': force of the pin "
-        "at a point, mean over the sample interval (N); 'floor_force': force of the chain on "
-        "the floor, mean over the sample interval (fx, fy; a chain at rest on it: fy = -its "
-        "weight); 'energy': kinetic, potential (g*y above y = 0) and total energy (J)",
+        REQUIRED, unit="", doc="'point': position and velocity (x, y, vx, vy); 'tension': tension "
+        "at an interior point (N, + = pull; no pin beyond it); 'pin_force': the pin's force (N); "
+        "'floor_force': the chain's force on the floor (fx, fy); 'energy': kinetic, potential, "
+        "total (J)",
         choices=PROBE_KINDS,
     )
     point: int = param(
@@ -95,9 +93,9 @@ class SceneConfig:
     """A free chain and what holds, catches and measures it (kind 'scene')."""
 
     layout: str = param(
-        "straight", unit="", doc="'straight': a line from (x, y) at angle; 'folded': two "
-        "arms side by side joined by a U of fold_links links, the first arm leaving (x, y) "
-        "at angle; 'polyline': along [[scene.vertices]], as many whole links as fit",
+        "straight", unit="", doc="'straight': a line from (x, y) at angle; 'folded': two arms "
+        "joined by a U of fold_links links, the first leaving (x, y) at angle; 'polyline': along "
+        "[[scene.vertices]], as many whole links as fit",
         choices=LAYOUTS,
     )
     length: float = param(
@@ -144,9 +142,8 @@ class SceneConfig:
     )
     closed_form: str = param(
         "none", unit="", doc="Closed form the run is compared with: 'folded_fall' (layout "
-        "'folded', its point 0 pinned: the free end's speed and the pin's force, Calkin and "
-        "March); 'scale' (layout 'straight' hanging down onto a solid floor, no pins: the "
-        "floor's force, Hamm and Geminard); 'none'", choices=CLOSED_FORMS,
+        "'folded', point 0 pinned; Calkin and March), 'scale' (layout 'straight' onto a solid "
+        "floor, no pins; Hamm and Geminard) or 'none'", choices=CLOSED_FORMS,
     )
     vertices: tuple[VertexConfig, ...] = ()
     walls: tuple[WallConfig, ...] = ()

@@ -25,36 +25,23 @@ extrapolated to no push (``docs/apparatus.md``; by pivots 0.244 + 0.50*Fbar_c, t
 loss-free 1/4 + Fbar_c/2; paper: 1/2 + Fbar_c)."""
 
 PICKUP_RIG_2CM = (0.266, 0.0230)
-"""Pick-up (unfolding) exit tension at alpha = 0 with the apparatus presets' chain (2 cm
-rod links, ``lambda`` = :data:`RIG_2CM_LAMBDA`, friction 0.6, 20 g roller, dt 0.5 ms, 10
-iterations), ``(p_inf, R)`` of ``Tbar = p_inf + R/(lambda*v**2) + G*Fbar_c`` with ``R``
-in N: a loss-free unfolding (1/4) with a little discretisation excess, a
-speed-independent rolling resistance ``R`` and the cart term (:data:`CART_GAIN_2CM`).
-Weighted fit to 19 rig runs of 6 s at 2.6-5.1 m/s and ``Fbar_c`` 0-0.5
-(``research/pickup_study.py --pickup-2cm-law``; ``docs/apparatus.md``), read through the
-contacts with pymunk's stale impulses of re-touching contacts taken out
-(:meth:`~chainfountain.sim.measure.ChainReader.arm`)."""
+"""Pick-up exit tension at alpha = 0 with the presets' 2-cm links, ``(p_inf, R)`` of
+``Tbar = p_inf + R/(lambda*v**2) + G*Fbar_c`` (``R`` in N, ``G`` :data:`CART_GAIN_2CM`);
+the fit: docs/apparatus.md#pick-up-force."""
 RIG_2CM_LAMBDA = 0.05
 """Linear density (kg/m) of the chain :data:`PICKUP_RIG_2CM` was measured with."""
 PICKUP_RIG_2CM_ERR = 0.002
-"""Standard uncertainty of :func:`pickup_rig_2cm` at 2.6-3.2 m/s (0.003 at 5.1 m/s), from
-the fit's covariance scaled by its chi2/dof of 6.5 (the single runs scatter by 0.0065)."""
+"""Standard uncertainty of :func:`pickup_rig_2cm` at 2.6-3.2 m/s (0.003 at 5.1 m/s;
+docs/apparatus.md#pick-up-force)."""
 CART_GAIN_2CM = 0.526
 """Rise of the pick-up exit tension per unit cart force in the same fit (the paper: 1;
-the loss-free power balance ``F_c v_R/v``: 1/2). No curvature: a ``sqrt(Fbar_c)`` or
-``Fbar_c**2`` term fits as 0.014 +- 0.018 and -0.04 +- 0.06."""
+the loss-free power balance ``F_c v_R/v``: 1/2)."""
 CART_GAIN_2CM_ERR = 0.010
 
 PUTDOWN_RIG_2CM = (0.172, 0.618)
-"""Put-down (folding) entry tension at alpha = 0 with 2 cm links: ``Tbar = d + G_d*Fbar_c``
-(intercept ``d``, cart gain ``G_d``), fitted to rig runs at 3 m/s, dt 0.5 ms, 10
-iterations, ``Fbar_c = 0.3, 0.4, 0.5`` (3-s averages, about +-0.02 each; the strand
-tension from the pivot forces, ``research/pickup_study.py --putdown-2cm``;
-``docs/apparatus.md``). Below ``Fbar_c`` of about 0.25 the roller falls behind and the
-chain piles up (not steady). Read through the rig's contacts with pymunk's stale
-impulses taken out, the same runs give 0.354 / 0.419 / 0.472 against the pivots' 0.357 /
-0.422 / 0.481; with the stale impulses left in, the contacts overstate the tension
-under a cart."""
+"""Put-down (folding) entry tension at alpha = 0 with 2-cm links, ``Tbar = d + G_d*Fbar_c``
+(intercept ``d``, cart gain ``G_d``), steady from ``Fbar_c`` of about 0.25; the fit:
+docs/apparatus.md#put-down."""
 
 
 def gripped_putdown(lc_bar: float, k: float, R: float) -> float:
