@@ -18,7 +18,7 @@ class Exit(NamedTuple):
 EXITS: tuple[Exit, ...] = (
     Exit("0", "the run completed"),
     Exit("2", "bad input: one line naming the flag or level field, the value and what is "
-         "allowed; nothing is run"),
+         "allowed (nothing is run)"),
     Exit("3", "the run ended early: an apparatus table used up, the fold collapsed, or the "
          "simulation diverged"),
     Exit("4", "an output could not be written (a full disk): named in `write_failed` or on "
