@@ -40,7 +40,7 @@ FIGURES: dict[str, str] = {
     "h": "vertex height h (relative error)",
     "vertex_x": "vertex x (relative error)",
     "l": "landing l (relative error)",
-    "speed": "mean speed (relative error)",
+    "v": "mean speed (relative error)",
     "T0_bar": "Tbar_0 (absolute error)",
 }
 """Figures compared with the paper's catenary, keyed as in ``summary.json``."""
@@ -212,7 +212,7 @@ def measure(cfg: SimConfig, factor: int = 1, *, settle: float = SETTLE,
         "h": rec.series("vertex_y") / ref.h - 1.0,
         "vertex_x": rec.series("vertex_x") / ref.x_rise - 1.0,
         "l": rec.series("landing_x") / ref.landing_x - 1.0,
-        "speed": rec.series("speed_mean") / ref.v - 1.0,
+        "v": rec.series("speed_mean") / ref.v - 1.0,
         "T0_bar": rec.series("T0_bar") - ref.T0_bar,
     }
     blocks = np.array_split(np.arange(len(t)), BLOCKS)

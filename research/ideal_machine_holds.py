@@ -72,7 +72,7 @@ def run(name: str, duration: float, window: float, dt_factor: float) -> dict:
         slope = np.polyfit(ts_a, vs_a, 1)[0]
         v_mean = float(vs_a.mean())
         ref = sim.reference_at(v_mean)
-        h_err = (rec.summary(window=window).errors(ref)["vertex_y"] if ref is not None
+        h_err = (rec.summary(window=window).errors(ref)["h"] if ref is not None
                  else math.nan)
         windows.append({"t0": ts[0], "t1": ts[-1], "speed": v_mean,
                         "drift": float(slope / v_mean), "vertex_y": h_err,

@@ -78,7 +78,7 @@ def main(argv: list[str] | None = None) -> int:
           f"{'error':>8s}")
     pts = []
     for r in rows:
-        v_th, v = r.get("theory_v"), r.get("speed_mean")
+        v_th, v = r.get("theory_v"), r.get("v")
         status = r["status"]
         shown = (f"{v_th:8.3f} {v:9.3f} {v / v_th - 1:+8.2%}" if status == "done" and v_th
                  else f"  {r.get('reason', '')[:70]}")

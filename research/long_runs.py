@@ -64,9 +64,9 @@ def run(name: str, duration: float, window: float, skip: float, seed: int) -> di
         s = rec.summary(window=window)
         e = s.errors(sim.reference)
         windows.append({"t0": round(t - window, 6), "t1": round(t, 6),
-                        "vertex_y": e["vertex_y"], "vertex_x": e["vertex_x"],
-                        "landing_x": e["landing_x"], "spread": s.speed_spread_inst,
-                        "stretch": s.stretch_max, "speed": e["speed"]})
+                        "vertex_y": e["h"], "vertex_x": e["vertex_x"],
+                        "landing_x": e["l"], "spread": s.speed_spread_inst,
+                        "stretch": s.stretch_max, "speed": e["v"]})
     steady = rec.steady_from(window=2.0)
     return {"level": name, "seed": seed, "dt": sim.dt, "links": sim.n_links,
             "steady_from": steady, "wall_s": time.perf_counter() - wall,

@@ -5,7 +5,7 @@ level unchanged, bit for bit where the arithmetic is untouched. This script runs
 level headless for ``--duration`` simulated seconds (``chainfountain run``), keeps the
 figures of its ``summary.json`` (not the wall time, the real-time factor or the output
 paths) and writes them to one JSON file; ``--compare`` prints the differences between two
-such files.
+such files, a key renamed since the older was taken compared under its new name.
 
 Usage::
 
@@ -91,9 +91,28 @@ def _flatten(obj, prefix: str = "") -> dict[str, object]:
     return {prefix: obj}
 
 
+def renamed(flat: dict[str, object]) -> dict[str, object]:
+    """A flattened snapshot (``level.key``) with the keys of earlier versions'
+    ``summary.json`` under their names now (:data:`chainfountain.headless.OLD_NAMES`), so
+    that an old snapshot compares with a new one figure by figure; a key dropped because it
+    repeated another is left out. A key already under its new name wins."""
+    from chainfountain.headless.report import OLD_NAMES
+
+    out: dict[str, object] = {}
+    moved: dict[str, object] = {}
+    for key, value in flat.items():
+        level, _, rest = key.partition(".")
+        new = OLD_NAMES.get(rest, rest)
+        if new is None:
+            continue
+        (out if new == rest else moved)[f"{level}.{new}"] = value
+    return {**moved, **out}
+
+
 def compare(a: dict, b: dict) -> int:
-    """Print every figure that differs; returns the number of differences."""
-    fa, fb = _flatten(a), _flatten(b)
+    """Print every figure that differs (keys renamed since ``a`` was taken compared under
+    their new names: :func:`renamed`); returns the number of differences."""
+    fa, fb = renamed(_flatten(a)), renamed(_flatten(b))
     n = 0
     for key in sorted(set(fa) | set(fb)):
         x, y = fa.get(key, "<missing>"), fb.get(key, "<missing>")

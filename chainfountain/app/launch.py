@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 import os
 import sys
 from pathlib import Path
@@ -85,11 +84,12 @@ def run_headless(level: Level, reason: str, out_dir: Path | None = None,
     out = out_dir or default_out_dir(level)
     print(f"chainfountain: no display ({reason}); running level {level.meta.name!r} "
           f"headless, writing to {out}", file=sys.stderr)
-    from chainfountain.headless import describe_outputs, exit_status, run_level
+    from chainfountain.headless import RunSummary, describe_outputs, exit_status, run_level
 
-    summary = run_level(level, out, duration=duration, progress=True)
-    print(describe_outputs(summary))
-    return exit_status(json.loads(summary.read_text()))
+    path = run_level(level, out, duration=duration, progress=True)
+    summary = RunSummary.load(path)
+    print(describe_outputs(path, summary))
+    return exit_status(summary)
 
 
 def run_default(level: Level | None = None, source: Path | None = None,

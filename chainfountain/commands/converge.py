@@ -47,7 +47,7 @@ def format_table(res) -> str:
     """The ladder and the estimate as plain text."""
     from chainfountain.refine import BLOCKS, FIGURES
 
-    names = {"h": "vertex y", "vertex_x": "vertex x", "l": "landing", "speed": "speed",
+    names = {"h": "vertex y", "vertex_x": "vertex x", "l": "landing", "v": "speed",
              "T0_bar": "Tbar_0"}
     head = f"{'L mm':>6s} {'dt us':>7s} {'links':>6s} " + " ".join(
         f"{names[f]:>9s}" for f in FIGURES) + f" {'stretch':>8s} {'RTF':>5s}"

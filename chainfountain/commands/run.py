@@ -3,18 +3,12 @@
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 
 from chainfountain.commands.args import integer, number, path_arg
 from chainfountain.errors import UserError
+from chainfountain.exits import EXIT_HELP
 from chainfountain.options import DURATION, SEED
-
-EXIT_HELP = ("Exit status: 0 a complete run; 2 bad input (one line naming it; nothing "
-             "run); 3 the run ended early (a machine's table used up, the fold collapsed, "
-             "the simulation diverged); 4 an output could not be written (a full disk); 130 "
-             "or 143 interrupted by Ctrl-C or SIGTERM. Whenever a run has started, its outputs "
-             "cover the part simulated and summary.json says why it ended (ended_early).")
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -61,6 +55,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from chainfountain.headless import (
+        RunSummary,
         check_run,
         default_duration,
         default_out_dir,
@@ -94,8 +89,9 @@ def run(args: argparse.Namespace) -> int:
           file=sys.stderr)
     path = run_level(level, out, duration, seed=args.seed, progress=not args.quiet,
                      error_bars=bars)
-    print(describe_outputs(path))
-    return exit_status(json.loads(path.read_text()))
+    summary = RunSummary.load(path)
+    print(describe_outputs(path, summary))
+    return exit_status(summary)
 
 
 def overridden(level, overrides: list[str]):

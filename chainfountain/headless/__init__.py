@@ -13,14 +13,17 @@ Outputs (all written atomically into the output folder):
 - the 'open' arrangement: ``reaction.png``, the lower plate's reaction against time
   with the paper's rate.
 
-``summary.json`` lists the files written under ``outputs``.
+``summary.json`` lists the files written under ``outputs``; :class:`RunSummary` is its
+typed form (:mod:`chainfountain.headless.report`), each kind's section built by one function
+of :data:`SECTIONS`.
 """
 
+from chainfountain.exits import EXIT_STATUS
 from chainfountain.headless.files import MAX_TENSION_SAMPLES, write_reaction_figure, write_snapshot
+from chainfountain.headless.report import OLD_NAMES, RunSummary, json_safe
 from chainfountain.headless.run import (
     DEFAULT_DURATION,
     DEFAULT_OUTPUTS,
-    EXIT_STATUS,
     FORMING_DURATION,
     MACHINE_FORMING_DURATION,
     check_run,
@@ -41,7 +44,7 @@ from chainfountain.headless.stepping import (
     Ending,
     Interrupted,
 )
-from chainfountain.headless.summary import json_safe, summarize
+from chainfountain.headless.summary import SECTIONS, summarize
 
 __all__ = [
     "DEFAULT_DURATION", "DEFAULT_OUTPUTS", "EXIT_STATUS", "FORMING_DURATION",
@@ -50,5 +53,5 @@ __all__ = [
     "default_out_dir", "describe_outputs", "exit_status",
     "json_safe", "prepare_out_dir", "run_and_record", "run_level", "simulate", "summarize",
     "write_reaction_figure", "write_snapshot", "FOUNTAIN_SERIES", "SceneRun", "Stepper",
-    "seeded", "write_outputs",
+    "seeded", "write_outputs", "OLD_NAMES", "RunSummary", "SECTIONS",
 ]

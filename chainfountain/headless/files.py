@@ -14,6 +14,7 @@ import numpy as np
 
 from chainfountain import atomic
 from chainfountain.errors import OutputError
+from chainfountain.headless.report import RunSummary
 from chainfountain.sim.recorder import Recorder
 from chainfountain.sim.world import Simulation
 from chainfountain.theory.apparatus import plate_reaction
@@ -22,12 +23,12 @@ MAX_TENSION_SAMPLES = 200
 """Time samples of ``tensions.csv`` (evenly chosen among the recorded profiles)."""
 
 
-def write_summary(out_dir: Path, summary: dict[str, Any], written: list[str]) -> Path:
-    """Write ``summary.json`` last, atomically; :class:`OutputError` names the outputs
-    that were written when it cannot be."""
+def write_summary(out_dir: Path, summary: RunSummary, written: list[str]) -> Path:
+    """Write ``summary.json`` (:meth:`RunSummary.to_json`) last, atomically;
+    :class:`OutputError` names the outputs that were written when it cannot be."""
     path = out_dir / "summary.json"
     try:
-        atomic.write_text(path, json.dumps(summary, indent=2) + "\n")
+        atomic.write_text(path, json.dumps(summary.to_json(), indent=2) + "\n")
     except OSError as exc:
         raise OutputError(f"cannot write {path} ({exc.strerror or exc}); the run's other "
                           f"outputs: {', '.join(written) or 'none'}") from None
@@ -81,7 +82,7 @@ def write_samples(path: Path, samples: list) -> None:
     atomic.write_text(path, buf.getvalue())
 
 
-def write_reaction_figure(path: Path, rec: Recorder, summary: dict[str, Any],
+def write_reaction_figure(path: Path, rec: Recorder, summary: RunSummary,
                           lam: float, g: float, title: str) -> None:
     """The open arrangement (an apparatus's 'open' variant, or ``feed.drive =
     "ideal_open"``): the lower plate's reaction force against time, with the paper's rate
@@ -92,8 +93,8 @@ def write_reaction_figure(path: Path, rec: Recorder, summary: dict[str, Any],
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    if summary.get("open"):  # the ideal machine: counted on the plate, from the hand-over
-        o = summary["open"]
+    if summary.sections.get("open"):  # the ideal machine: counted on the plate
+        o = summary.sections["open"]
         w0, w1 = o["window"]
         S = [x for x in rec.samples if x.t >= w0 - 1e-9]
         t = np.array([x.t for x in S], dtype=float)
@@ -101,8 +102,9 @@ def write_reaction_figure(path: Path, rec: Recorder, summary: dict[str, Any],
         v = np.array([x.speed_mean for x in S], dtype=float)
         fit = "least squares"
     else:
-        o = (summary.get("apparatus") or {}).get("open") or {}
-        w0, w1 = (summary.get("apparatus") or {}).get("window") or (math.nan, math.nan)
+        ap = summary.sections.get("apparatus") or {}
+        o = ap.get("open") or {}
+        w0, w1 = ap.get("window") or (math.nan, math.nan)
         S = rec.apparatus_samples
         t = np.array([x.t for x in S], dtype=float)
         R = np.array([x.tail_reaction for x in S], dtype=float)
@@ -127,7 +129,7 @@ def write_reaction_figure(path: Path, rec: Recorder, summary: dict[str, Any],
     _save_png(fig, ax, path, title, legend="lower right")
 
 
-def write_snapshot(path: Path, sim: Simulation, summary: dict[str, Any], title: str) -> None:
+def write_snapshot(path: Path, sim: Simulation, summary: RunSummary, title: str) -> None:
     """The chain at the end of the run over the predicted catenary, axes in metres."""
     import matplotlib
 
@@ -143,7 +145,7 @@ def write_snapshot(path: Path, sim: Simulation, summary: dict[str, Any], title: 
         ax.plot(x, ref.y_of_x(x), "--", color="#d62728", lw=1.2,
                 label=f"inverted catenary (theory), q = {ref.q:.3g} 1/m")
         ax.plot(*ref.vertex, "x", color="#d62728", ms=9, mew=2, label="predicted vertex")
-    vx, vy = summary["vertex"]
+    vx, vy = summary.fountain.vertex_x, summary.fountain.h
     if vx is not None and vy is not None:
         ax.plot(vx, vy, "o", mfc="none", color="#1f77b4", ms=9, mew=1.5,
                 label="measured vertex (window mean)")
@@ -162,7 +164,7 @@ def write_snapshot(path: Path, sim: Simulation, summary: dict[str, Any], title: 
         ax.plot(outline[:, 0], outline[:, 1], color="#17becf", lw=2.5, label="pot")
         ax.plot(plate[:, 0], plate[:, 1], color="#7f7f7f", lw=1.5,
                 label="plate under the pile (rises as it is drawn off)")
-        _beaker_curve(ax, summary.get("beaker") or {}, sim.g)
+        _beaker_curve(ax, summary.sections.get("beaker") or {}, sim.g)
     elif app is None:
         (gx, gy), (ux, uy) = sim.guide_geometry()
         ax.plot([gx - 0.15 * ux, gx], [gy - 0.15 * uy, gy], color="#2ca02c", lw=4,

@@ -3,7 +3,6 @@ the terminal's lines about it."""
 
 from __future__ import annotations
 
-import json
 import shutil
 import signal
 import textwrap
@@ -13,11 +12,14 @@ from typing import Any
 
 from chainfountain import atomic
 from chainfountain.errors import UserError
+from chainfountain.exits import ENDED_EARLY, EXIT_STATUS, WRITE_FAILED
 from chainfountain.headless import files
+from chainfountain.headless.report import Ended, RunSummary, json_safe
 from chainfountain.headless.scene import _write, describe_scene, run_scene
+from chainfountain.headless.section_text import section_lines, steadiness
 from chainfountain.headless.stepper import SceneRun, Stepper, simulate
 from chainfountain.headless.stepping import Ending, _signals_deferred
-from chainfountain.headless.summary import _attempt, _f, json_safe, model_error, summarize
+from chainfountain.headless.summary import _attempt, _f, summarize
 from chainfountain.level.io import Level
 from chainfountain.sim.recorder import Recorder
 from chainfountain.sim.world import Simulation
@@ -95,22 +97,21 @@ def default_out_dir(level: Level) -> Path:
     return Path("runs") / safe_name(level.meta.name)
 
 
-EXIT_STATUS = {None: 0, "machine": 3, "diverged": 3}
-"""Exit status of ``chainfountain run`` by :attr:`Ending.cause` (see :func:`exit_status`)."""
-
-
-def exit_status(summary: dict[str, Any]) -> int:
-    """0 for a complete run; 3 if it ended early (the machine stopped, the run diverged);
+def exit_status(summary: RunSummary | dict[str, Any]) -> int:
+    """The exit status (:data:`chainfountain.exits.EXITS`) of a run with this summary (a
+    :class:`~chainfountain.headless.report.RunSummary` or its ``summary.json`` object):
+    0 for a complete run; 3 if it ended early (the machine stopped, the run diverged);
     128 + the signal's number (130 for Ctrl-C, 143 for SIGTERM) if it was interrupted;
     4 if an output could not be written. The outputs cover the part simulated."""
-    if summary.get("write_failed"):
-        return 4
-    ended = summary.get("ended_early")
-    if not ended:
+    s = summary if isinstance(summary, RunSummary) else RunSummary.from_json(summary)
+    if s.write_failed:
+        return WRITE_FAILED
+    ended = s.ended_early
+    if ended is None:
         return 0
-    if ended.get("cause") == "interrupted":
-        return 128 + int(ended.get("signal_number") or signal.SIGINT)
-    return EXIT_STATUS.get(ended.get("cause"), 3)
+    if ended.cause == "interrupted":
+        return 128 + int(ended.signal_number or signal.SIGINT)
+    return EXIT_STATUS.get(ended.cause, ENDED_EARLY)
 
 
 def prepare_out_dir(out_dir: Path, option: str = "--out") -> Path:
@@ -206,126 +207,60 @@ def _write_outputs(level: Level, out_dir: Path, duration: float, sim: Simulation
             analysis_failed, "apparatus samples", lambda: rec.apparatus_samples, default=[]))
     put("tensions.csv", files.write_tensions, rec, lam)
     summary = summarize(level, sim, rec, duration, wall)
-    summary["ended_early"] = None
-    if level.sim.kind == "feed":
-        summary["error_bars"] = json_safe(error_bars) if error_bars is not None else {
-            "method": None, "how": "not estimated: chainfountain run LEVEL --error-bars, or "
-            "chainfountain converge LEVEL"}
-        summary["error_model"] = _attempt(analysis_failed, "error model", model_error, level)
+    if error_bars is not None and "error_bars" in summary.sections:
+        summary.sections["error_bars"] = json_safe(error_bars)
     if ended is not None:
-        summary["ended_early"] = {"t_s": _f(sim.time), "cause": ended.cause,
-                                  "reason": ended.reason}
-        if ended.signum is not None:
-            summary["ended_early"]["signal_number"] = int(ended.signum)
+        summary.ended_early = Ended(
+            t_s=_f(sim.time), cause=ended.cause, reason=ended.reason,
+            signal_number=int(ended.signum) if ended.signum is not None else None)
         if ended.cause == "machine" and app is not None and app.fold_guided:
             # when the fountain last landed in the end guide's mouth (a lost catch comes
             # about 1 s before the fold's collapse)
-            summary["ended_early"]["last_mouth_entry_s"] = _f(app.last_mouth_entry)
-    v = (summary.get("beaker") or {}).get("speed") or summary.get("speed_mean") or 0
+            summary.ended_early.last_mouth_entry_s = _f(app.last_mouth_entry)
+    beaker = summary.sections.get("beaker") or {}
+    v = beaker.get("speed") or summary.fountain.v or 0
     title = (f"{level.meta.name}: t = {sim.time:.2f} s, v = {v:.3f} m/s"
-             + ("" if summary.get("steady") else " (not steady)")
+             + ("" if summary.steady else " (not steady)")
              + ("" if ended is None else " - ended early"))
-    if snapshot and "vertex" in summary:
+    if snapshot and summary.fountain.samples is not None:
         put("snapshot.png", files.write_snapshot, sim, summary, title)
-    if (app is not None and app.variant == "open" and "apparatus" in summary) or \
-            summary.get("open"):
+    if (app is not None and app.variant == "open" and "apparatus" in summary.sections) or \
+            summary.sections.get("open"):
         put("reaction.png", files.write_reaction_figure, rec, summary, lam, level.sim.gravity,
             title)
-    summary["analysis_failed"].update(analysis_failed)
+    summary.analysis_failed.update(analysis_failed)
     order = ["summary.json", *DEFAULT_OUTPUTS[1:], "apparatus.csv", "reaction.png"]
-    summary["outputs"] = sorted(["summary.json", *written], key=order.index)
-    summary["write_failed"] = write_failed
+    summary.outputs = sorted(["summary.json", *written], key=order.index)
+    summary.write_failed = write_failed
     return files.write_summary(out_dir, summary, written)
 
 
-def describe_outputs(summary_path: Path) -> str:
-    """A few lines for the terminal: what was written and how the run compares with theory."""
+def describe_outputs(summary_path: Path, summary: RunSummary | None = None) -> str:
+    """A few lines for the terminal: what was written and how the run compares with theory,
+    formatted from ``summary`` (read from ``summary_path`` when not given)."""
     summary_path = Path(summary_path)
     out = summary_path.parent
-    s = json.loads(summary_path.read_text())
-    if s.get("kind") == "scene":
+    s = RunSummary.load(summary_path) if summary is None else summary
+    if s.scene is not None:
         return describe_scene(s, out)
-    th = s.get("theory") or {}
-    err = th.get("rel_error", {})
-
-    def pct(x: float | None) -> str:
-        return "n/a" if x is None else f"{100 * x:+.2f} %"
-
-    steady = (f"steady since {s['steady_since_s']:.2f} s" if s.get("steady")
-              else "never steady (compare with care)")
-    o = (s.get("apparatus") or {}).get("open") or s.get("open")
-    if o:
-        # the paper's non-stationary arrangement: its measurement is the reaction's rate
-        rate, pred = o.get("tail_reaction_rate_N_per_s"), o.get("tail_reaction_rate_predicted")
-        steady = "non-stationary by design"
-        if rate is not None and pred:
-            steady += (f"; lower plate reaction grows at {rate:.3f} N/s, lambda g v "
-                       f"{pred:.3f} N/s ({pct(rate / pred - 1.0)})")
+    f = s.fountain
+    steady = steadiness(s, f"steady since {f.steady_since_s:.2f} s" if s.steady
+                        else "never steady (compare with care)")
     lines = [
-        f"wrote {out}/" + ", ".join(s.get("outputs") or DEFAULT_OUTPUTS),
-        f"  {s['links']} links, {s['steps']} steps, real-time factor "
-        f"{s.get('realtime_factor') or 0:.2f}, {steady}",
+        f"wrote {out}/" + ", ".join(s.outputs or DEFAULT_OUTPUTS),
+        f"  {s.links} links, {s.steps} steps, real-time factor "
+        f"{s.realtime_factor or 0:.2f}, {steady}",
     ]
-    for name, why in (s.get("write_failed") or {}).items():
+    for name, why in s.write_failed.items():
         lines.append(f"  NOT WRITTEN: {name} ({why})")
-    for name, why in (s.get("analysis_failed") or {}).items():
+    for name, why in s.analysis_failed.items():
         lines.append(f"  analysis failed: {name} ({why}); its figures are null")
-    ended = s.get("ended_early")
-    if ended:
+    if s.ended_early is not None:
         # the reason runs to several sentences (a fold's collapse: about 900 characters):
         # wrapped to the terminal, continuation lines indented under it
         width = max(60, min(100, shutil.get_terminal_size((100, 24)).columns - 1))
         lines.append(textwrap.fill(
-            f"ENDED EARLY (of {s['requested_duration_s']:g} s asked for): {ended['reason']}",
-            width=width, initial_indent="  ", subsequent_indent="    ",
-            break_on_hyphens=False))
-    ap = s.get("apparatus") or {}
-    v_sel = (ap.get("predicted_paper") or {}).get("v_steady")
-    v_meas = (ap.get("measured") or {}).get("v")
-    if ap.get("variant") == "fold" and v_sel and v_meas:  # a braked fold selects its speed
-        w0, w1 = ap["window"]
-        lines.append(f"  over {w0:.1f}-{w1:.1f} s: speed {v_meas:.3f} m/s; the carts and the "
-                     f"brake select {v_sel:.3f} m/s by the paper's laws "
-                     f"({pct(v_meas / v_sel - 1.0)})")
-    bk = s.get("beaker")
-    if bk and bk.get("alpha"):
-        a = bk["alpha"]
-        w0, w1 = bk["window_s"]
-        lines.append(
-            f"  over {w0:.1f}-{w1:.1f} s: speed {bk['speed']:.3f} m/s (links the floor took), "
-            f"top {bk['rise_above_rim']:.3f} m above the rim, {bk['rise_above_pickup']:.3f} m "
-            f"above the pick-up, which is {bk['drop_from_pickup']:.3f} m above the floor")
-        lines.append(
-            f"  the pile's push alpha (Biggins & Warner, beta = 0): {a['from_speed']:.3f} from "
-            f"the speed, {a['from_rise']:.3f} from the rise of a zero-width fountain"
-            + (f", {a['from_paper_catenary']:.3f} from the paper's curve through the ends"
-               if a.get("from_paper_catenary") is not None else ""))
-        how = (bk.get("error_bars") or {}).get("how")
-        if how:
-            lines.append(f"  discretisation error: {how}")
-    if th and s.get("h") is not None and s.get("l") is not None:
-        lines.append(
-            f"  vertex height {s['h']:.4f} m (theory {th['h']:.4f}, {pct(err.get('h'))}), "
-            f"landing {s['l']:.4f} m (theory {th['l']:.4f}, {pct(err.get('l'))}), "
-            f"speed {s['speed_mean']:.4f} m/s"
-            + (f" (the machine's laws select {th['v']:.4f}, {pct(err.get('speed'))})"
-               if s.get("machine") == "selects" and th.get("v") else ""))
-    d = (s.get("error_bars") or {}).get("error_bar")
-    if d:
-        def bar(x: float | None) -> str:
-            return "n/a" if x is None else f"+-{100 * x:.2f} %"
-
-        lines.append(
-            f"  discretisation error bars at this link length and step (refinement): vertex "
-            f"height {bar(d.get('h'))}, vertex x {bar(d.get('vertex_x'))}, landing "
-            f"{bar(d.get('l'))}")
-    m = s.get("error_model") or {}
-    if m.get("bounds"):
-        b = m["bounds"]
-        lines.append(
-            f"  discretisation error (error model) at this link length, step and iterations: "
-            f"vertex height +-{100 * b['h']:.2f} %, vertex x +-{100 * b['vertex_x']:.2f} %, "
-            f"landing +-{100 * b['l']:.2f} %")
-    elif m.get("solver_converged") is False:
-        lines.append(f"  WARNING: {m['why_none']}")
-    return "\n".join(lines)
+            f"ENDED EARLY (of {s.requested_duration_s:g} s asked for): "
+            f"{s.ended_early.reason}", width=width, initial_indent="  ",
+            subsequent_indent="    ", break_on_hyphens=False))
+    return "\n".join(lines + section_lines(s))

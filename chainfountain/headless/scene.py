@@ -13,6 +13,8 @@ import numpy as np
 
 from chainfountain import atomic
 from chainfountain.headless import files, scene_compare
+from chainfountain.headless.report import Ended, RunSummary, SceneFigures
+from chainfountain.headless.section_text import pct
 from chainfountain.headless.stepper import SceneRun, Stepper
 from chainfountain.headless.stepping import (
     _progress,
@@ -84,23 +86,20 @@ def _write(level: Level, out_dir: Path, duration: float, run: SceneRun,
             write_failed[name] = exc.strerror or str(exc)
         probes[probe.name] = {"kind": probe.kind, "point": probe.point, "file": name,
                               "columns": {c: _stats(v) for c, v in cols.items() if c != "t"}}
-    summary: dict[str, Any] = {
-        "level": level.meta.name, "kind": "scene", "duration_s": _f(sim.time),
-        "requested_duration_s": _f(duration), "steps": int(round(sim.time / sim.dt)),
-        "links": sim.n, "link_length": cfg.chain.link_length, "dt": sim.dt,
-        "pymunk_step": sim.scene.h, "wall_s": _f(run.wall),
-        "realtime_factor": _f(sim.time / run.wall) if run.wall > 0 else None,
-        "sample_interval_s": run.interval, "samples": log.n,
-        "seed": sim.config.scene.seed, "jitter": cfg.scene.jitter, "probes": probes,
-        "closed_form": _attempt(failed, "closed form", scene_compare.compare, cfg, log,
-                                run.start),
-        "ended_early": None,
-    }
+    summary = RunSummary(
+        level=level.meta.name, kind="scene", duration_s=_f(sim.time),
+        requested_duration_s=_f(duration), steps=int(round(sim.time / sim.dt)),
+        links=sim.n, link_length=cfg.chain.link_length, dt=sim.dt, wall_s=_f(run.wall),
+        realtime_factor=_f(sim.time / run.wall) if run.wall > 0 else None,
+        scene=SceneFigures(pymunk_step=sim.scene.h, sample_interval_s=run.interval,
+                           samples=log.n, seed=sim.config.scene.seed,
+                           jitter=cfg.scene.jitter, probes=probes),
+        sections={"closed_form": _attempt(failed, "closed form", scene_compare.compare, cfg,
+                                          log, run.start)})
     if run.ended is not None:
-        summary["ended_early"] = {"t_s": _f(sim.time), "cause": run.ended.cause,
-                                  "reason": run.ended.reason}
-        if run.ended.signum is not None:
-            summary["ended_early"]["signal_number"] = int(run.ended.signum)
+        summary.ended_early = Ended(
+            t_s=_f(sim.time), cause=run.ended.cause, reason=run.ended.reason,
+            signal_number=int(run.ended.signum) if run.ended.signum is not None else None)
     if snapshot:
         try:
             _figure(out_dir / "scene.png", level, run, summary)
@@ -109,13 +108,13 @@ def _write(level: Level, out_dir: Path, duration: float, run: SceneRun,
             write_failed["scene.png"] = exc.strerror or str(exc)
         except Exception as exc:  # noqa: BLE001 - a failed picture never loses the run
             failed["scene.png"] = f"{type(exc).__name__}: {exc}"
-    summary["analysis_failed"] = failed
-    summary["outputs"] = ["summary.json", *written]
-    summary["write_failed"] = write_failed
+    summary.analysis_failed = failed
+    summary.outputs = ["summary.json", *written]
+    summary.write_failed = write_failed
     return files.write_summary(out_dir, summary, written)
 
 
-def _figure(path: Path, level: Level, run: SceneRun, summary: dict[str, Any]) -> None:
+def _figure(path: Path, level: Level, run: SceneRun, summary: RunSummary) -> None:
     """The chain at a few moments (left) and each probe against time (right)."""
     import matplotlib
 
@@ -147,9 +146,9 @@ def _figure(path: Path, level: Level, run: SceneRun, summary: dict[str, Any]) ->
         pax.legend(fontsize=7, loc="best")
         if i == len(probes) - 1:
             pax.set_xlabel("t (s)")
-    form = summary.get("closed_form") or {}
-    note = f"{summary['links']} links, dt {summary['dt'] * 1e6:.0f} us " \
-           f"({summary['pymunk_step'] * 1e6:.1f}-us pymunk steps)"
+    form = summary.sections.get("closed_form") or {}
+    note = f"{summary.links} links, dt {summary.dt * 1e6:.0f} us " \
+           f"({summary.scene.pymunk_step * 1e6:.1f}-us pymunk steps)"
     if form.get("name"):
         errs = form.get("speed_rel_error") or [form.get("force_rel_error")]
         shown = ", ".join("n/a" if e is None else f"{100 * e:+.1f} %" for e in errs)
@@ -161,26 +160,22 @@ def _figure(path: Path, level: Level, run: SceneRun, summary: dict[str, Any]) ->
     plt.close(fig)
 
 
-def describe_scene(s: dict[str, Any], out: Path) -> str:
-    """A few lines for the terminal about a scene run's ``summary.json`` ``s``."""
-
-    def pct(x: float | None) -> str:
-        return "n/a" if x is None else f"{100 * x:+.2f} %"
-
-    lines = [f"wrote {out}/" + ", ".join(s.get("outputs") or []),
-             f"  {s['links']} links, {s['steps']} steps of {s['dt'] * 1e6:g} us "
-             f"({s['pymunk_step'] * 1e6:.3g}-us pymunk steps), {s['samples']} samples every "
-             f"{s['sample_interval_s'] * 1e3:.3g} ms, real-time factor "
-             f"{s.get('realtime_factor') or 0:.2f}"]
-    for name, why in (s.get("write_failed") or {}).items():
+def describe_scene(s: RunSummary, out: Path) -> str:
+    """A few lines for the terminal about a scene run's summary ``s``."""
+    sc = s.scene
+    lines = [f"wrote {out}/" + ", ".join(s.outputs),
+             f"  {s.links} links, {s.steps} steps of {s.dt * 1e6:g} us "
+             f"({sc.pymunk_step * 1e6:.3g}-us pymunk steps), {sc.samples} samples every "
+             f"{sc.sample_interval_s * 1e3:.3g} ms, real-time factor "
+             f"{s.realtime_factor or 0:.2f}"]
+    for name, why in s.write_failed.items():
         lines.append(f"  NOT WRITTEN: {name} ({why})")
-    for name, why in (s.get("analysis_failed") or {}).items():
+    for name, why in s.analysis_failed.items():
         lines.append(f"  analysis failed: {name} ({why})")
-    ended = s.get("ended_early")
-    if ended:
-        lines.append(f"  ENDED EARLY (of {s['requested_duration_s']:g} s asked for): "
-                     f"{ended['reason']}")
-    form = s.get("closed_form") or {}
+    if s.ended_early is not None:
+        lines.append(f"  ENDED EARLY (of {s.requested_duration_s:g} s asked for): "
+                     f"{s.ended_early.reason}")
+    form = s.sections.get("closed_form") or {}
     if form.get("name") == "folded_fall":
         for share, v, vt, ev, ef in zip(form["at_share"], form["speed_m_s"],
                                         form["speed_theory_m_s"], form["speed_rel_error"],
@@ -199,5 +194,5 @@ def describe_scene(s: dict[str, Any], out: Path) -> str:
                      f"{100 * form['landed_share'][1]:.0f} % of the chain has landed: reads "
                      f"{pct(form['force_rel_error'])} against 3 lambda g y (Hamm-Geminard)"
                      + ("; a pile of jittered links is chaotic: compare the mean over seeds "
-                        "(chainfountain sweep with seeds)" if s.get("jitter") else ""))
+                        "(chainfountain sweep with seeds)" if sc.jitter else ""))
     return "\n".join(lines)

@@ -1,5 +1,6 @@
-"""The ``summary.json`` object of a headless run: figures over the steady window and the
-paper's prediction with relative errors."""
+"""The ``summary.json`` object of a headless run (:class:`~chainfountain.headless.report.
+RunSummary`): figures over the steady window, and the sections the level's kind adds,
+each built by one function of :data:`SECTIONS`."""
 
 from __future__ import annotations
 
@@ -7,6 +8,16 @@ import math
 from collections.abc import Callable
 from typing import Any
 
+from chainfountain.headless.report import (
+    AbsErrors,
+    FountainFigures,
+    RelErrors,
+    Remeasured,
+    RunSummary,
+    Theory,
+    finite,
+    json_safe,
+)
 from chainfountain.level.io import Level
 from chainfountain.sim.machine_rules import keeps_any_speed
 from chainfountain.sim.measure import Summary
@@ -14,13 +25,15 @@ from chainfountain.sim.recorder import Recorder
 from chainfountain.sim.reference import LaunchReference
 from chainfountain.sim.world import Simulation
 
+_f = finite
+"""JSON-safe float (NaN/inf become null); the name other modules import."""
 
-def _f(x: Any) -> Any:
-    """JSON-safe float (NaN/inf become null)."""
-    if x is None:
-        return None
-    x = float(x)
-    return x if math.isfinite(x) else None
+SectionBuilder = Callable[[Level, Simulation, Recorder, "Summary | None"], Any]
+"""A section of ``summary.json``: ``(level, sim, recorder, window)`` to the section's
+object (a typed part, a JSON-ready dict or text, a
+:class:`~chainfountain.headless.report.Remeasured`), or ``None`` when the run has none.
+``window`` is the recorder's :class:`~chainfountain.sim.measure.Summary` over the
+averaging window (``None`` when it could not be computed)."""
 
 
 def _attempt(failed: dict[str, str], name: str, fn: Callable[..., Any], *args: Any,
@@ -34,131 +47,159 @@ def _attempt(failed: dict[str, str], name: str, fn: Callable[..., Any], *args: A
         return default
 
 
+def _reference(level: Level, sim: Simulation, s: Summary) -> LaunchReference | None:
+    """The paper's fountain the window is compared with: the level's, or for a machine
+    that keeps any speed the one at the window's own speed."""
+    if keeps_any_speed(level.sim):
+        return sim.reference_at(s.speed_mean)
+    return sim.reference
+
+
+def _tension_end(s: Summary) -> float:
+    """The window's scaled end tension: the last joint of its mean ``Tbar`` profile."""
+    tb = s.extras.get("tension_bar")
+    return float(tb[-1]) if tb is not None and len(tb) else float("nan")
+
+
+def theory_section(level: Level, sim: Simulation, rec: Recorder,
+                   s: Summary | None) -> Theory | None:
+    """``theory``: the paper's fountain for this run
+    (:class:`~chainfountain.sim.reference.LaunchReference`) and the window's errors
+    against it."""
+    ref = _reference(level, sim, s) if s is not None else None
+    if ref is None:
+        return None
+    errs = s.errors(ref)
+    return Theory(
+        h=ref.h, vertex_x=ref.x_rise, l=ref.landing_x, q=ref.q, k=ref.k, v=ref.v,
+        T0_bar=ref.T0_bar, TE_bar=ref.TE_bar,
+        rel_error=RelErrors(**{k: finite(errs[k]) for k in ("h", "vertex_x", "l", "q", "v")}),
+        abs_error=AbsErrors(T0_bar=finite(errs["T0_bar"]),
+                            TE_bar=finite(_tension_end(s) - ref.TE_bar),
+                            tension_rms=finite(s.tension_rms)))
+
+
+def machine_section(level: Level, sim: Simulation, rec: Recorder,
+                    s: Summary | None) -> str | None:
+    """``machine``: what sets an ideal machine's speed: its laws select it
+    (``"selects"``), or, loss-free, it ``"keeps any speed"``."""
+    if level.sim.kind != "feed" or level.sim.feed.drive == "motor" or s is None:
+        return None
+    return "keeps any speed" if keeps_any_speed(level.sim) else "selects"
+
+
+def open_section(level: Level, sim: Simulation, rec: Recorder,
+                 s: Summary | None) -> dict[str, Any] | None:
+    """``open``: the paper's non-stationary arrangement (``feed.drive = "ideal_open"``),
+    measured by the plate reaction's rate (:mod:`chainfountain.sim.slide_away_report`)."""
+    if sim.slide_away is None or s is None:
+        return None
+    from chainfountain.sim.slide_away_report import report
+
+    ref = _reference(level, sim, s)
+    return json_safe(report(rec.samples, sim.piston.hand_over, level.sim.chain.linear_density,
+                            sim.g, ref.v if ref is not None else math.nan))
+
+
+def beaker_section(level: Level, sim: Simulation, rec: Recorder,
+                   s: Summary | None) -> dict[str, Any] | None:
+    """``beaker``: a fountain from a pot (:mod:`chainfountain.sim.beaker_report`)."""
+    if sim.beaker is None or s is None:
+        return None
+    from chainfountain.sim.beaker_report import report
+
+    return json_safe(report(sim.beaker, (s.vertex_x, s.vertex_y), s.landing_x, s.t0, s.t1,
+                            sim.g))
+
+
+def apparatus_section(level: Level, sim: Simulation, rec: Recorder,
+                      s: Summary | None) -> Remeasured | None:
+    """``apparatus``: the pulley apparatus's report
+    (:mod:`chainfountain.sim.apparatus_report`); its ``TE_bar``, read at the fountain's
+    end height, is the summary's."""
+    if sim.apparatus is None or s is None:
+        return None
+    from chainfountain.sim.apparatus_report import report
+
+    rep = report(sim, rec, s.t0, s.t1)
+    return Remeasured(json_safe(rep), {"TE_bar": finite(rep["measured"]["TE_bar"])})
+
+
+def error_bars_section(level: Level, sim: Simulation, rec: Recorder,
+                       s: Summary | None) -> dict[str, Any] | None:
+    """``error_bars`` of a fed level: how to estimate them (a run with ``error_bars``
+    stores :meth:`chainfountain.refine.Refinement.as_dict` here instead)."""
+    if level.sim.kind != "feed":
+        return None
+    return {"method": None, "how": "not estimated: chainfountain run LEVEL --error-bars, or "
+            "chainfountain converge LEVEL"}
+
+
+def error_model_section(level: Level, sim: Simulation, rec: Recorder,
+                        s: Summary | None) -> dict[str, Any] | None:
+    """``error_model`` of a fed level (:func:`model_error`)."""
+    return model_error(level) if level.sim.kind == "feed" else None
+
+
+SECTIONS: dict[str, SectionBuilder] = {
+    "theory": theory_section,
+    "machine": machine_section,
+    "open": open_section,
+    "beaker": beaker_section,
+    "apparatus": apparatus_section,
+    "error_bars": error_bars_section,
+    "error_model": error_model_section,
+}
+"""``summary.json``'s optional sections by name, in the order written; a failed builder
+is named ``"<name> report"`` in ``analysis_failed``."""
+
+ALWAYS_WRITTEN = ("theory",)
+"""Sections written (``null``) even when the run has none: a fountain's ``theory``."""
+
+
 def summarize(level: Level, sim: Simulation, rec: Recorder, duration: float,
-              wall: float) -> dict[str, Any]:
-    """The ``summary.json`` object. Analyses that fail are listed under
-    ``analysis_failed`` (name: reason) and their figures are null."""
+              wall: float) -> RunSummary:
+    """The run's :class:`~chainfountain.headless.report.RunSummary`. Analyses that fail
+    are listed under ``analysis_failed`` (name: reason) and their figures are null."""
     failed: dict[str, str] = {}
     # steady: the run's last averaging window (``recording.window``) is the reference, so a
     # fountain that formed from its stub is steady from when it formed
     steady = _attempt(failed, "steady-state detection", rec.steady_from)
     window_start = steady if steady is not None else max(0.0, sim.time - rec.cfg.window)
     s = _attempt(failed, "window averages", rec.summary, sim.time - window_start)
-    if s is None:
-        return {"level": level.meta.name, "kind": level.sim.kind, "duration_s": _f(sim.time),
-                "requested_duration_s": _f(duration), "steps": sim.steps,
-                "links": sim.n_links, "dt": sim.dt, "wall_s": _f(wall), "steady": False,
-                "theory": None, "analysis_failed": failed}
-    failed.update(s.failed)
-    ref = sim.reference
-    neutral = keeps_any_speed(level.sim)
-    if neutral:
-        ref = sim.reference_at(s.speed_mean)  # it keeps any speed: the paper's at its own
-    tb = s.extras.get("tension_bar")
-    TE_bar = float(tb[-1]) if tb is not None and len(tb) else float("nan")
-    speed_cv = s.speed_uniformity
-    app = sim.apparatus
-    H = sim.drop
-    out: dict[str, Any] = {
-        "level": level.meta.name,
-        "kind": level.sim.kind,
-        "duration_s": _f(sim.time),
-        "requested_duration_s": _f(duration),
-        "steps": sim.steps,
-        "links": sim.n_links,
-        "links_free": sim.n_free,
-        "link_length": level.sim.chain.link_length,
-        "dt": sim.dt,
-        "wall_s": _f(wall),
-        "realtime_factor": _f(sim.time / wall) if wall > 0 else None,
-        "steady": steady is not None,
-        "steady_since_s": _f(steady),
-        "window": [_f(s.t0), _f(s.t1)],
-        "samples": s.samples,
-        "speed_mean": _f(s.speed_mean),
-        "speed_cv": _f(speed_cv),
-        "speed_spread": _f(s.speed_spread_inst),
-        "max_stretch": _f(s.stretch_max),
-        "vertex": [_f(s.vertex_x), _f(s.vertex_y)],
-        "start": [0.0, 0.0],
-        "end": [_f(s.landing_x), _f(-H)],
-        "h": _f(s.vertex_y),
-        "l": _f(s.landing_x),
-        "H": H,
-        "q_fit": _f(s.q_fit),
-        "k": _f(sim.g / s.speed_mean**2) if s.speed_mean > 0 else None,
-        "T0_bar": _f(s.T0_bar),
-        "TE_bar": _f(TE_bar),
-        "tension_rms": _f(s.tension_rms),
-    }
-    out["theory"] = _theory(ref, s, TE_bar) if ref is not None else None
-    if level.sim.kind == "feed" and level.sim.feed.drive != "motor":
-        # what sets the speed: the machine's laws select it, or (loss-free) keep any
-        out["machine"] = "keeps any speed" if neutral else "selects"
-    if sim.slide_away is not None:
-        # the paper's non-stationary arrangement: its measurement is the reaction's rate
-        from chainfountain.sim.slide_away_report import report as open_report
-
-        rep = _attempt(failed, "open report", open_report, rec.samples,
-                       sim.piston.hand_over, level.sim.chain.linear_density, sim.g,
-                       ref.v if ref is not None else math.nan)
-        if rep is not None:
-            out["open"] = json_safe(rep)
-    if sim.beaker is not None:
-        from chainfountain.sim.beaker_report import report as beaker_report
-
-        rep = _attempt(failed, "beaker report", beaker_report, sim.beaker,
-                       (s.vertex_x, s.vertex_y), s.landing_x, s.t0, s.t1, sim.g)
-        if rep is not None:
-            out["beaker"] = json_safe(rep)
-    if app is not None:
-        from chainfountain.sim.apparatus_report import report
-
-        rep = _attempt(failed, "apparatus report", report, sim, rec, s.t0, s.t1)
-        if rep is not None:
-            out["TE_bar"] = _f(rep["measured"]["TE_bar"])
-            out["apparatus"] = json_safe(rep)
-    out["analysis_failed"] = failed
+    out = RunSummary(
+        level=level.meta.name, kind=level.sim.kind, duration_s=finite(sim.time),
+        requested_duration_s=finite(duration), steps=sim.steps, links=sim.n_links,
+        link_length=level.sim.chain.link_length, dt=sim.dt, wall_s=finite(wall),
+        realtime_factor=finite(sim.time / wall) if wall > 0 else None,
+        fountain=_figures(sim, s, steady))
+    if s is not None:
+        failed.update(s.failed)
+    for name, build in SECTIONS.items():
+        section = _attempt(failed, f"{name} report", build, level, sim, rec, s)
+        if isinstance(section, Remeasured):
+            for key, value in section.figures.items():
+                setattr(out.fountain, key, value)
+            section = section.section
+        if section is not None or name in ALWAYS_WRITTEN:
+            out.sections[name] = section
+    out.analysis_failed = failed
     return out
 
 
-def _theory(ref: LaunchReference, s: Summary, TE_bar: float) -> dict[str, Any]:
-    """``summary.json``'s ``theory``: the paper's fountain for this feed and the window's
-    errors against it (:class:`~chainfountain.sim.reference.LaunchReference`)."""
-    errs = s.errors(ref)
-    return {
-        "h": ref.h,
-        "vertex": [ref.x_rise, ref.h],
-        "l": ref.landing_x,
-        "q": ref.q,
-        "k": ref.k,
-        "v": ref.v,
-        "T0_bar": ref.T0_bar,
-        "TE_bar": ref.TE_bar,
-        "rel_error": {
-            "h": _f(errs["vertex_y"]),
-            "vertex_x": _f(errs["vertex_x"]),
-            "l": _f(errs["landing_x"]),
-            "q": _f(errs["q"]),
-            "speed": _f(errs["speed"]),
-        },
-        "abs_error": {
-            "T0_bar": _f(errs["T0_bar"]),
-            "TE_bar": _f(TE_bar - ref.TE_bar),
-            "tension_rms": _f(s.tension_rms),
-        },
-    }
-
-
-def json_safe(obj: Any) -> Any:
-    """Nested dict/list with NaN/inf as null (for the apparatus report and converge.json)."""
-    if isinstance(obj, dict):
-        return {k: json_safe(v) for k, v in obj.items()}
-    if isinstance(obj, list | tuple):
-        return [json_safe(v) for v in obj]
-    if isinstance(obj, bool) or obj is None or isinstance(obj, str):
-        return obj
-    return _f(obj)
+def _figures(sim: Simulation, s: Summary | None, steady: float | None) -> FountainFigures:
+    """The window's figures (only ``steady = False`` when its averages failed)."""
+    if s is None:
+        return FountainFigures(steady=False)
+    return FountainFigures(
+        steady=steady is not None, links_free=sim.n_free, steady_since_s=finite(steady),
+        window=[finite(s.t0), finite(s.t1)], samples=s.samples, v=finite(s.speed_mean),
+        speed_cv=finite(s.speed_uniformity), speed_spread=finite(s.speed_spread_inst),
+        max_stretch=finite(s.stretch_max), vertex_x=finite(s.vertex_x),
+        h=finite(s.vertex_y), l=finite(s.landing_x), H=sim.drop, q=finite(s.q_fit),
+        k=finite(sim.g / s.speed_mean**2) if s.speed_mean > 0 else None,
+        T0_bar=finite(s.T0_bar), TE_bar=finite(_tension_end(s)),
+        tension_rms=finite(s.tension_rms))
 
 
 def model_error(level: Level) -> dict[str, Any]:

@@ -361,13 +361,16 @@ class Summary:
     """Analyses that failed on this window's data (name: reason); their figures are nan."""
 
     def errors(self, ref) -> dict[str, float]:
-        """Relative errors against a :class:`~chainfountain.sim.reference.LaunchReference`."""
+        """Errors against a :class:`~chainfountain.sim.reference.LaunchReference`, named as
+        in ``summary.json``'s ``theory``: relative (``measured / predicted - 1``) for the
+        vertex height ``h``, ``vertex_x``, the landing ``l``, ``q`` and the speed ``v``;
+        absolute for ``T0_bar``; ``tension_rms`` as is."""
         return {
-            "vertex_y": self.vertex_y / ref.h - 1.0,
+            "h": self.vertex_y / ref.h - 1.0,
             "vertex_x": self.vertex_x / ref.x_rise - 1.0,
-            "landing_x": self.landing_x / ref.landing_x - 1.0,
+            "l": self.landing_x / ref.landing_x - 1.0,
             "q": self.q_fit / ref.q - 1.0,
-            "speed": self.speed_mean / ref.v - 1.0,
+            "v": self.speed_mean / ref.v - 1.0,
             "T0_bar": self.T0_bar - ref.T0_bar,
             "tension_rms": self.tension_rms,
         }

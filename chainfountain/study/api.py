@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from chainfountain.errors import UserError
-from chainfountain.headless import FOUNTAIN_SERIES, check_run, write_outputs
+from chainfountain.headless import FOUNTAIN_SERIES, RunSummary, check_run, write_outputs
 from chainfountain.headless import Stepper as _Stepper
 from chainfountain.level import io, library
 from chainfountain.level.model import Level
@@ -45,11 +45,16 @@ class RunResult:
         """Whether the run went its whole length and every output was written."""
         return not self.summary.get("ended_early") and not self.summary.get("write_failed")
 
+    @property
+    def report(self) -> RunSummary:
+        """The summary typed (:class:`~chainfountain.headless.report.RunSummary`)."""
+        return RunSummary.from_json(self.summary)
+
     def error(self, figure: str) -> float | None:
-        """Relative error of ``figure`` (``"h"``, ``"l"``, ``"vertex_x"``, ``"speed"``)
-        against the paper's prediction (``None`` without one)."""
-        th = self.summary.get("theory") or {}
-        return (th.get("rel_error") or {}).get(figure)
+        """Relative error of ``figure`` (``"h"``, ``"l"``, ``"vertex_x"``, ``"q"``,
+        ``"v"``) against the paper's prediction (``None`` without one)."""
+        th = self.report.theory
+        return None if th is None else getattr(th.rel_error, figure, None)
 
 
 def load(level: str | os.PathLike[str] | Level) -> Level:

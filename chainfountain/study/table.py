@@ -17,8 +17,8 @@ if TYPE_CHECKING:
 
 def flatten(summary: dict[str, Any]) -> dict[str, Any]:
     """The numbers of a ``summary.json`` as flat columns (``theory.rel_error.h`` becomes
-    ``theory_rel_error_h``; a list of numbers one column per item, ``vertex_0`` and
-    ``vertex_1``; other lists and texts other than the level's name are left out)."""
+    ``theory_rel_error_h``; a list of numbers one column per item, ``window_0`` and
+    ``window_1``; other lists and texts other than the level's name are left out)."""
     out: dict[str, Any] = {}
 
     def walk(prefix: str, obj: Any) -> None:

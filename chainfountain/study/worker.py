@@ -27,7 +27,7 @@ def run_point(pt: Planned, out_dir: Path, snapshot: bool = False) -> dict[str, A
     ``running`` record, then the run's outputs, then its final record. Returns the record.
     Never raises for the run itself: an exception is the record's ``failed`` and its
     reason; a signal while simulating ends the run early and is ``interrupted``."""
-    from chainfountain.headless import run_and_record
+    from chainfountain.headless import RunSummary, run_and_record
 
     _clear(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -43,13 +43,13 @@ def run_point(pt: Planned, out_dir: Path, snapshot: bool = False) -> dict[str, A
                             wall_s=time.perf_counter() - t0)
         points.write(out_dir, rec)
         return rec
-    ended = summary.get("ended_early")
+    ended = RunSummary.from_json(summary).ended_early
     status, extra = "done", {}
-    if ended and ended.get("cause") == "interrupted":
-        status, extra = "interrupted", {"signal": ended.get("signal_number")}
-    elif ended:
+    if ended is not None and ended.cause == "interrupted":
+        status, extra = "interrupted", {"signal": ended.signal_number}
+    elif ended is not None:
         status = "ended_early"
-    rec = points.record(pt, status, ended["reason"] if ended else "",
+    rec = points.record(pt, status, ended.reason if ended is not None else "",
                         wall_s=time.perf_counter() - t0, results=flatten(summary), **extra)
     points.write(out_dir, rec)
     return rec

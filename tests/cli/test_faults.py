@@ -100,7 +100,7 @@ def test_a_failed_analysis_is_named_and_loses_nothing(tmp_path, quick_level, mon
     s = json.loads(path.read_text())
     assert s["analysis_failed"] == {"catenary fit": "LinAlgError: SVD did not converge in "
                                                     "Linear Least Squares"}
-    assert s["q_fit"] is None and s["vertex"][1] is not None  # the rest is measured
+    assert s["q"] is None and s["h"] is not None  # the rest is measured
     assert set(s["outputs"]) == set(headless.DEFAULT_OUTPUTS) and exit_status(s) == 0
     assert "analysis failed: catenary fit" in headless.describe_outputs(path)
 

@@ -249,7 +249,7 @@ def test_a_sweep_runs_on_a_dask_cluster_as_it_does_locally(tmp_path):
     for a, b in zip(rows, local, strict=True):
         assert a["status"] == b["status"]
         if a["status"] == "done":
-            assert a["speed_mean"] == b["speed_mean"] and a["h"] == b["h"]
+            assert a["v"] == b["v"] and a["h"] == b["h"]
     for r in rows[1:]:
         d = tmp_path / "dask" / "points" / r["key"]
         assert (d / "summary.json").is_file() and (d / "tensions.csv").is_file()

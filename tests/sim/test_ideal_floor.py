@@ -46,7 +46,7 @@ def test_the_machine_selects_the_papers_speed(xi2) -> None:
     assert np.mean(v[late]) == pytest.approx(v_pred, rel=0.005)
     assert sim.reference.v == pytest.approx(v_pred)
     e = rec.summary(window=4.0).errors(sim.reference)
-    assert abs(e["vertex_y"]) < 0.01 and abs(e["landing_x"]) < 0.03, e
+    assert abs(e["h"]) < 0.01 and abs(e["l"]) < 0.03, e
 
 
 @pytest.mark.slow

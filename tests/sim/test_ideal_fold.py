@@ -75,7 +75,7 @@ def test_loss_free_the_special_case_keeps_a_pushed_speed() -> None:
     assert v == pytest.approx(6.4, rel=0.02)
     ref = sim.reference_at(v)
     e = rec.summary(window=3.0).errors(ref)
-    assert abs(e["vertex_y"]) < 0.015 and abs(e["landing_x"]) < 0.015, e
+    assert abs(e["h"]) < 0.015 and abs(e["l"]) < 0.015, e
     k = ref.k
     assert ref.T0_bar == pytest.approx(0.5 + 0.183 / (0.05 * v * v) + 0.5 * k * 1.0)
 

@@ -62,14 +62,14 @@ NEAR_CRITICAL = {"fountain_d", "fountain_d_kmax"}
 def test_geometry_matches_catenary(run, request) -> None:
     sim, s = run
     e = s.errors(sim.reference)
-    ok = abs(e["vertex_y"]) < 0.01 and abs(e["vertex_x"]) < 0.03 and abs(e["landing_x"]) < 0.03
+    ok = abs(e["h"]) < 0.01 and abs(e["vertex_x"]) < 0.03 and abs(e["l"]) < 0.03
     if request.node.callspec.id in NEAR_CRITICAL:
         assert not ok, f"{request.node.callspec.id} now meets the criteria: {e}"
-        pytest.xfail(f"near-critical fountain D: vertex_y {e['vertex_y']:+.2%}, "
+        pytest.xfail(f"near-critical fountain D: h {e['h']:+.2%}, "
                      f"vertex_x {e['vertex_x']:+.2%} (docs/convergence.md)")
-    assert abs(e["vertex_y"]) < 0.01, e
+    assert abs(e["h"]) < 0.01, e
     assert abs(e["vertex_x"]) < 0.03, e
-    assert abs(e["landing_x"]) < 0.03, e
+    assert abs(e["l"]) < 0.03, e
 
 
 @pytest.mark.slow
@@ -101,5 +101,5 @@ def test_stub_start_becomes_the_same_steady_fountain() -> None:
     s = rec.summary(window=2.0)
     assert s.steady_from is not None and s.steady_from < 14.0
     e = s.errors(sim.reference)
-    assert abs(e["vertex_y"]) < 0.01, e
-    assert abs(e["landing_x"]) < 0.03, e
+    assert abs(e["h"]) < 0.01, e
+    assert abs(e["l"]) < 0.03, e

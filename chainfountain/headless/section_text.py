@@ -1,0 +1,134 @@
+"""The terminal's lines about each section of a run's summary, one function per section:
+:data:`STEADINESS` (what the run's second line says instead of "steady since ...") and
+:data:`LINES` (the lines after it), each keyed by the section's name in
+:data:`chainfountain.headless.summary.SECTIONS`."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+from chainfountain.headless.report import RunSummary, Theory
+
+
+def pct(x: float | None) -> str:
+    """A relative error as a signed percentage (``n/a`` without one)."""
+    return "n/a" if x is None else f"{100 * x:+.2f} %"
+
+
+def _open_steadiness(o: dict[str, Any] | None) -> str | None:
+    """The paper's non-stationary arrangement: its measurement is the reaction's rate."""
+    if not o:
+        return None
+    rate, pred = o.get("tail_reaction_rate_N_per_s"), o.get("tail_reaction_rate_predicted")
+    text = "non-stationary by design"
+    if rate is not None and pred:
+        text += (f"; lower plate reaction grows at {rate:.3f} N/s, lambda g v "
+                 f"{pred:.3f} N/s ({pct(rate / pred - 1.0)})")
+    return text
+
+
+STEADINESS: dict[str, Callable[[Any], str | None]] = {
+    "apparatus": lambda ap: _open_steadiness(ap.get("open")),
+    "open": _open_steadiness,
+}
+"""Sections that say, instead of the window's steadiness, how the run is measured (the
+first that has something to say)."""
+
+
+def apparatus_lines(ap: dict[str, Any], s: RunSummary) -> list[str]:
+    """A braked fold selects its speed: the measured against the paper's laws'."""
+    v_sel = (ap.get("predicted_paper") or {}).get("v_steady")
+    v_meas = (ap.get("measured") or {}).get("v")
+    if ap.get("variant") != "fold" or not v_sel or not v_meas:
+        return []
+    w0, w1 = ap["window"]
+    return [f"  over {w0:.1f}-{w1:.1f} s: speed {v_meas:.3f} m/s; the carts and the "
+            f"brake select {v_sel:.3f} m/s by the paper's laws ({pct(v_meas / v_sel - 1.0)})"]
+
+
+def beaker_lines(bk: dict[str, Any], s: RunSummary) -> list[str]:
+    """The speed, the rise and the pile's push ``alpha`` (Biggins & Warner)."""
+    a = bk.get("alpha")
+    if not a:
+        return []
+    w0, w1 = bk["window_s"]
+    lines = [
+        f"  over {w0:.1f}-{w1:.1f} s: speed {bk['speed']:.3f} m/s (links the floor took), "
+        f"top {bk['rise_above_rim']:.3f} m above the rim, {bk['rise_above_pickup']:.3f} m "
+        f"above the pick-up, which is {bk['drop_from_pickup']:.3f} m above the floor",
+        f"  the pile's push alpha (Biggins & Warner, beta = 0): {a['from_speed']:.3f} from "
+        f"the speed, {a['from_rise']:.3f} from the rise of a zero-width fountain"
+        + (f", {a['from_paper_catenary']:.3f} from the paper's curve through the ends"
+           if a.get("from_paper_catenary") is not None else "")]
+    how = (bk.get("error_bars") or {}).get("how")
+    if how:
+        lines.append(f"  discretisation error: {how}")
+    return lines
+
+
+def theory_lines(th: Theory, s: RunSummary) -> list[str]:
+    """The vertex height and landing against the paper's (and a selecting machine's
+    speed against its laws')."""
+    f = s.fountain
+    if f is None or f.h is None or f.l is None:
+        return []
+    err = th.rel_error
+    return [f"  vertex height {f.h:.4f} m (theory {th.h:.4f}, {pct(err.h)}), "
+            f"landing {f.l:.4f} m (theory {th.l:.4f}, {pct(err.l)}), speed {f.v:.4f} m/s"
+            + (f" (the machine's laws select {th.v:.4f}, {pct(err.v)})"
+               if s.sections.get("machine") == "selects" and th.v else "")]
+
+
+def error_bars_lines(bars: dict[str, Any], s: RunSummary) -> list[str]:
+    """The refinement's error bars (``run --error-bars``)."""
+    d = bars.get("error_bar")
+    if not d:
+        return []
+
+    def bar(x: float | None) -> str:
+        return "n/a" if x is None else f"+-{100 * x:.2f} %"
+
+    return [f"  discretisation error bars at this link length and step (refinement): vertex "
+            f"height {bar(d.get('h'))}, vertex x {bar(d.get('vertex_x'))}, landing "
+            f"{bar(d.get('l'))}"]
+
+
+def error_model_lines(m: dict[str, Any], s: RunSummary) -> list[str]:
+    """The error model's bounds for the level's settings, or why the solver is short."""
+    if m.get("bounds"):
+        b = m["bounds"]
+        return [f"  discretisation error (error model) at this link length, step and "
+                f"iterations: vertex height +-{100 * b['h']:.2f} %, vertex x "
+                f"+-{100 * b['vertex_x']:.2f} %, landing +-{100 * b['l']:.2f} %"]
+    if m.get("solver_converged") is False:
+        return [f"  WARNING: {m['why_none']}"]
+    return []
+
+
+LINES: dict[str, Callable[[Any, RunSummary], list[str]]] = {
+    "apparatus": apparatus_lines,
+    "beaker": beaker_lines,
+    "theory": theory_lines,
+    "error_bars": error_bars_lines,
+    "error_model": error_model_lines,
+}
+"""Each section's lines, in the order printed."""
+
+
+def section_lines(s: RunSummary) -> list[str]:
+    """Every section's lines (:data:`LINES`), in order."""
+    out: list[str] = []
+    for name, fn in LINES.items():
+        if s.sections.get(name):
+            out += fn(s.sections[name], s)
+    return out
+
+
+def steadiness(s: RunSummary, default: str) -> str:
+    """What the run's second line says about its steadiness (:data:`STEADINESS`)."""
+    for name, fn in STEADINESS.items():
+        text = fn(s.sections[name]) if s.sections.get(name) else None
+        if text:
+            return text
+    return default
