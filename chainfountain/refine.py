@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from chainfountain.errors import UserError
+from chainfountain.sim.kinds import kind_of
 
 if TYPE_CHECKING:
     from chainfountain.sim.config import SimConfig
@@ -147,7 +148,7 @@ def refined_config(cfg: SimConfig, factor: int, level: str = "level") -> SimConf
     from chainfountain.fields import allowed_text, in_range
     from chainfountain.level.io import field_meta
 
-    if cfg.kind != "feed":
+    if not kind_of(cfg).predicted:
         raise UserError(f"{level}: kind = {cfg.kind!r}; allowed: refinement works on fed "
                         "levels (kind 'feed'), whose fountain the paper predicts from the feed")
     out = copy.deepcopy(cfg)

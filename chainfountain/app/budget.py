@@ -16,6 +16,7 @@ import math
 
 from chainfountain.sim import accuracy
 from chainfountain.sim.config import SimConfig
+from chainfountain.sim.kinds import kind_of
 from chainfountain.sim.reference import LaunchReference
 
 WINDOW_COST = 0.5
@@ -76,21 +77,20 @@ def apparatus_links(sim: SimConfig) -> int | None:
     return int(n)
 
 
-def cost(sim: SimConfig) -> tuple[int, float] | None:
-    """Links in flight and estimated wall seconds per simulated second of a fed level, at
-    its feed speed or at the speed its machine selects, of a beaker, or of an apparatus
-    (links in the solver; ``None`` for other levels or a feed without a fountain)."""
-    if sim.kind == "apparatus":
-        n = apparatus_links(sim)
-        if n is None:
-            return None
-        return n, n * APPARATUS_LINK_STEP * sim.solver.substeps / sim.solver.dt
-    if sim.kind == "beaker":
-        n = beaker_links(sim)
-        s = sim.solver
-        return n, n * BEAKER_LINK_STEP * (s.iterations / 6.0) ** 0.5 * s.substeps / s.dt
-    if sim.kind != "feed":
+def _apparatus_cost(sim: SimConfig) -> tuple[int, float] | None:
+    n = apparatus_links(sim)
+    if n is None:
         return None
+    return n, n * APPARATUS_LINK_STEP * sim.solver.substeps / sim.solver.dt
+
+
+def _beaker_cost(sim: SimConfig) -> tuple[int, float] | None:
+    n = beaker_links(sim)
+    s = sim.solver
+    return n, n * BEAKER_LINK_STEP * (s.iterations / 6.0) ** 0.5 * s.substeps / s.dt
+
+
+def _fed_cost(sim: SimConfig) -> tuple[int, float] | None:
     try:
         ref = LaunchReference.of_level(sim)
     except ValueError:
@@ -98,6 +98,23 @@ def cost(sim: SimConfig) -> tuple[int, float] | None:
     s = sim.solver
     n = accuracy.links_in_flight(ref, sim.chain.link_length)
     return n, accuracy.wall_cost(n, s.dt / s.substeps, s.iterations)
+
+
+COSTS = {"feed": _fed_cost, "ideal": _fed_cost, "apparatus": _apparatus_cost,
+         "beaker": _beaker_cost}
+"""Each kind's cost estimate (links, wall seconds per simulated second)."""
+
+WHAT_COSTS = {"beaker": "the beaker would keep {n} links in flight",
+              "apparatus": "the machine would keep {n} links moving"}
+"""What makes a level of each kind slow (default: the links of a fountain in flight)."""
+
+
+def cost(sim: SimConfig) -> tuple[int, float] | None:
+    """Links in flight and estimated wall seconds per simulated second of a fed level, at
+    its feed speed or at the speed its machine selects, of a beaker, or of an apparatus
+    (links in the solver; ``None`` for other levels or a feed without a fountain)."""
+    estimate = COSTS.get(kind_of(sim).name)
+    return estimate(sim) if estimate is not None else None
 
 
 ORIGIN_FACTOR = 1.5
@@ -120,9 +137,8 @@ def over_budget(sim: SimConfig, origin: SimConfig) -> str | None:
     if c is None or c[1] <= limit(origin):
         return None
     n, wall = c
-    what = {"beaker": "the beaker would keep {n} links in flight",
-            "apparatus": "the machine would keep {n} links moving"}.get(
-        sim.kind, "the fountain would put {n} links in flight").format(n=n)
+    what = WHAT_COSTS.get(kind_of(sim).name,
+                          "the fountain would put {n} links in flight").format(n=n)
     return (f"{what} and run at about {1.0 / wall:.2g}x "
             "real time, too slow for the window (level files and `chainfountain run` "
             "accept it)")

@@ -137,10 +137,9 @@ def student_paths(level: Any) -> list[str]:
     sim = level.sim
     named = level.meta.control_paths()
     if not named:
-        kind = sim.kind
-        key = (sim.feed.drive if kind == "feed" else
-               sim.apparatus.variant if kind == "apparatus" else kind)
-        named = list(STUDENT_DEFAULTS.get(key, ()))
+        from chainfountain.sim.kinds import kind_of
+
+        named = list(STUDENT_DEFAULTS.get(kind_of(sim).style(sim), ()))
     offered = {spec.path for spec in control_fields(sim)}
     return [p for p in named if p in offered]
 
@@ -411,28 +410,43 @@ variant a slider would change nothing (xi3 is the lower table's height, and only
 'fold' has a lower table; only 'floor' has a floor; only 'fold' has a folding roller)."""
 
 
-def unused_fields(config: Any) -> set[str]:
-    """Field paths that ``config`` has but does not use (see :data:`ONLY_FOR_VARIANT`;
-    a fed level's machine fields its ``feed.drive`` does not use; the bend limit of a
-    chain whose links do not pile, outside a beaker)."""
-    kind = getattr(config, "kind", None)
-    bend = set() if kind == "beaker" else {"chain.bend_limit"}
-    if kind == "feed":
-        from chainfountain.sim.kinds.fed import DRIVE_FIELDS
+def _fed_unused(config: Any) -> set[str]:
+    """A fed level's machine fields its ``feed.drive`` does not use (and an ideal
+    machine's end tension: the machine, or the real floor, sets the pull)."""
+    from chainfountain.sim.kinds.fed import DRIVE_FIELDS
 
-        drive = config.feed.drive
-        unused = {f"feed.{name}" for name, drives in DRIVE_FIELDS.items() if drive not in drives}
-        if drive != "motor":
-            unused.add("feed.end_tension")  # the machine (or the real floor) sets the pull
-        return unused | bend
-    if kind != "apparatus":
-        return bend
+    drive = config.feed.drive
+    unused = {f"feed.{name}" for name, drives in DRIVE_FIELDS.items() if drive not in drives}
+    if drive != "motor":
+        unused.add("feed.end_tension")
+    return unused
+
+
+def _apparatus_unused(config: Any) -> set[str]:
+    """Another variant's fields (:data:`ONLY_FOR_VARIANT`); the gripped folding roller has
+    no clearance, and the brake is built for it."""
     variant = config.apparatus.variant
-    # the gripped folding roller has no clearance; the brake is built for it
     roller = {"apparatus.fold_clearance"} if config.apparatus.fold_roller == "gripped" \
         else {"apparatus.fold_brake"}
-    return {p for p, variants in ONLY_FOR_VARIANT.items() if variant not in variants} | bend \
-        | roller
+    return {p for p, variants in ONLY_FOR_VARIANT.items() if variant not in variants} | roller
+
+
+UNUSED_BY_KIND = {"feed": _fed_unused, "ideal": _fed_unused, "apparatus": _apparatus_unused}
+"""The fields a level of each kind has but does not use, besides the bend limit."""
+
+PILING_KINDS = frozenset({"beaker"})
+"""Kinds whose links pile, so that their bend limit matters."""
+
+
+def unused_fields(config: Any) -> set[str]:
+    """Field paths that ``config`` has but does not use (:data:`UNUSED_BY_KIND`; the bend
+    limit of a chain whose links do not pile, outside a beaker)."""
+    from chainfountain.sim.kinds import kind_of
+
+    name = kind_of(config).name
+    bend = set() if name in PILING_KINDS else {"chain.bend_limit"}
+    own = UNUSED_BY_KIND.get(name)
+    return bend | (own(config) if own is not None else set())
 
 
 def control_fields(config: Any, patterns: tuple[str, ...] = CONTROL_PATTERNS) -> list[FieldSpec]:

@@ -482,7 +482,7 @@ class DrawMixin:
                            "Tbar_0" if ex else "launch"),
               plots.Series(t, _smooth(hist["TE"][sel], n), pal.TE_COL,
                            "Tbar_E" if ex else "landing")]
-        motor = s.sim.config.kind == "feed" and s.sim.config.feed.drive == "motor"
+        motor = s.sim.feed is not None and s.sim.piston is None
         what = "end tensions" if ex else "pull at the ends"
         title = f"{what}, motor-fed" if motor else f"{what} (0.1 s mean)"
         bands = (((0.5, 1.0, pal.T0_COL, "paper's machine: Tbar_0 in (1/2, 1)"),

@@ -669,7 +669,7 @@ def machine_bounds(sim, scale: float | None = None) -> list[tuple[float, float]]
     elif sim.beaker is not None:
         outline = sim.vessel_geometry()[0]
         pts += [(float(outline[:, 0].min()) - 0.15, float(outline[:, 1].min()) - 0.05)]
-    elif cfg.kind == "feed" and cfg.feed.drive != "motor":
+    elif sim.piston is not None:  # an ideal machine: drawn as its parts
         parts = ideal_parts(sim)
         for half, d in ((parts.upper, -1.0), (parts.lower, 1.0)):
             if half is not None:

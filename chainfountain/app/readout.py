@@ -201,7 +201,7 @@ def compute_readout(sim: Simulation, recorder: Recorder, history: History) -> Re
         r.T0_bar = r.TE_bar = math.nan
     r.steady = is_steady(sim, hist)
     r.machine = machine_line(sim)
-    if cfg.kind == "feed" and sim.reference is not None:
+    if sim.reference is not None:
         r.paper_h = float(sim.reference.h)
     return r
 
@@ -214,7 +214,7 @@ def machine_line(sim: Simulation) -> str:
         return beaker_line(sim)
     if sim.apparatus is not None:
         return selection_line(sim)
-    if cfg.kind != "feed" or cfg.feed.drive == "motor":
+    if sim.piston is None:  # not an ideal machine
         return ""
     ref = sim.reference
     if ref is None:

@@ -32,7 +32,9 @@ from chainfountain.level import io
 from chainfountain.level.io import Level, LevelError
 from chainfountain.sim.apparatus.laws import floor_runs_on, fold_cart_span, fold_runs_on
 from chainfountain.sim.config import SimConfig
-from chainfountain.sim.machine_rules import MACHINE_FIELDS, follow
+from chainfountain.sim.kinds import kind_of
+from chainfountain.sim.live import plan
+from chainfountain.sim.machine_rules import MACHINE_FIELDS
 
 FLOOR_FIELDS = ("carts[0].mass", "carts[0].incline", "apparatus.bearing_drag", "apparatus.xi2")
 """A contact 'floor' machine's fields whose sliders span where the chain runs on
@@ -68,8 +70,8 @@ def _accepts(level: Level, path: str, origin: SimConfig | None,
              runs: Callable[[SimConfig], bool] | None = None) -> Callable[[float], bool]:
     def ok(value: float) -> bool:
         cand: SimConfig = copy.deepcopy(level.sim)
-        set_value(cand, path, value)
-        follow(cand, path)
+        for p, v in plan(level.sim, path, value).items():  # and what follows it
+            set_value(cand, p, v)
         if runs is not None and not runs(cand):
             return False
         try:
@@ -103,7 +105,7 @@ def admissible(level: Level, spec: FieldSpec,
     :data:`FLOOR_FIELDS` of a contact floor machine or the ``FOLD_*`` fields of a contact
     fold machine, or the present value is outside already (the schema's range then)."""
     sim = level.sim
-    variant = sim.apparatus.variant if sim.kind == "apparatus" else None
+    variant = kind_of(sim).style(sim)  # an apparatus's variant ("fold", "floor", ...)
     fold = (variant == "fold" and origin is not None and len(sim.carts) >= 2
             and len(origin.carts) >= 2 and (origin.apparatus.fold_roller == "contact"
                                              or origin.apparatus.fold_brake > 0.0))
@@ -117,7 +119,7 @@ def admissible(level: Level, spec: FieldSpec,
         ok = _accepts(level, spec.path, origin, lambda c: fold_runs_on(c, origin))
     elif variant == "floor" and spec.path in FLOOR_FIELDS:
         ok = _accepts(level, spec.path, origin, floor_runs_on)
-    elif spec.path in MACHINE_FIELDS and sim.kind == "feed" and sim.feed.drive != "motor":
+    elif spec.path in MACHINE_FIELDS and spec.path in kind_of(sim).live:
         ok = _accepts(level, spec.path, origin)
     else:
         return None

@@ -13,24 +13,24 @@ from chainfountain.app.palette import BUTTON, BUTTON_HOVER, DIM, SCENE_BG, TEXT
 from chainfountain.app.text import blit_in, font, px, text
 
 
-def icon(surf: pygame.Surface, kind: str, c: tuple[int, int], s: int, colour) -> None:
-    """Draw icon ``kind`` (``play``, ``pause``, ``step``, ``restart``, ``reset``) centred
+def icon(surf: pygame.Surface, name: str, c: tuple[int, int], s: int, colour) -> None:
+    """Draw icon ``name`` (``play``, ``pause``, ``step``, ``restart``, ``reset``) centred
     at ``c`` in a square of ``s`` px."""
     x, y = c
     h = s // 2
-    if kind == "play":
+    if name == "play":
         pygame.draw.polygon(surf, colour, [(x - h * 0.45, y - h * 0.6), (x - h * 0.45, y + h * 0.6),
                                            (x + h * 0.65, y)])
-    elif kind == "pause":
+    elif name == "pause":
         w = max(2, int(s * 0.16))
         for dx in (-h * 0.32, h * 0.32):
             pygame.draw.rect(surf, colour, (x + dx - w / 2, y - h * 0.55, w, h * 1.1))
-    elif kind == "step":
+    elif name == "step":
         w = max(2, int(s * 0.12))
         pygame.draw.polygon(surf, colour, [(x - h * 0.55, y - h * 0.55),
                                            (x - h * 0.55, y + h * 0.55), (x + h * 0.3, y)])
         pygame.draw.rect(surf, colour, (x + h * 0.35, y - h * 0.55, w, h * 1.1))
-    elif kind in ("restart", "reset"):
+    elif name in ("restart", "reset"):
         r = int(h * 0.6)
         rect = pygame.Rect(x - r, y - r, 2 * r, 2 * r)
         pygame.draw.arc(surf, colour, rect, math.radians(60), math.radians(360), max(2, s // 9))

@@ -45,6 +45,7 @@ from chainfountain.app.timebar import TimeBar
 from chainfountain.app.tools import Ruler, Stopwatch
 from chainfountain.level import library
 from chainfountain.level.io import Level, LevelError
+from chainfountain.sim.kinds import kind_of
 
 FRAMEBUFFER_HINT = "SDL_FRAMEBUFFER_ACCELERATION"
 """SDL's hint for how a window's pixels reach the screen; the window sets it to "0" unless
@@ -83,7 +84,7 @@ def theory_by_default(level: Level) -> bool:
     """Whether the paper's curve is on when a level opens: where the paper predicts the
     fountain (fed levels and machines), not over a beaker's chain, whose fountain is its
     own (T shows it)."""
-    return level.sim.kind != "beaker"
+    return kind_of(level.sim).paper_curve
 
 
 class App(InputMixin, DrawMixin):
@@ -864,7 +865,7 @@ def twin_of(level: Level) -> tuple[Level, Path | None, str] | None:
     ``None`` when the level has no twin."""
     from chainfountain.level import io, twins
 
-    if level.sim.kind == "apparatus":
+    if kind_of(level.sim) is twins.APPARATUS:
         try:
             twin = twins.ideal_twin(level)
         except LevelError as exc:

@@ -21,42 +21,23 @@ from chainfountain.headless.stepper import SceneRun, Stepper, simulate
 from chainfountain.headless.stepping import Ending, _signals_deferred
 from chainfountain.headless.summary import _attempt, _f, summarize
 from chainfountain.level.io import Level
+from chainfountain.sim.kinds import kind_of
+from chainfountain.sim.kinds.base import (  # noqa: F401 - the durations, as before
+    DEFAULT_DURATION,
+    FORMING_DURATION,
+    MACHINE_FORMING_DURATION,
+)
 from chainfountain.sim.recorder import Recorder
 from chainfountain.sim.world import Simulation
 
-DEFAULT_DURATION = 8.0
-"""Simulated seconds of a headless run when none is given."""
-FORMING_DURATION = 20.0
-"""... of a fed level that starts from its stub (the shipped ones are steady after 4-12 s),
-and of an apparatus started from rest (its starter lets go about 4 s in)."""
-MACHINE_FORMING_DURATION = 40.0
-"""... of an ideal machine started from its stub: the starter hands over 5 s after landing,
-and the presets settle on their laws' speed 10-15 s after that (``ideal_fold`` from 4.7
-to within 0.5 % of 5.0 m/s by about 15 s)."""
 DEFAULT_OUTPUTS = ("summary.json", "tensions.csv", "speed.csv", "snapshot.png")
 """What every run writes (``summary.json`` lists its own files under ``outputs``)."""
 
 
 def default_duration(level: Level) -> float:
-    """Simulated seconds of a headless run of ``level`` when none is given:
-    :data:`DEFAULT_DURATION`; :data:`FORMING_DURATION` for a fed level that starts from its
-    stub, so that it forms and is then averaged (:data:`MACHINE_FORMING_DURATION` for an
-    ideal machine's, which settles on its laws' speed after its starter); an apparatus level's own
-    ``apparatus.duration`` when its upper table is sized by it (no treadmill), so the run
-    ends before the table does, and :data:`FORMING_DURATION` for one started from rest;
-    a scene or beaker level's own ``duration``."""
-    sim = level.sim
-    if sim.kind == "scene":
-        return float(sim.scene.duration)
-    if sim.kind == "beaker":
-        return float(sim.beaker.duration)
-    if sim.kind == "apparatus" and sim.apparatus.plate_links == 0:
-        return float(sim.apparatus.duration)
-    if sim.kind == "apparatus" and sim.initial.mode == "stub":
-        return FORMING_DURATION
-    if sim.kind == "feed" and sim.initial.mode == "stub":
-        return FORMING_DURATION if sim.feed.drive == "motor" else MACHINE_FORMING_DURATION
-    return DEFAULT_DURATION
+    """Simulated seconds of a headless run of ``level`` when none is given: its kind's
+    (:attr:`~chainfountain.sim.kinds.base.Kind.default_duration`)."""
+    return kind_of(level.sim).default_duration(level.sim)
 
 
 def check_run(level: Level, duration: float | None = None, seed: int | None = None, *,
@@ -72,11 +53,12 @@ def check_run(level: Level, duration: float | None = None, seed: int | None = No
     d = default_duration(level) if duration is None else DURATION.check(duration, names[0])
     if seed is not None:
         SEED.check(seed, names[1])
-        if level.sim.kind == "scene" and level.sim.scene.jitter == 0:
+        why = kind_of(level.sim).unseeded(level.sim)
+        if why is not None:
             raise UserError(
-                f"{names[1]}: {seed} has no effect on {level.meta.name!r} (its scene.jitter is "
-                "0: no random angles to seed); allowed: only with a scene whose scene.jitter "
-                "is above 0")
+                f"{names[1]}: {seed} has no effect on {level.meta.name!r} ({why}); allowed: "
+                "only with a level that has random choices to seed (a scene: scene.jitter "
+                "above 0)")
     interval = level.sim.recording.sample_interval
     if interval > d:
         at = f"{where}: " if where else f"{level.meta.name}: "
@@ -155,7 +137,7 @@ def run_and_record(level: Level, out_dir: Path, duration: float | None = None, *
     cost: 0.3 s of 0.42 s for 0.5 s of ``wide_low``) and a scene's ``scene.png``."""
     duration = default_duration(level) if duration is None else float(duration)
     out_dir = prepare_out_dir(out_dir)
-    if level.sim.kind == "scene":
+    if not kind_of(level.sim).fountain:
         return run_scene(level, out_dir, duration, seed=seed, progress=progress,
                          snapshot=snapshot)
     sim, rec, wall, ended = simulate(level, duration, seed=seed, progress=progress)
@@ -175,7 +157,7 @@ def write_outputs(run: Stepper, out_dir: Path, duration: float | None = None, *,
     asked = run.time if duration is None else float(duration)
     out_dir = prepare_out_dir(Path(out_dir))
     with _signals_deferred([]):
-        if run.kind == "scene":
+        if not run.fountain:
             return _write(run.level, out_dir, asked, run.scene_run(), snapshot)
         return _write_outputs(run.level, out_dir, asked, run.sim, run.recorder, run.wall,
                               run.ended, error_bars, snapshot)

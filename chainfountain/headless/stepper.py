@@ -20,6 +20,7 @@ duration it was built for.
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 import signal
 import time
@@ -28,6 +29,7 @@ from typing import Any
 import numpy as np
 
 from chainfountain.errors import RunEnded, UserError
+from chainfountain.fields import set_value
 from chainfountain.headless.stepping import (
     MAX_PROFILES,
     MAX_SAMPLES,
@@ -37,6 +39,7 @@ from chainfountain.headless.stepping import (
     _signals_raise,
 )
 from chainfountain.level.model import Level, LevelError
+from chainfountain.sim.kinds import kind_of
 from chainfountain.sim.probe_log import ProbeLog
 from chainfountain.sim.recorder import Recorder
 
@@ -61,56 +64,43 @@ class SceneRun:
 
 
 def seeded(level: Level, seed: int | None) -> Level:
-    """``level`` with ``seed`` as its random seed (``initial.seed``; a scene's
+    """``level`` with ``seed`` as its random seed (its kind's
+    :attr:`~chainfountain.sim.kinds.base.Kind.seed_field`: ``initial.seed``, a scene's
     ``scene.seed``), as ``chainfountain run --seed`` runs it."""
     if seed is None:
         return level
-    sim = level.sim
-    if sim.kind == "scene":
-        sim = dataclasses.replace(sim, scene=dataclasses.replace(sim.scene, seed=int(seed)))
-    else:
-        sim = dataclasses.replace(sim, initial=dataclasses.replace(sim.initial, seed=int(seed)))
+    sim = copy.deepcopy(level.sim)
+    set_value(sim, kind_of(sim).seed_field, int(seed))
     return dataclasses.replace(level, sim=sim)
 
 
 class Stepper:
     """``level`` built and ready to step (``seed``: its random seed instead of the
     level's). ``duration``: the simulated seconds a scene is sampled for (default its
-    ``scene.duration``); a fountain records however long it runs."""
+    ``scene.duration``); a fountain records however long it runs.
+
+    What steps is the level kind's body: a :class:`FountainBody` (a
+    :class:`~chainfountain.sim.world.Simulation` and its :class:`Recorder`) or a
+    :class:`SceneBody` (a :class:`~chainfountain.sim.scene_sim.SceneSimulation` and its
+    probes), chosen by the kind's :attr:`~chainfountain.sim.kinds.base.Kind.fountain`."""
 
     def __init__(self, level: Level, *, seed: int | None = None,
                  duration: float | None = None) -> None:
         self.level = seeded(level, seed)
-        cfg = self.level.sim
-        self.kind = cfg.kind
         self.ended: Ending | None = None
         """Why the run stopped before what was asked of it (``None`` while it goes on)."""
         self.wall = 0.0
         """Wall seconds spent stepping."""
-        self.recorder: Recorder | None = None
-        self.log: ProbeLog | None = None
-        if self.kind == "scene":
-            from chainfountain.headless import scene_compare
-            from chainfountain.sim.scene_sim import SceneSimulation
+        body = FountainBody if kind_of(self.level.sim).fountain else SceneBody
+        self.body: FountainBody | SceneBody = body(self.level, duration)
+        self.sim: Any = self.body.sim
+        self.recorder: Recorder | None = self.body.recorder
+        self.log: ProbeLog | None = self.body.log
 
-            self.sim: Any = SceneSimulation(cfg)
-            span = float(cfg.scene.duration if duration is None else duration)
-            n_steps = int(round(span / self.sim.dt))
-            self.every = max(1, int(round(max(cfg.recording.sample_interval,
-                                              span / MAX_SAMPLES) / self.sim.dt)))
-            self.log = ProbeLog(cfg.scene.probes + scene_compare.probes(cfg),
-                                n_steps // self.every + 1)
-            self.start = self.sim.scene.points()
-            self.shapes: list[tuple[float, np.ndarray]] = [(0.0, self.start)]
-            self.shape_at: set[int] = set()
-            """Step numbers after which the chain's shape is kept in :attr:`shapes`."""
-            self._k = 0
-        else:
-            from chainfountain.sim.world import Simulation
-
-            self.sim = Simulation(cfg)
-            self.recorder = Recorder(self.sim, max_profiles=MAX_PROFILES,
-                                     max_samples=MAX_SAMPLES)
+    @property
+    def fountain(self) -> bool:
+        """Whether this steps a fountain (else a scene)."""
+        return self.body.fountain
 
     # ------------------------------------------------------------------ stepping
     @property
@@ -137,10 +127,7 @@ class Stepper:
         n = int(round(seconds / self.dt))
         t0 = time.perf_counter()
         try:
-            if self.kind == "scene":
-                self._advance_scene(n, progress)
-            else:
-                self._advance_fountain(n, progress)
+            self.ended = self.body.advance(n, progress)
         except (Interrupted, KeyboardInterrupt) as exc:
             signum = exc.signum if isinstance(exc, Interrupted) else signal.SIGINT
             self.ended = Ending("interrupted", f"interrupted by {signal.Signals(signum).name} "
@@ -149,7 +136,89 @@ class Stepper:
             self.wall += time.perf_counter() - t0
         return self.ended
 
-    def _advance_fountain(self, n_steps: int, bar: Any) -> None:
+    # ------------------------------------------------------------------ reading
+    def points(self) -> np.ndarray:
+        """The chain as a polyline of its link ends, ``(n + 1, 2)`` (m)."""
+        return self.body.points()
+
+    def positions(self) -> np.ndarray:
+        """The link centres, ``(n, 2)`` (m): a fountain's in chain order (the downstream
+        end first), a scene's from point 0."""
+        return self.body.positions()
+
+    def velocities(self) -> np.ndarray:
+        """The link centres' velocities, ``(n, 2)`` (m/s), in :meth:`positions`' order."""
+        return self.body.velocities()
+
+    def speeds(self) -> np.ndarray:
+        """The link centres' speeds, ``(n,)`` (m/s)."""
+        return np.hypot(*self.velocities().T)
+
+    def tensions(self) -> np.ndarray:
+        """Tensions (N, + = pull): a scene's at its interior points ``1 .. n-1`` after the
+        last step; a fountain's at the joints of its free chain from the launch point
+        downstream, at its last recorded sample (empty before the first)."""
+        return self.body.tensions()
+
+    def probes(self) -> dict[str, dict[str, float]]:
+        """A scene's probes at their last sample: ``{name: {column: value}}`` (a fountain
+        has none)."""
+        return self.body.probes()
+
+    def series(self) -> dict[str, np.ndarray]:
+        """Everything recorded so far, one array per name (:data:`FOUNTAIN_SERIES`; a
+        scene's ``t`` and ``"<probe>.<column>"``)."""
+        return self.body.series()
+
+    # ------------------------------------------------------------------ changing
+    def set(self, path: str, value: Any) -> None:
+        """Change the field ``path`` while running, as the window's sliders do: the value
+        is checked as a level file would be (one line naming the field otherwise), and
+        only fields a running simulation takes are allowed (``feed.speed``,
+        ``chain.friction``, ``carts[0].mass``, ...; :meth:`Simulation.set_param`)."""
+        from chainfountain.level.paths import changed
+
+        where = f"{self.level.meta.name}: live change"
+        new = changed(self.level, {path: value}, where)
+        self.body.set(where, path, value)
+        self.level = new
+
+    # ------------------------------------------------------------------ a scene's
+    @property
+    def shape_at(self) -> set[int]:
+        """A scene's step numbers after which the chain's shape is kept."""
+        return self.body.shape_at  # type: ignore[union-attr]
+
+    @shape_at.setter
+    def shape_at(self, steps: set[int]) -> None:
+        self.body.shape_at = steps  # type: ignore[union-attr]
+
+    def scene_run(self) -> SceneRun:
+        """A scene's run as a :class:`SceneRun`."""
+        body = self.body
+        if not isinstance(body, SceneBody):
+            raise TypeError(f"{self.level.meta.name} is not a scene")
+        return SceneRun(sim=body.sim, log=body.log, start=body.start, shapes=body.shapes,
+                        interval=body.every * body.sim.dt, wall=self.wall, ended=self.ended)
+
+
+class FountainBody:
+    """What steps a fountain (kinds whose :attr:`~chainfountain.sim.kinds.base.Kind.fountain`
+    is true): its :class:`~chainfountain.sim.world.Simulation` and :class:`Recorder`."""
+
+    fountain = True
+    log = None
+
+    def __init__(self, level: Level, duration: float | None) -> None:
+        from chainfountain.sim.world import Simulation
+
+        self.level = level
+        self.sim = Simulation(level.sim)
+        self.recorder = Recorder(self.sim, max_profiles=MAX_PROFILES,
+                                 max_samples=MAX_SAMPLES)
+
+    def advance(self, n_steps: int, bar: Any) -> Ending | None:
+        """``n_steps`` steps; why the run ended early, or ``None``."""
         from chainfountain.sim.watchdog import Diverged
 
         sim, rec = self.sim, self.recorder
@@ -167,58 +236,21 @@ class Stepper:
                 if done % (20 * chunk) < chunk:  # analyse as we go: raw states are large
                     rec.samples  # noqa: B018 - property access processes the raw samples
         except Diverged as exc:
-            self.ended = Ending("diverged", str(exc))
+            return Ending("diverged", str(exc))
         except RunEnded as exc:
-            self.ended = Ending("machine", str(exc))
+            return Ending("machine", str(exc))
+        return None
 
-    def _advance_scene(self, n_steps: int, bar: Any) -> None:
-        sim, log = self.sim, self.log
-        for _ in range(n_steps):
-            sim.step()
-            self._k += 1
-            k = self._k
-            if k % self.every == 0:
-                sim.end_sample()
-                log.sample(sim)
-                if not sim.finite():
-                    self.ended = Ending("diverged", f"the chain blew up at t = {sim.time:.3f} s "
-                                        "(a link end is not a finite number); try a smaller "
-                                        "solver.dt or more solver.substeps")
-                    return
-            if k in self.shape_at:
-                self.shapes.append((sim.time, sim.scene.points()))
-            if k % 200 == 0 and bar is not None:
-                bar.update(200 * sim.dt)
-
-    # ------------------------------------------------------------------ reading
     def points(self) -> np.ndarray:
-        """The chain as a polyline of its link ends, ``(n + 1, 2)`` (m)."""
-        return self.sim.scene.points() if self.kind == "scene" else self.sim.chain_polyline()
+        return self.sim.chain_polyline()
 
     def positions(self) -> np.ndarray:
-        """The link centres, ``(n, 2)`` (m): a fountain's in chain order (the downstream
-        end first), a scene's from point 0."""
-        if self.kind == "scene":
-            p = self.sim.scene.points()
-            return 0.5 * (p[1:] + p[:-1])
         return self.sim.state().position.copy()
 
     def velocities(self) -> np.ndarray:
-        """The link centres' velocities, ``(n, 2)`` (m/s), in :meth:`positions`' order."""
-        if self.kind == "scene":
-            return self.sim.scene.velocities()
         return self.sim.state().velocity.copy()
 
-    def speeds(self) -> np.ndarray:
-        """The link centres' speeds, ``(n,)`` (m/s)."""
-        return np.hypot(*self.velocities().T)
-
     def tensions(self) -> np.ndarray:
-        """Tensions (N, + = pull): a scene's at its interior points ``1 .. n-1`` after the
-        last step; a fountain's at the joints of its free chain from the launch point
-        downstream, at its last recorded sample (empty before the first)."""
-        if self.kind == "scene":
-            return self.sim.scene.tensions()
         rec = self.recorder
         if not rec.profiles:
             return np.zeros(0)
@@ -228,38 +260,12 @@ class Stepper:
         return np.asarray(rec.profiles[-1].tension_bar, dtype=float) * lam * v * v
 
     def probes(self) -> dict[str, dict[str, float]]:
-        """A scene's probes at their last sample: ``{name: {column: value}}`` (a fountain
-        has none)."""
-        if self.kind != "scene" or not self.log.n:
-            return {}
-        return {p.name: {c: float(v[-1]) for c, v in self.log.columns(i).items()}
-                for i, p in enumerate(self.level.sim.scene.probes)}
+        return {}
 
     def series(self) -> dict[str, np.ndarray]:
-        """Everything recorded so far, one array per name (:data:`FOUNTAIN_SERIES`; a
-        scene's ``t`` and ``"<probe>.<column>"``)."""
-        if self.kind == "scene":
-            log = self.log
-            out = {"t": log.t[: log.n].copy()}
-            for i, probe in enumerate(self.level.sim.scene.probes):
-                out.update({f"{probe.name}.{c}": v.copy() for c, v in log.columns(i).items()
-                            if c != "t"})
-            return out
         return {name: self.recorder.series(name) for name in FOUNTAIN_SERIES}
 
-    # ------------------------------------------------------------------ changing
-    def set(self, path: str, value: Any) -> None:
-        """Change the field ``path`` while running, as the window's sliders do: the value
-        is checked as a level file would be (one line naming the field otherwise), and
-        only fields a running simulation takes are allowed (``feed.speed``,
-        ``chain.friction``, ``carts[0].mass``, ...; :meth:`Simulation.set_param`)."""
-        from chainfountain.level.paths import changed
-
-        where = f"{self.level.meta.name}: live change"
-        new = changed(self.level, {path: value}, where)
-        if self.kind == "scene":
-            raise LevelError(f"{where}: {path}: a scene takes no change while it runs; "
-                             "allowed: build a new one with the change")
+    def set(self, where: str, path: str, value: Any) -> None:
         try:
             self.sim.set_param(path, value)
         except KeyError:
@@ -267,12 +273,85 @@ class Stepper:
                              "built into the simulation); allowed: a live field (marked "
                              "'live' in docs/levels.md), or build a new one with the "
                              "change") from None
-        self.level = new
 
-    def scene_run(self) -> SceneRun:
-        """A scene's run as a :class:`SceneRun`."""
-        return SceneRun(sim=self.sim, log=self.log, start=self.start, shapes=self.shapes,
-                        interval=self.every * self.sim.dt, wall=self.wall, ended=self.ended)
+
+class SceneBody:
+    """What steps a scene: its :class:`~chainfountain.sim.scene_sim.SceneSimulation` and
+    its probes, sampled at most :data:`~chainfountain.headless.stepping.MAX_SAMPLES` times
+    over ``duration``."""
+
+    fountain = False
+    recorder = None
+
+    def __init__(self, level: Level, duration: float | None) -> None:
+        from chainfountain.headless import scene_compare
+        from chainfountain.sim.scene_sim import SceneSimulation
+
+        self.level = level
+        cfg = level.sim
+        self.sim = SceneSimulation(cfg)
+        span = float(cfg.scene.duration if duration is None else duration)
+        n_steps = int(round(span / self.sim.dt))
+        self.every = max(1, int(round(max(cfg.recording.sample_interval,
+                                          span / MAX_SAMPLES) / self.sim.dt)))
+        self.log = ProbeLog(cfg.scene.probes + scene_compare.probes(cfg),
+                            n_steps // self.every + 1)
+        self.start = self.sim.scene.points()
+        self.shapes: list[tuple[float, np.ndarray]] = [(0.0, self.start)]
+        self.shape_at: set[int] = set()
+        """Step numbers after which the chain's shape is kept in :attr:`shapes`."""
+        self._k = 0
+
+    def advance(self, n_steps: int, bar: Any) -> Ending | None:
+        """``n_steps`` steps; why the run ended early, or ``None``."""
+        sim, log = self.sim, self.log
+        for _ in range(n_steps):
+            sim.step()
+            self._k += 1
+            k = self._k
+            if k % self.every == 0:
+                sim.end_sample()
+                log.sample(sim)
+                if not sim.finite():
+                    return Ending("diverged", f"the chain blew up at t = {sim.time:.3f} s (a "
+                                  "link end is not a finite number); try a smaller "
+                                  "solver.dt or more solver.substeps")
+            if k in self.shape_at:
+                self.shapes.append((sim.time, sim.scene.points()))
+            if k % 200 == 0 and bar is not None:
+                bar.update(200 * sim.dt)
+        return None
+
+    def points(self) -> np.ndarray:
+        return self.sim.scene.points()
+
+    def positions(self) -> np.ndarray:
+        p = self.sim.scene.points()
+        return 0.5 * (p[1:] + p[:-1])
+
+    def velocities(self) -> np.ndarray:
+        return self.sim.scene.velocities()
+
+    def tensions(self) -> np.ndarray:
+        return self.sim.scene.tensions()
+
+    def probes(self) -> dict[str, dict[str, float]]:
+        if not self.log.n:
+            return {}
+        return {p.name: {c: float(v[-1]) for c, v in self.log.columns(i).items()}
+                for i, p in enumerate(self.level.sim.scene.probes)}
+
+    def series(self) -> dict[str, np.ndarray]:
+        log = self.log
+        out = {"t": log.t[: log.n].copy()}
+        for i, probe in enumerate(self.level.sim.scene.probes):
+            out.update({f"{probe.name}.{c}": v.copy() for c, v in log.columns(i).items()
+                        if c != "t"})
+        return out
+
+    def set(self, where: str, path: str, value: Any) -> None:
+        raise LevelError(f"{where}: {path}: a scene takes no change while it runs; "
+                         "allowed: build a new one with the change")
 
 
 def simulate(level: Level, duration: float, *, seed: int | None = None,

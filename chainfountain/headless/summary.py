@@ -19,6 +19,7 @@ from chainfountain.headless.report import (
     json_safe,
 )
 from chainfountain.level.io import Level
+from chainfountain.sim.kinds import kind_of
 from chainfountain.sim.machine_rules import keeps_any_speed
 from chainfountain.sim.measure import Summary
 from chainfountain.sim.recorder import Recorder
@@ -83,7 +84,7 @@ def machine_section(level: Level, sim: Simulation, rec: Recorder,
                     s: Summary | None) -> str | None:
     """``machine``: what sets an ideal machine's speed: its laws select it
     (``"selects"``), or, loss-free, it ``"keeps any speed"``."""
-    if level.sim.kind != "feed" or level.sim.feed.drive == "motor" or s is None:
+    if s is None:
         return None
     return "keeps any speed" if keeps_any_speed(level.sim) else "selects"
 
@@ -129,8 +130,6 @@ def error_bars_section(level: Level, sim: Simulation, rec: Recorder,
                        s: Summary | None) -> dict[str, Any] | None:
     """``error_bars`` of a fed level: how to estimate them (a run with ``error_bars``
     stores :meth:`chainfountain.refine.Refinement.as_dict` here instead)."""
-    if level.sim.kind != "feed":
-        return None
     return {"method": None, "how": "not estimated: chainfountain run LEVEL --error-bars, or "
             "chainfountain converge LEVEL"}
 
@@ -138,7 +137,7 @@ def error_bars_section(level: Level, sim: Simulation, rec: Recorder,
 def error_model_section(level: Level, sim: Simulation, rec: Recorder,
                         s: Summary | None) -> dict[str, Any] | None:
     """``error_model`` of a fed level (:func:`model_error`)."""
-    return model_error(level) if level.sim.kind == "feed" else None
+    return model_error(level)
 
 
 SECTIONS: dict[str, SectionBuilder] = {
@@ -150,8 +149,9 @@ SECTIONS: dict[str, SectionBuilder] = {
     "error_bars": error_bars_section,
     "error_model": error_model_section,
 }
-"""``summary.json``'s optional sections by name, in the order written; a failed builder
-is named ``"<name> report"`` in ``analysis_failed``."""
+"""``summary.json``'s optional sections by name, in the order written: each level kind
+names those it adds (:attr:`~chainfountain.sim.kinds.base.Kind.sections`); a failed
+builder is named ``"<name> report"`` in ``analysis_failed``."""
 
 ALWAYS_WRITTEN = ("theory",)
 """Sections written (``null``) even when the run has none: a fountain's ``theory``."""
@@ -175,7 +175,10 @@ def summarize(level: Level, sim: Simulation, rec: Recorder, duration: float,
         fountain=_figures(sim, s, steady))
     if s is not None:
         failed.update(s.failed)
+    own = kind_of(level.sim).sections
     for name, build in SECTIONS.items():
+        if name not in own and name not in ALWAYS_WRITTEN:
+            continue
         section = _attempt(failed, f"{name} report", build, level, sim, rec, s)
         if isinstance(section, Remeasured):
             for key, value in section.figures.items():

@@ -35,7 +35,7 @@ def check_consistency(level: Level, where: str) -> None:
 
 def _check_controls(level: Level, where: str) -> None:
     """``meta.controls`` names numeric fields this level has (each becomes a slider)."""
-    other = tuple(f"{k}." for k in KINDS if k != level.sim.kind)
+    other = tuple(f"{table}." for table in KINDS if table != level.sim.kind)
     known = [path for path, _, _ in iter_numeric_fields(level.sim)
              if not path.startswith(other)]
     for path in level.meta.control_paths():
@@ -48,17 +48,17 @@ def _check_controls(level: Level, where: str) -> None:
 def _check_other_kind(sim: SimConfig, where: str) -> None:
     """The table of the other level kind is left out or at its defaults (it has no effect)."""
     defaults = SimConfig()
-    for kind in KINDS:
-        if kind == sim.kind:
+    for name in KINDS:  # the level file's kind tables
+        if name == sim.kind:
             continue
-        table, default = getattr(sim, kind), getattr(defaults, kind)
+        table, default = getattr(sim, name), getattr(defaults, name)
         for f in dataclasses.fields(table):
             value = getattr(table, f.name)
             if value != getattr(default, f.name):
-                _fail(where, f"{kind}.{f.name}",
-                      f"{value!r} has no effect in a {sim.kind!r} level (the [{kind}] table "
-                      f"belongs to kind {kind!r}); allowed: {getattr(default, f.name)!r} or "
-                      f"no [{kind}] table")
+                _fail(where, f"{name}.{f.name}",
+                      f"{value!r} has no effect in a {sim.kind!r} level (the [{name}] table "
+                      f"belongs to kind {name!r}); allowed: {getattr(default, f.name)!r} or "
+                      f"no [{name}] table")
 
 
 def _check_accuracy_scope(sim: SimConfig, where: str) -> None:

@@ -236,10 +236,10 @@ def dumps(level: Level) -> str:
     data: dict[str, Any] = {"schema_version": SCHEMA_VERSION}
     skip = set(_SKIP_TOP)
     defaults = SimConfig()
-    for kind in KINDS:  # a kind's own table is left out of other kinds' files while unused
-        if kind != level.sim.kind and hasattr(level.sim, kind) and \
-                getattr(level.sim, kind) == getattr(defaults, kind):
-            skip.add(kind)
+    for table in KINDS:  # a kind's own table is left out of other kinds' files while unused
+        if table != level.sim.kind and hasattr(level.sim, table) and \
+                getattr(level.sim, table) == getattr(defaults, table):
+            skip.add(table)
     sim_map = to_mapping(level.sim, skip=frozenset(skip))
     data.update({k: v for k, v in sim_map.items() if not isinstance(v, dict | list)})
     data["meta"] = to_mapping(level.meta)

@@ -52,8 +52,12 @@ import math
 from chainfountain.level import io, library
 from chainfountain.level.model import Level, LevelError, Meta
 from chainfountain.sim.config import FeedConfig, SimConfig
+from chainfountain.sim.kinds import REGISTRY, kind_of
 from chainfountain.sim.kinds.ideal.checks import IDEAL_MIN_KQ
 from chainfountain.theory.apparatus import balanced_cart_force, ideal_fold_TE_bar, settings_for
+
+APPARATUS, IDEAL = REGISTRY["apparatus"], REGISTRY["ideal"]
+"""The two kinds a twin joins: a contact machine and the paper's ideal one."""
 
 TWIN_SUFFIX = " (ideal twin)"
 """Appended to the source level's name to name its ideal twin."""
@@ -101,7 +105,7 @@ def _template(level: Level, drive: str) -> Level:
     name = library.twin(level.name)
     if name is not None and (shipped / f"{name}.toml").exists():
         lvl = io.load(shipped / f"{name}.toml")
-        if lvl.sim.kind == "feed" and lvl.sim.feed.drive == drive:
+        if kind_of(lvl.sim).style(lvl.sim) == drive:
             return lvl
     return io.load(shipped / f"{drive}.toml")
 
@@ -267,7 +271,7 @@ def ideal_twin(level: Level) -> Level | None:
     checks.
     """
     sim = level.sim
-    if sim.kind != "apparatus":
+    if kind_of(sim) is not APPARATUS:
         return None
     a = sim.apparatus
     drive = DRIVE_OF_VARIANT[a.variant]
@@ -316,7 +320,7 @@ def contact_twin(level: Level) -> Level | None:
     holds its source), and for every level that is not an ideal machine.
     """
     sim = level.sim
-    if sim.kind != "feed" or sim.feed.drive == "motor":
+    if kind_of(sim) is not IDEAL:
         return None
     shipped = library.shipped_dir()
     if not (shipped / f"{level.name}.toml").exists() or level.name in library.TWINS:

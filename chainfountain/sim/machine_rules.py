@@ -27,7 +27,7 @@ def keeps_any_speed(config: SimConfig) -> bool:
     """Whether ``config`` is a loss-free full machine: neutral in the speed, it keeps any
     speed while balanced (the paper's laws select none)."""
     f = config.feed
-    return config.kind == "feed" and f.drive == "ideal_fold" and f.bearing_drag == 0.0
+    return f.drive == "ideal_fold" and f.bearing_drag == 0.0  # other kinds: feed.drive 'motor'
 
 
 def follow(config: SimConfig, path: str) -> float | None:

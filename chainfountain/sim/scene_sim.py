@@ -76,18 +76,25 @@ class SceneSimulation:
     def read(self, probe: ProbeConfig) -> tuple[float, ...]:
         """The probe's values now (:data:`COLUMNS`); forces are the means over the last
         sample interval (:meth:`end_sample`)."""
+        return _READERS[probe.kind](self, probe)
+
+    def _point(self, probe: ProbeConfig) -> tuple[float, ...]:
+        p = point_number(probe.point, self.n)
+        (x, y), (vx, vy) = self.scene.points()[p], self.scene.point_velocity(p)
+        return float(x), float(y), float(vx), float(vy)
+
+    def _tension(self, probe: ProbeConfig) -> tuple[float, ...]:
+        return (float(self.scene.tensions()[point_number(probe.point, self.n) - 1]),)
+
+    def _pin_force(self, probe: ProbeConfig) -> tuple[float, ...]:
+        return (float(self._forces[0][self._pin_at[point_number(probe.point, self.n)]]),)
+
+    def _floor_force(self, probe: ProbeConfig) -> tuple[float, ...]:
+        fx, fy = self._forces[1]
+        return float(fx), float(fy)
+
+    def _energy(self, probe: ProbeConfig) -> tuple[float, ...]:
         sc = self.scene
-        if probe.kind == "point":
-            p = point_number(probe.point, self.n)
-            (x, y), (vx, vy) = sc.points()[p], sc.point_velocity(p)
-            return float(x), float(y), float(vx), float(vy)
-        if probe.kind == "tension":
-            return (float(sc.tensions()[point_number(probe.point, self.n) - 1]),)
-        if probe.kind == "pin_force":
-            return (float(self._forces[0][self._pin_at[point_number(probe.point, self.n)]]),)
-        if probe.kind == "floor_force":
-            fx, fy = self._forces[1]
-            return float(fx), float(fy)
         kinetic = sc.kinetic_energy()
         mass = sc.chain.mass
         potential = float(sum(mass * sc.g * lk.body.position.y for lk in sc.chain.links))
@@ -96,3 +103,9 @@ class SceneSimulation:
     def finite(self) -> bool:
         """Whether every link end is a finite number (the run has not blown up)."""
         return bool(np.isfinite(self.scene.points()).all())
+
+
+_READERS = {"point": SceneSimulation._point, "tension": SceneSimulation._tension,
+            "pin_force": SceneSimulation._pin_force, "floor_force": SceneSimulation._floor_force,
+            "energy": SceneSimulation._energy}
+"""What each probe kind reads (:data:`~chainfountain.sim.probe_log.COLUMNS`)."""

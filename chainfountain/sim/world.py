@@ -87,8 +87,8 @@ class Simulation:
         its ends)."""
         if self.kind.build is None:
             raise ValueError(f"{config.name or 'this level'} is {self.kind.title} (kind "
-                             f"{config.kind!r}): it runs headless only, with chainfountain "
-                             f"run {config.name or 'LEVEL'}")
+                             f"{config.kind!r}): {config.kind}s run headless only, with "
+                             f"chainfountain run {config.name or 'LEVEL'}")
         self.config = copy.deepcopy(config)
         self.recorder: Observer | None = None
         self.probe: Probe | None = None

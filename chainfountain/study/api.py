@@ -20,6 +20,7 @@ from chainfountain.headless import FOUNTAIN_SERIES, RunSummary, check_run, write
 from chainfountain.headless import Stepper as _Stepper
 from chainfountain.level import io, library
 from chainfountain.level.model import Level
+from chainfountain.sim.kinds import kind_of
 from chainfountain.study.changes import with_changes
 
 SERIES = FOUNTAIN_SERIES
@@ -132,7 +133,7 @@ def _run(run_and_record, lvl: Level, out_dir: Path, duration: float, seed: int |
          progress: bool) -> RunResult:
     path, rec = run_and_record(lvl, out_dir, duration, seed=seed, progress=progress)
     summary = json.loads(path.read_text())
-    if lvl.sim.kind == "scene":  # each probe's columns, as "<probe>.<column>", and "t"
+    if not kind_of(lvl.sim).fountain:  # a scene: "t" and each probe's "<probe>.<column>"
         log = rec.log
         series = {"t": log.t[: log.n].copy()}
         for i, probe in enumerate(lvl.sim.scene.probes):

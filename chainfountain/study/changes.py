@@ -7,6 +7,7 @@ from typing import Any
 
 from chainfountain.level import paths
 from chainfountain.level.model import Level
+from chainfountain.sim.kinds import kind_of
 
 
 def with_changes(level: Level, changes: Mapping[str, Any], where: str = "change") -> Level:
@@ -25,7 +26,7 @@ def laid_on_path(level: Level) -> Level:
     ``apparatus.speed`` (``initial.mode = "catenary"``, no starter), so that a study reads
     the machine's steady state without first waiting for it to form from rest. A level
     that already starts so is returned as it is."""
-    if level.sim.kind != "apparatus" or level.sim.initial.mode == "catenary":
+    changes = kind_of(level.sim).study_start(level.sim)
+    if not changes:
         return level
-    return with_changes(level, {"initial.mode": "catenary", "apparatus.starter": 0.0},
-                        where=level.meta.name or "level")
+    return with_changes(level, changes, where=level.meta.name or "level")

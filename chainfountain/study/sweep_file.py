@@ -28,6 +28,7 @@ from typing import Any
 from chainfountain.errors import UserError
 from chainfountain.level import io, library, paths
 from chainfountain.level.model import Level, LevelError
+from chainfountain.sim.kinds import kind_of
 from chainfountain.study.changes import with_changes
 
 KEYS = {"base", "duration", "seeds", "grid", "changes", "snapshots"}
@@ -120,12 +121,10 @@ def load(path: str | Path) -> Sweep:
         _fail(where, "seeds", f"{seeds!r}; allowed: a non-empty list of integers >= 0")
     if len(set(seeds)) != len(seeds):
         _fail(where, "seeds", f"{seeds!r} repeats a seed; allowed: each seed once")
-    seeded = base.sim.kind in ("feed", "apparatus", "beaker") or (
-        base.sim.kind == "scene" and base.sim.scene.jitter > 0)
-    if not seeded and seeds != [None]:
-        _fail(where, "seeds", f"{seeds!r} has no effect on {base.meta.name!r} (kind "
-              f"{base.sim.kind!r}" + (", scene.jitter 0" if base.sim.kind == "scene" else "")
-              + "); allowed: leave seeds out")
+    unseeded = kind_of(base.sim).unseeded(base.sim)
+    if unseeded is not None and seeds != [None]:
+        _fail(where, "seeds", f"{seeds!r} has no effect on {base.meta.name!r} ({unseeded}); "
+              "allowed: leave seeds out")
     changes = data.get("changes", {})
     if not isinstance(changes, dict):
         _fail(where, "changes", f"{changes!r}; allowed: a [changes] table of field paths, "

@@ -85,7 +85,7 @@ def figure(sweep: Sweep, rows: list[dict], path: Path) -> Path | None:
     import matplotlib.pyplot as plt
 
     key, y_label = "theory_rel_error_h", "vertex height error against the paper (%)"
-    form = sweep.base.sim.scene.closed_form if sweep.base.sim.kind == "scene" else "none"
+    form = sweep.base.sim.scene.closed_form  # "none" outside a scene (its table's default)
     if form == "scale":
         key, y_label = "closed_form_force_rel_error", "scale's error against 3 lambda g y (%)"
     elif form == "folded_fall":

@@ -63,9 +63,12 @@ def test_the_terminal_text_comes_from_the_object(quick_run):
 
 
 def test_a_section_is_one_function_in_the_table(quick_run, monkeypatch):
-    """A kind adds its section by one entry of SECTIONS; a failing one is named in
-    analysis_failed and loses nothing else."""
+    """A kind adds its section by one entry of SECTIONS and its name in the kind's
+    sections; a failing one is named in analysis_failed and loses nothing else."""
+    import dataclasses
+
     from chainfountain.headless import summary
+    from chainfountain.sim.kinds import REGISTRY
 
     def extra(level, sim, rec, window):
         return {"links_seen": sim.n_links, "window_v": window.speed_mean}
@@ -75,6 +78,9 @@ def test_a_section_is_one_function_in_the_table(quick_run, monkeypatch):
 
     monkeypatch.setitem(summary.SECTIONS, "extra", extra)
     monkeypatch.setitem(summary.SECTIONS, "broken", broken)
+    feed = REGISTRY["feed"]
+    monkeypatch.setitem(REGISTRY, "feed", dataclasses.replace(
+        feed, sections=(*feed.sections, "extra", "broken")))
     out = quick_run.parent / "again"
     s = RunSummary.load(run_level(io.make_level("quick", "t"), out, 0.3, progress=False))
     assert s.sections["extra"]["links_seen"] == s.links

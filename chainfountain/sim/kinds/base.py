@@ -16,15 +16,14 @@ from typing import Any
 from chainfountain.sim.config import SimConfig
 
 DEFAULT_DURATION = 8.0
-"""Simulated seconds of a headless fountain run started on its fountain, when none is given."""
-
+"""Simulated seconds of a headless run when none is given."""
 FORMING_DURATION = 20.0
-"""Simulated seconds of a headless run that starts from a stub or from rest: it forms,
-then is averaged."""
-
+"""... of a fed level that starts from its stub (the shipped ones are steady after 4-12 s),
+and of an apparatus started from rest (its starter lets go about 4 s in)."""
 MACHINE_FORMING_DURATION = 40.0
-"""Simulated seconds of a headless run of an ideal machine from its stub: it settles on its
-laws' speed after its starter."""
+"""... of an ideal machine started from its stub: the starter hands over 5 s after landing,
+and the presets settle on their laws' speed 10-15 s after that (``ideal_fold`` from 4.7
+to within 0.5 % of 5.0 m/s by about 15 s)."""
 
 Setter = Callable[[Any, int | None, float], None]
 """A live change: ``setter(simulation, index, value)`` (``index``: the list item of a path
@@ -58,13 +57,26 @@ class Kind:
     live: Mapping[str, Setter] = field(default_factory=dict)
     """The kind's own live fields (``"carts[].mass"`` for every list item) and their
     setters; the fields every fountain shares are :data:`chainfountain.sim.live.COMMON`."""
-    seeded: Callable[[SimConfig], bool] = lambda cfg: True
-    """Whether ``initial.seed`` (or ``--seed``) picks another run of this level."""
     accuracy_refusal: Callable[[SimConfig], str | None] = lambda cfg: "its kind"
     """Why ``solver.accuracy`` cannot choose this level's settings (``None``: it can)."""
     style: Callable[[SimConfig], str] = lambda cfg: ""
     """The finer style of the kind a level has (a feed's drive, an apparatus's variant),
     for the window's defaults."""
+    seed_field: str = "initial.seed"
+    """The field ``--seed`` sets."""
+    unseeded: Callable[[SimConfig], str | None] = lambda cfg: None
+    """Why a seed has no effect on this level (``None``: it picks another run)."""
+    sections: tuple[str, ...] = ()
+    """The sections of ``summary.json`` the kind adds besides ``theory``
+    (:data:`chainfountain.headless.summary.SECTIONS` builds them)."""
+    predicted: bool = False
+    """Whether the paper predicts the fountain from the level's settings (a fed level):
+    its runs are compared with that prediction and can be refined."""
+    paper_curve: bool = True
+    """Whether the window draws the paper's curve when the level opens."""
+    study_start: Callable[[SimConfig], dict[str, Any]] = lambda cfg: {}
+    """The changes that start a study of the level on its steady state (the apparatus
+    laid along its path instead of forming from rest)."""
     fountain: bool = True
     """Whether it runs as a :class:`~chainfountain.sim.world.Simulation` (the window
     shows it); a scene runs headless only."""

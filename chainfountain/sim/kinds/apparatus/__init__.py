@@ -54,10 +54,19 @@ def _losses(sim: Any, index: int | None, v: float) -> None:
     sim.apparatus.set_losses()  # the carriages' springs
 
 
+def study_start(cfg: SimConfig) -> dict[str, Any]:
+    """A study reads the machine's steady state without first waiting for it to form from
+    rest: laid along its path, moving at ``apparatus.speed``."""
+    if cfg.initial.mode == "catenary":
+        return {}
+    return {"initial.mode": "catenary", "apparatus.starter": 0.0}
+
+
 KIND = Kind(
     name="apparatus", table="apparatus", title="the pulley apparatus", check=check_apparatus,
     default_duration=default_duration, reach=reach, build=build,
     live={"carts[].mass": _cart_mass, "apparatus.bearing_drag": _losses,
           "apparatus.fold_brake": _losses, "apparatus.swing_damper": _losses},
-    style=lambda cfg: cfg.apparatus.variant,
+    style=lambda cfg: cfg.apparatus.variant, sections=("apparatus",),
+    study_start=study_start,
 )

@@ -38,5 +38,5 @@ KIND = Kind(
     name="beaker", table="beaker", title="a chain rising from a beaker",
     check=lambda cfg, where: check_beaker(cfg, where, MAX_LINKS),
     default_duration=lambda cfg: float(cfg.beaker.duration), reach=reach, build=build,
-    style=lambda cfg: "beaker",
+    style=lambda cfg: "beaker", sections=("beaker",), paper_curve=False,
 )

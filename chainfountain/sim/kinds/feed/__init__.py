@@ -94,4 +94,5 @@ KIND = Kind(
     default_duration=default_duration, reach=reach, build=build,
     live={"feed.speed": _speed, "feed.end_tension": _end_tension},
     accuracy_refusal=accuracy_refusal, style=lambda cfg: "motor",
+    sections=("error_bars", "error_model"), predicted=True,
 )

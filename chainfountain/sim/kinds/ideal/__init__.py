@@ -59,4 +59,5 @@ KIND = Kind(
     live={"feed.speed": _speed, **{path: _machine for path in MACHINE_FIELDS}},
     accuracy_refusal=lambda cfg: f"feed.drive = {cfg.feed.drive!r}",
     style=lambda cfg: cfg.feed.drive,
+    sections=("machine", "open", "error_bars", "error_model"), predicted=True,
 )

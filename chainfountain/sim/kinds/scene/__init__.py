@@ -14,9 +14,15 @@ def reach(cfg: SimConfig) -> tuple[float, float]:
     return 0.0, 0.0
 
 
+def _unseeded(cfg: SimConfig) -> str | None:
+    if cfg.scene.jitter > 0:
+        return None
+    return "its scene.jitter is 0: no random angles to seed"
+
+
 KIND = Kind(
     name="scene", table="scene", title="a scene",
     check=lambda cfg, where: check_scene(cfg, where, MAX_LINKS),
     default_duration=lambda cfg: float(cfg.scene.duration), reach=reach,
-    seeded=lambda cfg: cfg.scene.jitter > 0, style=lambda cfg: "scene", fountain=False,
+    seed_field="scene.seed", unseeded=_unseeded, style=lambda cfg: "scene", fountain=False,
 )
