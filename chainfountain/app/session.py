@@ -26,7 +26,7 @@ from typing import Any
 
 import numpy as np
 
-from chainfountain.app import budget, paths
+from chainfountain.app import cost, paths
 from chainfountain.app.controls import FieldSpec, spec_for
 from chainfountain.app.readout import (
     History,
@@ -323,9 +323,9 @@ class Session:
         except LevelError as exc:
             msg = str(exc).removeprefix("setting: ")
             return Applied(path, old, False, False, self.say(f"refused: {msg}"))
-        why = budget.over_budget(cand, self._origin.sim)
+        why = cost.over_budget(cand, self._origin.sim)
         if why is not None and path == "feed.speed" and v > old:
-            fast = budget.fastest_feed(self.level.sim, self._origin.sim, v)
+            fast = cost.fastest_feed(self.level.sim, self._origin.sim, v)
             if fast is not None and fast > old:
                 rail = (f"{spec.label}: {spec.fmt(v)}{spec.shown_unit}: {why}; set to the "
                         f"fastest the window runs, {spec.fmt(fast)}{spec.shown_unit}")

@@ -4,7 +4,7 @@ A machine field's slider (``feed.xi2``, ``feed.cart_force``, ``feed.xi3``,
 ``feed.lower_cart_force``, ``feed.bearing_drag``, ``feed.turn_drop`` of a level with
 ``feed.drive`` an ideal machine) spans only the values the level's own checks accept with
 every other field as it is: the range in which the machine selects (or keeps) a
-fountain the window can run (its budget, :mod:`chainfountain.app.budget`), found by
+fountain the window can run (its budget, :mod:`chainfountain.app.cost`), found by
 bisection from the present value towards each end of the schema's range. Out there the
 machine would stop, run away or lose its fountain; a value typed beyond the span is
 refused with the check's reason. A loss-free full machine's upper cart has a single
@@ -25,7 +25,7 @@ import copy
 import dataclasses
 from collections.abc import Callable
 
-from chainfountain.app import budget
+from chainfountain.app import cost
 from chainfountain.app.controls import FieldSpec
 from chainfountain.fields import get_value, set_value
 from chainfountain.level import io
@@ -78,7 +78,7 @@ def _accepts(level: Level, path: str, origin: SimConfig | None,
             io.check_consistency(Level(meta=level.meta, sim=cand), "span")
         except LevelError:
             return False
-        return origin is None or budget.over_budget(cand, origin) is None
+        return origin is None or cost.over_budget(cand, origin) is None
     return ok
 
 
@@ -99,7 +99,7 @@ def admissible(level: Level, spec: FieldSpec,
                origin: SimConfig | None = None) -> tuple[float, float] | None:
     """The span (schema units) of values around the present one that ``level``'s checks
     accept for ``spec``'s field (and, given the level as loaded, ``origin``, that the
-    window's budget runs: :mod:`chainfountain.app.budget`; a contact floor machine's, that
+    window's budget runs: :mod:`chainfountain.app.cost`; a contact floor machine's, that
     its chain runs on; a contact fold machine's, that its carts stay within their measured
     band of ``origin``'s), or ``None`` when the field is none of an ideal machine's,
     :data:`FLOOR_FIELDS` of a contact floor machine or the ``FOLD_*`` fields of a contact

@@ -349,7 +349,7 @@ def test_window_keeps_a_fed_fountain_at_real_time():
     real time, with a message saying why and that level files accept it; a link length
     that would need 13,600 links is refused; a level shipped slower (paper_tall, 0.94 s
     per simulated second) may grow to 1.5 times its own cost."""
-    from chainfountain.app import budget
+    from chainfountain.app import cost as budget
 
     root = shipped_dir()
     s = Session(io.load(root / "classroom.toml"))
@@ -400,7 +400,7 @@ def test_window_keeps_an_apparatus_at_real_time() -> None:
     files accept it; 4 m/s (about 180 links) is taken. The estimate follows the machine's
     parts: within 10 % of the links the presets build (134 against 125 for the floor,
     191 against 193 for the special case)."""
-    from chainfountain.app import budget
+    from chainfountain.app import cost as budget
     from chainfountain.sim import Simulation
     from chainfountain.study.changes import laid_on_path
 
@@ -439,7 +439,7 @@ def test_level_files_and_run_accept_what_the_window_refuses(tmp_path) -> None:
     """The guard-rails are the window's: a 30 m/s classroom, which the window refuses (about
     0.03x real time), loads as a level and runs headless."""
     import chainfountain
-    from chainfountain.app import budget
+    from chainfountain.app import cost as budget
     from chainfountain.study.changes import with_changes
 
     lvl = io.load(shipped_dir() / "classroom.toml")

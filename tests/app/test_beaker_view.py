@@ -9,7 +9,7 @@ import os
 os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
 
 from chainfountain import cli  # noqa: E402
-from chainfountain.app import budget  # noqa: E402
+from chainfountain.app import cost as budget  # noqa: E402
 from chainfountain.app.readout import Readout  # noqa: E402
 from chainfountain.app.readout_text import readout_rows  # noqa: E402
 from chainfountain.level import io, library  # noqa: E402

@@ -1,4 +1,4 @@
-"""The window's guard-rail: a fountain the window cannot show at real time.
+"""What a fountain costs the window: the fountains it cannot show at real time.
 
 Level files and ``chainfountain run`` accept any fountain the schema allows (a 30 m/s
 feed flies 28 m up with thousands of links); the window keeps a fed level within what
