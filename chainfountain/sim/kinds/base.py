@@ -41,6 +41,8 @@ class Kind:
     """The level file's table the kind reads (``kind = "<table>"`` in the file)."""
     title: str
     """What the kind is, in a few words."""
+    config: type
+    """The dataclass of its table (:attr:`table`), in :mod:`chainfountain.sim.config`."""
     check: Callable[[SimConfig, str], None]
     """Cross-field checks (``check(config, where)``): raise a one-line
     :class:`~chainfountain.errors.LevelError`; never change the configuration."""

@@ -9,7 +9,7 @@ from typing import Any
 from chainfountain.sim.apparatus import Apparatus
 from chainfountain.sim.bodies import nudge_bodies
 from chainfountain.sim.chain import Chain
-from chainfountain.sim.config import SimConfig
+from chainfountain.sim.config import ApparatusConfig, SimConfig
 from chainfountain.sim.kinds.apparatus.checks import check_apparatus
 from chainfountain.sim.kinds.base import DEFAULT_DURATION, FORMING_DURATION, Kind
 
@@ -63,7 +63,8 @@ def study_start(cfg: SimConfig) -> dict[str, Any]:
 
 
 KIND = Kind(
-    name="apparatus", table="apparatus", title="the pulley apparatus", check=check_apparatus,
+    config=ApparatusConfig, name="apparatus", table="apparatus", title="the pulley apparatus",
+    check=check_apparatus,
     default_duration=default_duration, reach=reach, build=build,
     live={"carts[].mass": _cart_mass, "apparatus.bearing_drag": _losses,
           "apparatus.fold_brake": _losses, "apparatus.swing_damper": _losses},

@@ -10,7 +10,7 @@ from typing import Any
 from chainfountain.sim.beaker import Beaker
 from chainfountain.sim.bodies import nudge_bodies
 from chainfountain.sim.chain import Chain
-from chainfountain.sim.config import SimConfig
+from chainfountain.sim.config import BeakerConfig, SimConfig
 from chainfountain.sim.kinds.base import Kind
 from chainfountain.sim.kinds.beaker.checks import check_beaker
 from chainfountain.sim.kinds.sizing import MAX_LINKS
@@ -35,7 +35,7 @@ def reach(cfg: SimConfig) -> tuple[float, float]:
 
 
 KIND = Kind(
-    name="beaker", table="beaker", title="a chain rising from a beaker",
+    config=BeakerConfig, name="beaker", table="beaker", title="a chain rising from a beaker",
     check=lambda cfg, where: check_beaker(cfg, where, MAX_LINKS),
     default_duration=lambda cfg: float(cfg.beaker.duration), reach=reach, build=build,
     style=lambda cfg: "beaker", sections=("beaker",), paper_curve=False,

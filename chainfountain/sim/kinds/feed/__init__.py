@@ -8,7 +8,7 @@ from typing import Any
 
 from chainfountain.sim.bodies import Cart, Floor, Roller
 from chainfountain.sim.chain import Chain
-from chainfountain.sim.config import SimConfig
+from chainfountain.sim.config import FeedConfig, SimConfig
 from chainfountain.sim.feed import Feed
 from chainfountain.sim.kinds.base import (
     DEFAULT_DURATION,
@@ -90,7 +90,7 @@ def accuracy_refusal(cfg: SimConfig) -> str | None:
 
 
 KIND = Kind(
-    name="feed", table="feed", title="a motor-fed fountain", check=check,
+    config=FeedConfig, name="feed", table="feed", title="a motor-fed fountain", check=check,
     default_duration=default_duration, reach=reach, build=build,
     live={"feed.speed": _speed, "feed.end_tension": _end_tension},
     accuracy_refusal=accuracy_refusal, style=lambda cfg: "motor",

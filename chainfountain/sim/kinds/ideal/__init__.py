@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from chainfountain.sim.config import SimConfig
+from chainfountain.sim.config import FeedConfig, SimConfig
 from chainfountain.sim.kinds.base import DEFAULT_DURATION, MACHINE_FORMING_DURATION, Kind
 from chainfountain.sim.kinds.fed import check_fed
 from chainfountain.sim.kinds.feed import feed_for, lay_chain, reach
@@ -54,7 +54,7 @@ def _machine(sim: Any, index: int | None, v: float) -> None:
 
 
 KIND = Kind(
-    name="ideal", table="feed", title="an ideal machine", check=check,
+    config=FeedConfig, name="ideal", table="feed", title="an ideal machine", check=check,
     default_duration=default_duration, reach=reach, build=build,
     live={"feed.speed": _speed, **{path: _machine for path in MACHINE_FIELDS}},
     accuracy_refusal=lambda cfg: f"feed.drive = {cfg.feed.drive!r}",

@@ -7,6 +7,7 @@ from chainfountain.sim.config import SimConfig
 from chainfountain.sim.kinds.base import Kind
 from chainfountain.sim.kinds.scene.checks import check_scene
 from chainfountain.sim.kinds.sizing import MAX_LINKS
+from chainfountain.sim.scene_config import SceneConfig
 
 
 def reach(cfg: SimConfig) -> tuple[float, float]:
@@ -21,7 +22,7 @@ def _unseeded(cfg: SimConfig) -> str | None:
 
 
 KIND = Kind(
-    name="scene", table="scene", title="a scene",
+    config=SceneConfig, name="scene", table="scene", title="a scene",
     check=lambda cfg, where: check_scene(cfg, where, MAX_LINKS),
     default_duration=lambda cfg: float(cfg.scene.duration), reach=reach,
     seed_field="scene.seed", unseeded=_unseeded, style=lambda cfg: "scene", fountain=False,
