@@ -92,7 +92,7 @@ def test_the_readout_gives_the_laws_prediction() -> None:
 def test_the_contact_floor_machines_sliders_span_where_its_chain_runs_on() -> None:
     """``apparatus_floor``: the upper cart, bearing drag and offset span where this model's
     pick-up law leaves the chain running (``floor_runs_on``; its measured limit and what
-    happens beyond: ``tests/apparatus/test_apparatus_live_cart.py``); the cart's span ends
+    happens beyond: ``tests/sim/apparatus/test_live_cart.py``); the cart's span ends
     just above the heavy preset's 15 g. The near-critical fountain-D presets, set beyond
     it on purpose, keep the schema's sliders."""
     from chainfountain.sim.apparatus.laws import floor_runs_on

@@ -14,11 +14,11 @@ measured.
 from __future__ import annotations
 
 import pytest
-from apparatus_runs import load_on_path
 
 from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import report
+from tests.sim.apparatus.runs import load_on_path
 
 LEVEL = shipped_dir() / "apparatus_floor.toml"
 RUN, STEADY = 8.0, (4.0, 8.0)

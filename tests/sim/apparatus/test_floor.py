@@ -33,7 +33,6 @@ import math
 
 import numpy as np
 import pytest
-from apparatus_runs import load_on_path
 
 from chainfountain.headless import run_level
 from chainfountain.level import io
@@ -42,6 +41,7 @@ from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import report
 from chainfountain.sim.budget import EnergyBudget, rig_law_speed
 from chainfountain.sim.guide import PLAY
+from tests.sim.apparatus.runs import load_on_path
 
 LEVEL = shipped_dir() / "apparatus_floor.toml"
 RUN = 6.0

@@ -30,9 +30,9 @@ holds to the end of the run (3 s).
 from __future__ import annotations
 
 import pytest
-from apparatus_runs import load_real_geometry, run_fold
 
 from chainfountain.level.library import shipped_dir
+from tests.sim.apparatus.runs import load_real_geometry, run_fold
 
 LEVEL = shipped_dir() / "apparatus_fold.toml"
 CLEAN = (0.2, 2.5)

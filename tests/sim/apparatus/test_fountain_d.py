@@ -4,7 +4,7 @@ Both presets use the 'floor' variant with the absorbing end (the paper's "ideali
 beaker, real floor", Fig. "pulley_experiment_equiv_ground", left) at full scale,
 ``H = 2 m``, launched at fountain D's angle (82.0 deg) from a guide ``xi2*H = 0.6 m``
 above the pick-up roller; the upper cart is the mass the design 2 cm rig law
-(extrapolated from 2.6-2.9 m/s, :data:`apparatus_runs.DESIGN_RIG_2CM`) needs for the
+(extrapolated from 2.6-2.9 m/s, :data:`tests.sim.apparatus.runs.DESIGN_RIG_2CM`) needs for the
 preset's speed.
 
 - `levels/apparatus_fountain_d_kmax.toml`, ``k = k_max``: a free end has
@@ -40,13 +40,13 @@ import math
 import re
 
 import pytest
-from apparatus_runs import design_speed
 
 from chainfountain.level import io
 from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import report
 from chainfountain.theory import Fountain
+from tests.sim.apparatus.runs import design_speed
 
 LEVELS = shipped_dir()
 L_D, H_D, H = 0.33, 0.28, 2.0  # the paper's fountain D: l = kappa*H, h = xi*H

@@ -27,13 +27,13 @@ from __future__ import annotations
 import math
 
 import pytest
-from apparatus_runs import DESIGN_RIG_2CM, design_pickup
 
 from chainfountain.level import io
 from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus import FoldCollapsed
 from chainfountain.sim.apparatus_report import report
+from tests.sim.apparatus.runs import DESIGN_RIG_2CM, design_pickup
 
 LEVEL = shipped_dir() / "apparatus_limit.toml"
 RUN = 2.0
@@ -62,7 +62,7 @@ def test_preset_is_the_paper_limit_case():
     k = cfg.gravity / a.speed**2
     assert a.xi3 == pytest.approx(1.0 / (2.0 * k * a.drop), rel=1e-9)
     assert len(cfg.carts) == 1  # no lower cart: Tbar_lc = 0
-    # upper cart: the design pick-up law (apparatus_runs.DESIGN_RIG_2CM)
+    # upper cart: the design pick-up law (runs.DESIGN_RIG_2CM)
     # for Tbar_0 = p + G*Tbar_uc + xi2*k*H = k*H
     lam, v = cfg.chain.linear_density, a.speed
     tbar_uc = (k * a.drop * (1.0 - a.xi2) - design_pickup(v)) / DESIGN_RIG_2CM[2]

@@ -19,13 +19,13 @@ import math
 
 import numpy as np
 import pytest
-from apparatus_runs import load_on_path
 
 from chainfountain.errors import RunEnded
 from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Simulation
 from chainfountain.sim.apparatus.laws import FLOOR_KH_MAX, floor_runs_on, floor_speeds
 from chainfountain.sim.apparatus.stall_watch import ChainStalled
+from tests.sim.apparatus.runs import load_on_path
 
 LEVEL = shipped_dir() / "apparatus_floor.toml"
 

@@ -1,7 +1,7 @@
 """The special preset run long: without its swing damper the landing swing grows until the
 fold fails (issue 4); with it (as shipped) the swing stays bounded and the run goes on.
 
-The undamped machine (:data:`apparatus_runs.UNDAMPED_SPECIAL`: no damper, no fold
+The undamped machine (:data:`tests.sim.apparatus.runs.UNDAMPED_SPECIAL`: no damper, no fold
 clearance, a 58 g lower cart) is the contact fold's own behaviour, read below.
 
 ``apparatus_special`` runs with both plates as treadmills, so nothing in the machine
@@ -13,7 +13,7 @@ held and how large the swing had grown; it does not blame a missing push ("raise
 lower cart mass", as the run-away speed suggests).
 
 Measured (this module's run, ``apparatus_special`` without its damper at
-:data:`apparatus_runs.STUDY_STEP`): 3.024 m/s over 0.5-8 s, the swing +-0.064 m/s over
+:data:`tests.sim.apparatus.runs.STUDY_STEP`): 3.024 m/s over 0.5-8 s, the swing +-0.064 m/s over
 0.5-3.5 s and +-0.164 m/s in its largest later 4-s window; the last link to enter the end
 guide through its mouth did so at 26.93 s, 5.9 cm inside the first turn's radius (the
 catch takes links within 6 cm: the fountain had widened), and the folding roller rolled
@@ -28,12 +28,12 @@ import re
 
 import numpy as np
 import pytest
-from apparatus_runs import load_undamped
 
 from chainfountain.level import io
 from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Simulation
 from chainfountain.sim.apparatus import FoldCollapsed
+from tests.sim.apparatus.runs import load_undamped
 
 LEVEL = shipped_dir() / "apparatus_special.toml"
 pytestmark = pytest.mark.xdist_group("apparatus_long_run")

@@ -34,13 +34,13 @@ import math
 
 import numpy as np
 import pytest
-from apparatus_runs import load_on_path
 
 from chainfountain.level import io
 from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import report
 from chainfountain.sim.budget import open_windows
+from tests.sim.apparatus.runs import load_on_path
 
 LEVEL = shipped_dir() / "apparatus_open.toml"
 FLOOR = LEVEL.with_name("apparatus_floor.toml")

@@ -5,11 +5,11 @@
 from __future__ import annotations
 
 import pytest
-from apparatus_runs import load_undamped
 
 from chainfountain.level import io
 from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Simulation
+from tests.sim.apparatus.runs import load_undamped
 
 LEVEL = shipped_dir() / "apparatus_special.toml"
 

@@ -34,10 +34,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from apparatus_runs import load_undamped, run_fold
 
 from chainfountain.level.library import shipped_dir
 from chainfountain.sim.apparatus_report import pivot_offset
+from tests.sim.apparatus.runs import load_undamped, run_fold
 
 LEVEL = shipped_dir() / "apparatus_special.toml"
 CLEAN = (0.2, 6.0)

@@ -1,7 +1,7 @@
 """Speed selection of the free-ended apparatus: a heavier upper cart, a slower chain.
 
 ``levels/apparatus_floor_heavy.toml`` (15 g cart, a 0.25 ms step) against
-``apparatus_floor`` (9 g, about 2.93 m/s, ``tests/apparatus/test_apparatus_floor.py``).
+``apparatus_floor`` (9 g, about 2.93 m/s, ``tests/sim/apparatus/test_floor.py``).
 Paper (section "Generating Steady-State Chain Fountains", free end ``Tbar_E = 0``):
 ``v**2 = (g*H*(1 - xi2) - G*F_uc/lambda)/p``. What is asserted is what the simulation
 does (``docs/apparatus.md``): the heavy cart selects a clearly lower speed, steady; the
@@ -18,12 +18,12 @@ step's error, which is why the preset steps at 0.25 ms.
 from __future__ import annotations
 
 import pytest
-from apparatus_runs import load_on_path
 
 from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import report
 from chainfountain.sim.budget import EnergyBudget, rig_law_speed
+from tests.sim.apparatus.runs import load_on_path
 
 LEVEL = shipped_dir() / "apparatus_floor_heavy.toml"
 RUN = 5.0

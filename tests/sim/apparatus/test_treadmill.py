@@ -6,7 +6,7 @@ chain move back by that length. What must hold: the pick-up roller stays where
 it started, the link count stays bounded (the run may last any time), the strand
 stays a chain (no joint opened by the inserts) and the roller still rolls at
 half the chain speed. That the physics is unchanged is checked by the floor
-preset's own tests (``test_apparatus_floor.py``: speed, drift, vertex, Tbar),
+preset's own tests (``test_floor.py``: speed, drift, vertex, Tbar),
 which run with the treadmill.
 
 In the 'fold' variant the same setting also holds the lower plate strand: each time
@@ -26,13 +26,13 @@ import math
 import numpy as np
 import pymunk
 import pytest
-from apparatus_runs import load_on_path, load_real_geometry
 
 from chainfountain.level import io
 from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus import TableUsedUp
 from chainfountain.sim.apparatus_report import report
+from tests.sim.apparatus.runs import load_on_path, load_real_geometry
 
 LEVEL = shipped_dir() / "apparatus_floor.toml"
 FOLD = LEVEL.with_name("apparatus_fold.toml")
