@@ -10,10 +10,11 @@ from chainfountain.app import controls, spans
 from chainfountain.app.panel import tooltip as _tooltip
 from chainfountain.app.readout import machine_line
 from chainfountain.app.session import Session
-from chainfountain.level import io, library
+from chainfountain.level import io
 from chainfountain.level.model import Level
 from chainfountain.study.changes import with_changes
 from chainfountain.theory import apparatus as ap
+from tests import shipped
 
 
 @pytest.fixture(autouse=True)
@@ -25,11 +26,11 @@ def _spec(level, path):
     return controls.spec_for(level.sim, path)
 
 
-def test_a_carts_slider_spans_where_the_machine_runs_and_no_further() -> None:
+def test_a_carts_slider_spans_where_the_machine_runs_and_no_further(level) -> None:
     """``ideal_fold``'s lower cart: every value in the span loads, a little beyond either
     end is refused by the level check or the window's budget."""
-    lvl = io.load(library.resolve("ideal_fold"))
-    origin = io.load(library.resolve("ideal_fold")).sim
+    lvl = level("ideal_fold")
+    origin = level("ideal_fold").sim
     spec = _spec(lvl, "feed.lower_cart_force")
     lo, hi = spans.admissible(lvl, spec, origin)
     assert 0.0 <= lo < lvl.sim.feed.lower_cart_force < hi < spec.hi
@@ -45,7 +46,7 @@ def test_a_carts_slider_spans_where_the_machine_runs_and_no_further() -> None:
 
 
 def _loss_free_special() -> io.Level:
-    lvl = io.load(library.resolve("ideal_special"))
+    lvl = shipped.level("ideal_special")
     lvl.sim.feed.bearing_drag, lvl.sim.feed.cart_force = 0.0, lvl.sim.feed.lower_cart_force
     return lvl
 
@@ -59,16 +60,16 @@ def test_a_loss_free_machines_upper_cart_has_one_value() -> None:
     assert lo <= lvl.sim.feed.cart_force <= hi and hi - lo <= 2.0 * tol * 1.0001
 
 
-def test_motor_levels_keep_their_schema_sliders() -> None:
-    lvl = io.load(library.resolve("classroom"))
+def test_motor_levels_keep_their_schema_sliders(level) -> None:
+    lvl = level("classroom")
     spec = _spec(lvl, "feed.speed")
     assert spans.narrowed(lvl, spec) is spec
 
 
-def test_the_upper_cart_follows_a_typed_offset_and_the_message_says_so() -> None:
+def test_the_upper_cart_follows_a_typed_offset_and_the_message_says_so(level) -> None:
     """Bearing drag typed to 0 makes the special case loss-free: the upper cart moves to the
     balance (the lower cart's 0.183 N), and with it when xi3 is typed."""
-    s = Session(io.load(library.resolve("ideal_special")))
+    s = Session(level("ideal_special"))
     res = s.set_field("feed.bearing_drag", 0.0)
     assert res.ok and "the upper cart follows to 0.183 N" in res.message, res.message
     res = s.set_field("feed.xi3", 0.6)
@@ -81,15 +82,15 @@ def test_the_upper_cart_follows_a_typed_offset_and_the_message_says_so() -> None
     assert not refused.ok and "does not balance" in refused.message
 
 
-def test_the_readout_gives_the_laws_prediction() -> None:
-    s = Session(io.load(library.resolve("ideal_fold")))
+def test_the_readout_gives_the_laws_prediction(level) -> None:
+    s = Session(level("ideal_fold"))
     assert machine_line(s.sim) == "paper's laws: v 5.000 m/s, Tbar_0 0.736, Tbar_E 0.344"
     s2 = Session(_loss_free_special())
     assert machine_line(s2.sim).startswith("paper's laws keep any v: Tbar_0 0.")
-    assert machine_line(Session(io.load(library.resolve("classroom"))).sim) == ""
+    assert machine_line(Session(level("classroom")).sim) == ""
 
 
-def test_the_contact_floor_machines_sliders_span_where_its_chain_runs_on() -> None:
+def test_the_contact_floor_machines_sliders_span_where_its_chain_runs_on(level) -> None:
     """``apparatus_floor``: the upper cart, bearing drag and offset span where this model's
     pick-up law leaves the chain running (``floor_runs_on``; its measured limit and what
     happens beyond: ``tests/sim/apparatus/test_live_cart.py``); the cart's span ends
@@ -97,7 +98,7 @@ def test_the_contact_floor_machines_sliders_span_where_its_chain_runs_on() -> No
     it on purpose, keep the schema's sliders."""
     from chainfountain.sim.apparatus.laws import floor_runs_on
 
-    lvl = io.load(library.resolve("apparatus_floor"))
+    lvl = level("apparatus_floor")
     for path in spans.FLOOR_FIELDS:
         spec = _spec(lvl, path)
         lo, hi = spans.admissible(lvl, spec, lvl.sim)
@@ -108,14 +109,14 @@ def test_the_contact_floor_machines_sliders_span_where_its_chain_runs_on() -> No
     assert 0.015 < hi < 0.016
     b_lo, b_hi = spans.admissible(lvl, _spec(lvl, "carts[0].incline"), lvl.sim)
     assert b_lo == pytest.approx(0.0, abs=1e-8) and 1.0 < b_hi < 1.1  # holding back, 59 deg
-    typed = io.load(library.resolve("apparatus_floor"))  # 30 g typed: it runs, and stops
+    typed = level("apparatus_floor")  # 30 g typed: it runs, and stops
     typed.sim.carts[0].mass = 0.03  # the span stays (its handle at the end)
     assert spans.admissible(typed, _spec(typed, "carts[0].mass"), lvl.sim) == (lo, hi)
-    d = io.load(library.resolve("apparatus_fountain_d"))
+    d = level("apparatus_fountain_d")
     assert spans.admissible(d, _spec(d, "carts[0].mass"), d.sim) is None
 
 
-def test_the_contact_fold_machines_carts_span_their_measured_band() -> None:
+def test_the_contact_fold_machines_carts_span_their_measured_band(level) -> None:
     """``apparatus_special`` and ``apparatus_fold``: each cart spans the part of its balance
     that held every time it was changed live, with the other cart as it is
     (``laws.FOLD_CART_BAND`` and the net push ``FOLD_PUSH_BAND``: at the build, upper
@@ -129,17 +130,17 @@ def test_the_contact_fold_machines_carts_span_their_measured_band() -> None:
 
     for name, lower in (("apparatus_special", (0.057, 0.059)),
                         ("apparatus_fold", (0.040, 0.042))):
-        lvl = io.load(library.resolve(name))
+        lvl = level(name)
         for path, want in (("carts[0].mass", (0.017, 0.0175 + 1.0 / 750)),
                            ("carts[1].mass", lower)):
             lo, hi = spans.admissible(lvl, _spec(lvl, path), lvl.sim)
             assert (lo, hi) == pytest.approx(want, abs=1e-9)
             i = spans.FOLD_FIELDS.index(path)
             for m, runs in ((lo, True), (hi, True), (lo - 1e-5, False), (hi + 1e-5, False)):
-                cand = io.load(library.resolve(name))
+                cand = level(name)
                 cand.sim.carts[i].mass = m
                 assert fold_runs_on(cand.sim, lvl.sim) is runs
-        moved = io.load(library.resolve(name))
+        moved = level(name)
         moved.sim.carts[0].mass = 0.0185
         built = lvl.sim.carts[1].mass  # net push -2 g + 1.5 * 1 g: 0.5 g below the build
         assert spans.admissible(moved, _spec(moved, "carts[1].mass"), lvl.sim) == \
@@ -164,7 +165,7 @@ def test_the_contact_fold_machines_carts_span_their_measured_band() -> None:
         tip = _tooltip(spans.narrowed(lvl, _spec(lvl, "carts[1].mass"), lvl.sim))
         assert (f"spans {lower[0] * 1e3:g}-{lower[1] * 1e3:g} g, where this machine keeps "
                 "running") in tip
-    limit = io.load(library.resolve("apparatus_limit"))
+    limit = level("apparatus_limit")
     assert spans.admissible(limit, _spec(limit, "carts[0].mass"), limit.sim) is None
 
 
@@ -172,7 +173,7 @@ def test_the_contact_fold_machines_carts_span_their_measured_band() -> None:
     (2.0, (0.008, 0.027), (0.306, 0.341)),  # as shipped: laws.FOLLOW_CART_BAND
     (0.0, (0.017, 0.020), (0.309, 0.316)),  # a fixed end guide: laws.BRAKED_CART_BAND
 ])
-def test_the_braked_gripped_folds_carts_span_where_it_keeps_running(
+def test_the_braked_gripped_folds_carts_span_where_it_keeps_running(level,
         follow: float, upper: tuple[float, float], lower: tuple[float, float]) -> None:
     """``apparatus_fold_gripped`` (19 / 311 g): with its end guide following the landing,
     upper 8-27 g and lower 306-341 g, where every pair held from rest (but upper 8 g
@@ -184,7 +185,7 @@ def test_the_braked_gripped_folds_carts_span_where_it_keeps_running(
     from chainfountain.sim.apparatus.laws import fold_runs_on
 
     def load() -> Level:
-        return with_changes(io.load(library.resolve("apparatus_fold_gripped")),
+        return with_changes(level("apparatus_fold_gripped"),
                             {"apparatus.end_follow": follow})
 
     lvl = load()
@@ -207,7 +208,7 @@ def test_the_braked_gripped_folds_carts_span_where_it_keeps_running(
     assert lo < 1.0 < hi and hi - lo == pytest.approx(push / 1.5, rel=1e-6)
     paths = {s.path for s in controls.control_fields(lvl.sim)}
     assert "apparatus.fold_brake" in paths and "apparatus.fold_clearance" not in paths
-    contact = io.load(library.resolve("apparatus_fold"))
+    contact = level("apparatus_fold")
     assert "apparatus.fold_brake" not in {s.path for s in controls.control_fields(contact.sim)}
 
 
@@ -215,7 +216,7 @@ def test_the_braked_gripped_folds_carts_span_where_it_keeps_running(
     (0.008, 0.301, False), (0.008, 0.306, False), (0.008, 0.311, True),
     (0.013, 0.301, False), (0.013, 0.306, True), (0.019, 0.306, True),
 ])
-def test_both_gripped_fold_carts_far_lighter_at_once_are_outside_the_spans(
+def test_both_gripped_fold_carts_far_lighter_at_once_are_outside_the_spans(level,
         upper: float, lower: float, runs: bool) -> None:
     """Both carts much lighter than 19 / 311 g at once lost the chain from rest (upper 8 g
     with lower 306 g in one of three starts; laws.FOLLOW_LIGHT_CORNER), where each alone,
@@ -223,8 +224,8 @@ def test_both_gripped_fold_carts_far_lighter_at_once_are_outside_the_spans(
     slider's span follows the other's."""
     from chainfountain.sim.apparatus.laws import fold_runs_on
 
-    lvl = io.load(library.resolve("apparatus_fold_gripped"))
-    cand = io.load(library.resolve("apparatus_fold_gripped"))
+    lvl = level("apparatus_fold_gripped")
+    cand = level("apparatus_fold_gripped")
     cand.sim.carts[0].mass, cand.sim.carts[1].mass = upper, lower
     assert fold_runs_on(cand.sim, lvl.sim) is runs
     cand.sim.carts[1].mass = 0.306  # the upper slider then starts at 10.5 g
@@ -235,10 +236,10 @@ def test_both_gripped_fold_carts_far_lighter_at_once_are_outside_the_spans(
     assert lo == pytest.approx(0.311, abs=1e-9)
 
 
-def test_the_readout_gives_the_speed_a_braked_fold_selects() -> None:
+def test_the_readout_gives_the_speed_a_braked_fold_selects(level) -> None:
     """``v = 2 (F_lc + lambda g H (1 - xi2 - xi3) - F_uc)/c`` with the preset's numbers
     (19 g and 311 g on 30-deg tracks, brake 1 N s/m): 2.961 m/s."""
-    s = Session(io.load(library.resolve("apparatus_fold_gripped")))
+    s = Session(level("apparatus_fold_gripped"))
     g, lam, H = 9.81, 0.05, 0.5
     F = [m * g * 0.5 for m in (0.019, 0.311)]
     v = 2.0 * (F[1] + lam * g * H * (1.0 - 0.5 - 0.303) - F[0]) / 1.0

@@ -10,8 +10,8 @@ import pytest
 from chainfountain.app import controls
 from chainfountain.app.session import Session
 from chainfountain.level import io
-from chainfountain.level.library import shipped_dir
 from chainfountain.sim.config import CartConfig, SimConfig
+from tests import shipped
 
 
 @pytest.fixture(autouse=True)
@@ -186,9 +186,9 @@ def test_drag_a_link():
     assert not s.grab((50.0, 50.0), max_dist=0.05)
 
 
-def test_used_up_apparatus_table_pauses_with_a_message() -> None:
+def test_used_up_apparatus_table_pauses_with_a_message(level) -> None:
 
-    lvl = io.load(shipped_dir() / "apparatus_floor.toml")
+    lvl = level("apparatus_floor")
     lvl.sim.apparatus.plate_links = 0  # the real geometry, sized for a 0.2-s run
     lvl.sim.apparatus.duration = 0.2
     s = Session(lvl)
@@ -213,12 +213,12 @@ def test_xi3_control_only_where_the_variant_uses_it(variant, shown):
     assert ("apparatus.fold_clearance" in paths) is (variant == "fold")
 
 
-def test_fold_clearance_control_lowers_the_lower_table() -> None:
+def test_fold_clearance_control_lowers_the_lower_table(level) -> None:
     """The collapse message at a small step advises apparatus.fold_clearance = 0.002; the
     window offers it (a linear slider over 0-5 mm) and the rebuilt scene has the lower
     table that much lower."""
 
-    lvl = io.load(shipped_dir() / "apparatus_special.toml")
+    lvl = level("apparatus_special")
     s = Session(lvl)
     spec = controls.spec_for(s.level.sim, "apparatus.fold_clearance")
     assert not spec.log and spec.slider_lo == 0.0 and spec.slider_hi == 0.005
@@ -230,9 +230,9 @@ def test_fold_clearance_control_lowers_the_lower_table() -> None:
     assert "outside the allowed range" in r.message and "[0, 0.005]" in r.message
 
 
-def test_floor_depth_control_rebuilds_and_refuses() -> None:
+def test_floor_depth_control_rebuilds_and_refuses(level) -> None:
 
-    lvl = io.load(shipped_dir() / "apparatus_floor.toml")
+    lvl = level("apparatus_floor")
     s = Session(lvl)
     H = s.sim.apparatus.H
     r = s.set_field("apparatus.floor_depth", 0.1)
@@ -244,13 +244,13 @@ def test_floor_depth_control_rebuilds_and_refuses() -> None:
     assert s.value("apparatus.floor_depth") == 0.1
 
 
-def test_collapsed_fold_pauses_and_keeps_the_reason(capsys) -> None:
+def test_collapsed_fold_pauses_and_keeps_the_reason(level, capsys) -> None:
     """apparatus_limit (no lower cart): the folding roller rolls back at about 1 s; the
     session pauses and keeps why until the scene is rebuilt: in the window one plain
     sentence with what to do (here: open the ideal twin), on the terminal the full
     explanation (push, catch) that a headless run also gives."""
 
-    lvl = io.load(shipped_dir() / "apparatus_limit.toml")
+    lvl = level("apparatus_limit")
     s = Session(lvl)
     s.advance(2.0)  # no exception escapes
     assert s.paused and 0.5 < s.sim.time < 2.0
@@ -260,21 +260,21 @@ def test_collapsed_fold_pauses_and_keeps_the_reason(capsys) -> None:
     assert "[[carts]]" not in shown and "docs/" not in shown  # nothing a window cannot do
     err = capsys.readouterr().err
     assert "folding roller rolls backwards" in err and "lambda*v^2" in err
-    s.load_path(shipped_dir() / "ideal_limit.toml")
+    s.load_path(shipped.path("ideal_limit"))
     assert s.stopped is None and not s.paused  # M after the stop: the twin runs
     s.load_level(lvl)
     assert not s.paused
     s.toggle_pause()
-    s.load_path(shipped_dir() / "ideal_limit.toml")
+    s.load_path(shipped.path("ideal_limit"))
     assert s.paused  # a pause the user chose stays
     s.reset()
     assert s.stopped is None and s.sim.time == 0.0
 
 
-def test_apparatus_history_has_the_roller_speeds() -> None:
+def test_apparatus_history_has_the_roller_speeds(level) -> None:
     """The speed plot's pick-up and fold lines (twice each roller's speed) are in the
     history for a fold level, and absent (nan) for a feed level."""
-    lvl = io.load(shipped_dir() / "apparatus_special.toml")
+    lvl = level("apparatus_special")
     s = Session(lvl)
     s.advance(0.6)
     h = s.history.arrays()
@@ -289,8 +289,8 @@ def test_apparatus_history_has_the_roller_speeds() -> None:
     assert len(f.history.t) > 2 and np.isnan(f.history.arrays()["speed_in"]).all()
 
 
-def test_setting_link_length_by_hand_turns_the_accuracy_off():
-    lvl = io.load(shipped_dir() / "wide_low.toml")
+def test_setting_link_length_by_hand_turns_the_accuracy_off(level):
+    lvl = level("wide_low")
     assert lvl.sim.solver.accuracy > 0
     s = Session(lvl)
     r = s.set_field("chain.link_length", 0.03)
@@ -302,8 +302,8 @@ def test_setting_link_length_by_hand_turns_the_accuracy_off():
     assert again.sim.chain.link_length == 0.03
 
 
-def test_a_changed_level_is_saved_with_a_description_of_its_changes(tmp_path):
-    lvl = io.load(shipped_dir() / "wide_low.toml")
+def test_a_changed_level_is_saved_with_a_description_of_its_changes(level, tmp_path):
+    lvl = level("wide_low")
     s = Session(lvl)
     path = s.save("same", tmp_path)
     assert io.load(path).meta.description == lvl.meta.description  # unchanged: as it was
@@ -313,11 +313,11 @@ def test_a_changed_level_is_saved_with_a_description_of_its_changes(tmp_path):
     assert desc.endswith(lvl.meta.description)
 
 
-def test_a_stalled_chain_pauses_with_a_sentence_and_no_nonsense_readout() -> None:
+def test_a_stalled_chain_pauses_with_a_sentence_and_no_nonsense_readout(level) -> None:
     """A 30 g upper cart stalls apparatus_floor's chain once its starter lets go: the window
     pauses with the stall's sentence, and the readout says there is no fountain instead of
     fitting a catenary (Tbar_E -19.6) and scaling tensions by a vanishing lambda*v^2."""
-    lvl = io.load(shipped_dir() / "apparatus_floor.toml")
+    lvl = level("apparatus_floor")
     lvl.sim.carts[0].mass = 0.03
     s = Session(lvl)
     s.advance(12.0)
@@ -328,14 +328,13 @@ def test_a_stalled_chain_pauses_with_a_sentence_and_no_nonsense_readout() -> Non
 
 
 @pytest.mark.parametrize("t", [0.6, 3.0])
-def test_while_the_starter_runs_the_readout_names_it_and_reads_no_pull(t: float) -> None:
+def test_while_the_starter_runs_the_readout_names_it_and_reads_no_pull(level, t: float) -> None:
     """apparatus_fold_gripped from rest: while the starter sets the links' velocities the
     momentum balance reads its drive (a launch pull of -0.67 N at 1.1 s), so the readout
     names the starter and shows no pull; at 0.6 s the head flies at 1.87 m/s, slower than a
     fountain over the drop needs, and the readout names the starter, not a missing
     fountain."""
-    s = Session(io.load(shipped_dir()
-                        / "apparatus_fold_gripped.toml"))
+    s = Session(level("apparatus_fold_gripped"))
     s.advance(t)
     assert s.sim.apparatus.starting
     ro = s.readout()
@@ -343,7 +342,7 @@ def test_while_the_starter_runs_the_readout_names_it_and_reads_no_pull(t: float)
     assert math.isnan(ro.T0_bar) and math.isnan(ro.TE_bar)
 
 
-def test_window_keeps_a_fed_fountain_at_real_time():
+def test_window_keeps_a_fed_fountain_at_real_time(level):
     """Guard-rail: 30 m/s on classroom (3,400 links in flight, about 0.16x real time) is
     set to the fastest speed whose physics the error model's cost keeps within half of
     real time, with a message saying why and that level files accept it; a link length
@@ -351,15 +350,14 @@ def test_window_keeps_a_fed_fountain_at_real_time():
     per simulated second) may grow to 1.5 times its own cost."""
     from chainfountain.app import budget
 
-    root = shipped_dir()
-    s = Session(io.load(root / "classroom.toml"))
+    s = Session(level("classroom"))
     r = s.set_field("feed.speed", 30.0)
     assert r.ok and 8.0 < r.value < 30.0
     assert "too slow for the window" in r.message and "level files" in r.message
     assert budget.cost(s.level.sim)[1] <= budget.WINDOW_COST
     r = s.set_field("chain.link_length", 0.002)
     assert not r.ok and r.message.startswith("refused:") and "links in flight" in r.message
-    p = Session(io.load(root / "paper_tall.toml"))
+    p = Session(level("paper_tall"))
     shipped = budget.cost(p.level.sim)[1]
     assert shipped > budget.WINDOW_COST
     assert p.set_field("feed.speed", 6.0).ok and p.value("feed.speed") == 6.0
@@ -368,8 +366,8 @@ def test_window_keeps_a_fed_fountain_at_real_time():
     assert budget.cost(p.level.sim)[1] <= budget.ORIGIN_FACTOR * shipped
 
 
-def test_pure_numbers_show_no_unit():
-    s = Session(io.load(shipped_dir() / "classroom.toml"))
+def test_pure_numbers_show_no_unit(level):
+    s = Session(level("classroom"))
     r = s.set_field("chain.friction", 0.5)
     assert r.ok and r.message.startswith("friction = 0.5") and " 1 " not in r.message + " "
 
@@ -394,7 +392,7 @@ def test_a_level_that_cannot_be_opened_is_said_in_the_window() -> None:
     assert s.stopped is None and not s.paused
 
 
-def test_window_keeps_an_apparatus_at_real_time() -> None:
+def test_window_keeps_an_apparatus_at_real_time(level) -> None:
     """Guard-rail: a start speed of 30 m/s on apparatus_floor would put about 8,000 links
     in the solver (0.03x real time): the window refuses it, saying why and that level
     files accept it; 4 m/s (about 180 links) is taken. The estimate follows the machine's
@@ -404,12 +402,11 @@ def test_window_keeps_an_apparatus_at_real_time() -> None:
     from chainfountain.sim import Simulation
     from chainfountain.study.changes import laid_on_path
 
-    root = shipped_dir()
     for name in ("apparatus_floor", "apparatus_special", "apparatus_fold"):
-        lvl = laid_on_path(io.load(root / f"{name}.toml"))
+        lvl = laid_on_path(level(name))
         built = len(Simulation(lvl.sim).chain.links)
         assert budget.apparatus_links(lvl.sim) == pytest.approx(built, rel=0.1), name
-    s = Session(io.load(root / "apparatus_floor.toml"))
+    s = Session(level("apparatus_floor"))
     r = s.set_field("apparatus.speed", 30.0)
     assert not r.ok and r.message.startswith("refused:") and "links moving" in r.message
     assert "level files" in r.message and s.value("apparatus.speed") == pytest.approx(2.98)
@@ -435,14 +432,14 @@ def test_an_internal_error_in_a_step_is_said_plainly(monkeypatch, capsys) -> Non
     assert s.stopped is None
 
 
-def test_level_files_and_run_accept_what_the_window_refuses(tmp_path) -> None:
+def test_level_files_and_run_accept_what_the_window_refuses(level, tmp_path) -> None:
     """The guard-rails are the window's: a 30 m/s classroom, which the window refuses (about
     0.03x real time), loads as a level and runs headless."""
     import chainfountain
     from chainfountain.app import budget
     from chainfountain.study.changes import with_changes
 
-    lvl = io.load(shipped_dir() / "classroom.toml")
+    lvl = level("classroom")
     changes = {"feed.speed": 30.0, "solver.accuracy": 0.0}  # its own link length and step
     fast = with_changes(lvl, changes)
     assert budget.over_budget(fast.sim, lvl.sim) is not None
@@ -450,11 +447,11 @@ def test_level_files_and_run_accept_what_the_window_refuses(tmp_path) -> None:
     assert r.summary["ended_early"] is None and r.summary["duration_s"] >= 0.05 - 1e-9
 
 
-def test_a_run_that_stops_within_a_frame_steps_no_further(capsys) -> None:
+def test_a_run_that_stops_within_a_frame_steps_no_further(level, capsys) -> None:
     """A window frame asks for many physics steps; when the machine stops itself in one
     of them the frame ends there (it said why once, and the clock stays at the stop)."""
 
-    lvl = io.load(shipped_dir() / "apparatus_limit.toml")
+    lvl = level("apparatus_limit")
     s = Session(lvl)
     s.advance(0.9)
     assert s.stopped is None
@@ -469,7 +466,7 @@ def test_a_run_that_stops_within_a_frame_steps_no_further(capsys) -> None:
     assert s.sim.time == t_stop
 
 
-def test_floor_machine_readout_says_what_its_cart_selects() -> None:
+def test_floor_machine_readout_says_what_its_cart_selects(level) -> None:
     """The contact floor machine's readout gives, beside the measured speed, the speed its
     upper cart selects by this model's pick-up law and by the paper's laws, and follows a
     live cart change. The paper's figure is checked against its formula here:
@@ -479,7 +476,7 @@ def test_floor_machine_readout_says_what_its_cart_selects() -> None:
 
     from chainfountain.sim.apparatus.laws import floor_speeds
 
-    lvl = io.load(shipped_dir() / "apparatus_floor.toml")
+    lvl = level("apparatus_floor")
     s = Session(lvl)
 
     def paper_speed() -> float:

@@ -17,7 +17,7 @@ from chainfountain.app.draw import ABOUT_SECONDS, STOP_ROWS, status_rows  # noqa
 from chainfountain.app.scene_view import scene_bounds  # noqa: E402
 from chainfountain.app.session import Session, paused_message  # noqa: E402
 from chainfountain.app.window import App  # noqa: E402
-from chainfountain.level import io, library  # noqa: E402
+from chainfountain.level import io  # noqa: E402
 from chainfountain.sim.config import SimConfig  # noqa: E402
 
 
@@ -341,24 +341,24 @@ def _assert_reaction_plot(app: App) -> None:
         assert (abs(third - colour).sum(axis=2) < 30).sum() > 40, colour
 
 
-def test_open_arrangement_plots_the_plate_reaction(tmp_path, monkeypatch):
+def test_open_arrangement_plots_the_plate_reaction(level, tmp_path, monkeypatch):
     monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
-    app = App(Session(io.load(library.resolve("apparatus_open"))), offscreen=True)
+    app = App(Session(level("apparatus_open")), offscreen=True)
     try:
         for _ in range(40):  # 0.67 s: 16 samples at the window's 25 a second
             app.run_frame()
         _assert_reaction_plot(app)
     finally:
         app.finish()
-    s = Session(io.load(library.resolve("apparatus_special")))
+    s = Session(level("apparatus_special"))
     s.advance(0.05)
     assert len(s.history.t) > 0 and not np.isfinite(s.history.arrays()["reaction"]).any()
 
 
-def test_ideal_open_plots_the_plate_reaction_and_draws_the_chain_sliding_away(tmp_path,
+def test_ideal_open_plots_the_plate_reaction_and_draws_the_chain_sliding_away(level, tmp_path,
                                                                               monkeypatch):
     monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
-    lvl = io.load(library.resolve("ideal_open"))
+    lvl = level("ideal_open")
     lvl.sim.initial.mode, lvl.sim.feed.starter = "catenary", 0.0  # landed from the start
     app = App(Session(lvl), offscreen=True)
     try:
@@ -601,9 +601,10 @@ def test_the_level_says_what_to_watch_until_i_hides_it(app, tmp_path):
     assert not app.about_visible
 
 
-def test_the_scene_opens_below_the_card_and_takes_the_view_when_it_goes(tmp_path, monkeypatch):
+def test_the_scene_opens_below_the_card_and_takes_the_view_when_it_goes(level, tmp_path,
+                                                                        monkeypatch):
     monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
-    a = App(Session(io.load(library.resolve("beaker"))), size=(1280, 760), offscreen=True)
+    a = App(Session(level("beaker")), size=(1280, 760), offscreen=True)
     try:
         box = a.about_box()
         x0, y0, x1, y1 = scene_bounds(a.session.sim, a.session.readout(), a.camera.scale)

@@ -11,10 +11,11 @@ import sys
 import pytest
 
 import chainfountain
-from chainfountain.level import io, library
+from chainfountain.level import io
 from chainfountain.level.model import LevelError
 from chainfountain.study import run, with_changes
 from chainfountain.study.api import load
+from tests import shipped
 
 
 class _InProcess:
@@ -96,7 +97,7 @@ def test_a_rerun_reuses_exactly_the_points_that_would_run_the_same(tmp_path, cap
     point, an edited base level (gravity) runs every point again and gives other numbers,
     a grid over a field that was fixed gets its column; nothing is reused by its place."""
     sweep = _InProcess(capsys, monkeypatch, tmp_path)
-    base = (library.shipped_dir() / "wide_low.toml").read_text()
+    base = shipped.path("wide_low").read_text()
     (tmp_path / "mine.toml").write_text(base)
     (tmp_path / "s.toml").write_text(
         'base = "mine.toml"\nduration = 0.2\n[grid]\n"feed.speed" = [4.0, 4.5]\n')

@@ -5,13 +5,13 @@ from __future__ import annotations
 
 import pytest
 
-from chainfountain.level import io, library
 from chainfountain.level.model import LevelError
 from chainfountain.study import with_changes
+from tests import shipped
 
 
 def _beaker():
-    return io.load(library.resolve("beaker"))
+    return shipped.level("beaker")
 
 
 def test_shipped_beaker_loads():

@@ -9,9 +9,10 @@ import pytest
 from chainfountain.app import spans
 from chainfountain.app.controls import control_fields
 from chainfountain.level import io
-from chainfountain.level.library import shipped_dir, twin
+from chainfountain.level.library import twin
+from tests import shipped
 
-LEVELS = sorted(shipped_dir().glob("*.toml"))
+LEVELS = shipped.PATHS
 IDS = [p.stem for p in LEVELS]
 
 MAX_TITLE = 40

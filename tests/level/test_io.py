@@ -8,11 +8,11 @@ from pathlib import Path
 
 import pytest
 
-from chainfountain.level import io
-from chainfountain.level.library import shipped_dir
+from chainfountain.level import io, library
+from tests import shipped
 
 ROOT = Path(__file__).resolve().parents[2]
-LEVELS = sorted(shipped_dir().glob("*.toml"))
+LEVELS = shipped.PATHS
 
 
 def test_round_trip_exact(tmp_path):
@@ -125,7 +125,6 @@ def test_docs_levels_md_is_current():
 
 
 def test_level_name_resolves_even_if_a_folder_has_that_name(tmp_path, monkeypatch):
-    from chainfountain.level import library
 
     monkeypatch.chdir(tmp_path)
     (tmp_path / "classroom").mkdir()  # e.g. an output folder from an earlier run
@@ -152,7 +151,7 @@ def test_apparatus_bad_files_one_clear_line(tmp_path, key, new, field, shown, al
     """The apparatus lays its own chain, so ``[initial]`` settings would be silently
     ignored there: they are refused instead; ``fold_clearance`` and ``upper_guide = "joints"``
     only where they apply, the swing damper only in 'fold'."""
-    text = (shipped_dir() / "apparatus_special.toml").read_text()
+    text = shipped.path("apparatus_special").read_text()
     if key == "fold_clearance":  # the preset leaves it at its default, 0
         text = _replace_key(text, "plate_links", "plate_links = 20\nfold_clearance = 0.002")
     if key in ("plate", "upper_guide"):  # no treadmill: a contact plate may have none

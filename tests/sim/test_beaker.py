@@ -17,9 +17,9 @@ import numpy as np
 import pytest
 
 from chainfountain.headless import run_and_record
-from chainfountain.level import io, library
 from chainfountain.sim.world import Simulation
 from chainfountain.study import with_changes
+from tests import shipped
 
 G = 9.81
 SEEDS = (0, 1)
@@ -27,7 +27,7 @@ pytestmark = pytest.mark.xdist_group("beaker")  # one worker builds the module's
 
 
 def _beaker(**changes):
-    lv = io.load(library.resolve("beaker"))
+    lv = shipped.level("beaker")
     return with_changes(lv, changes) if changes else lv
 
 

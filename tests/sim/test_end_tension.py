@@ -2,13 +2,13 @@
 
 import pytest
 
-from chainfountain.level import io, library
 from chainfountain.sim import Recorder, Simulation
+from tests import shipped
 
 
 @pytest.fixture(scope="module")
 def run():
-    cfg = io.load(library.resolve("wide_low")).sim
+    cfg = shipped.level("wide_low").sim
     cfg.feed.end_tension = 0.2
     cfg.initial.mode = "catenary"
     sim = Simulation(cfg)
@@ -34,8 +34,8 @@ def test_end_tension_fountain_matches_theory(run):
     assert s.T0_bar == pytest.approx(ref.T0_bar, abs=0.03)
 
 
-def test_end_tension_is_live():
-    sim = Simulation(io.load(library.resolve("wide_low")).sim)
+def test_end_tension_is_live(level):
+    sim = Simulation(level("wide_low").sim)
     sim.set_param("feed.end_tension", 0.1)
     assert sim.reference.TE_bar == 0.1
     sim.advance(0.05)

@@ -13,11 +13,12 @@ from pathlib import Path
 
 import pytest
 
-from chainfountain.level import io, library
+from chainfountain.level import io
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.measure import Summary
+from tests import shipped
 
-FEED_LEVELS = [p for p in sorted(library.shipped_dir().glob("*.toml"))
+FEED_LEVELS = [p for p in shipped.PATHS
                if io.load(p).sim.kind == "feed" and io.load(p).sim.feed.drive == "motor"]
 """The motor-driven fed levels (the ideal floor machine selects its own speed:
 tests/sim/test_ideal_floor.py)."""

@@ -26,15 +26,16 @@ import numpy as np
 import pytest
 
 from chainfountain.headless import run_and_record
-from chainfountain.level import io, library
+from chainfountain.level import io
 from chainfountain.study import with_changes
 from chainfountain.theory import falling
+from tests import shipped
 
 G = 9.81
 
 
 def _level(name: str):
-    return io.load(library.resolve(name))
+    return shipped.level(name)
 
 
 @pytest.fixture(scope="module")

@@ -15,12 +15,12 @@ from __future__ import annotations
 
 import pytest
 
-from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import report
+from tests import shipped
 from tests.sim.apparatus.runs import load_on_path
 
-LEVEL = shipped_dir() / "apparatus_floor.toml"
+LEVEL = shipped.path("apparatus_floor")
 RUN, STEADY = 8.0, (4.0, 8.0)
 
 pytestmark = pytest.mark.xdist_group("apparatus_bearing_drag")

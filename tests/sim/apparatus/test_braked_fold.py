@@ -32,22 +32,20 @@ import math
 import pytest
 
 from chainfountain.errors import RunEnded
-from chainfountain.level import io
-from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus.laws import braked_fold_speed
 from chainfountain.sim.apparatus.tuning import CATCH_STOP
 from chainfountain.sim.apparatus_report import report
 from chainfountain.study.changes import laid_on_path, with_changes
+from tests import shipped
 
-LEVELS = shipped_dir()
 WINDOW = (2.0, 5.0)
 pytestmark = pytest.mark.xdist_group("apparatus_braked")
 
 
 def _speed(name: str, changes: dict) -> float:
     """Mean chain speed (m/s) over :data:`WINDOW` of preset ``name`` with ``changes``."""
-    level = laid_on_path(with_changes(io.load(LEVELS / f"{name}.toml"), changes))
+    level = laid_on_path(with_changes(shipped.level(name), changes))
     sim = Simulation(level.sim)
     rec = Recorder(sim, profiles=False)
     sim.advance(WINDOW[1])
@@ -55,30 +53,30 @@ def _speed(name: str, changes: dict) -> float:
 
 
 @pytest.mark.parametrize("name", ["apparatus_fold_gripped", "apparatus_special_gripped"])
-def test_the_speed_is_the_same_at_half_the_step(name: str) -> None:
-    dt = io.load(LEVELS / f"{name}.toml").sim.solver.dt
+def test_the_speed_is_the_same_at_half_the_step(level, name: str) -> None:
+    dt = level(name).sim.solver.dt
     v, v_half = _speed(name, {}), _speed(name, {"solver.dt": 0.5 * dt})
     assert v == pytest.approx(3.0, rel=0.02)  # built for 3 m/s
     assert v_half == pytest.approx(v, rel=0.01)
 
 
-def test_the_lower_cart_sets_the_speed() -> None:
+def test_the_lower_cart_sets_the_speed(level) -> None:
     name = "apparatus_fold_gripped"
-    base = io.load(LEVELS / f"{name}.toml").sim
+    base = level(name).sim
     m, cart = base.carts[1].mass, base.carts[1]
     dm = 0.005
     fast = _speed(name, {"carts[1].mass": m + dm})
     slow = _speed(name, {"carts[1].mass": m - dm})
     dF = dm * base.gravity * math.sin(cart.incline)
     paper = 4.0 * dF / base.apparatus.fold_brake  # 2*dF/c each way
-    lvl = with_changes(io.load(LEVELS / f"{name}.toml"), {"carts[1].mass": m + dm})
+    lvl = with_changes(level(name), {"carts[1].mass": m + dm})
     assert braked_fold_speed(lvl.sim) - braked_fold_speed(base) == pytest.approx(
         0.5 * paper, rel=1e-9)
     assert 0.5 <= (fast - slow) / paper <= 0.85
 
 
 def test_a_lost_catch_ends_the_run_in_one_sentence() -> None:
-    level = laid_on_path(with_changes(io.load(LEVELS / "apparatus_fold_gripped.toml"),
+    level = laid_on_path(with_changes(shipped.level("apparatus_fold_gripped"),
                                       {"carts[1].mass": 0.36}))
     sim = Simulation(level.sim)
     with pytest.raises(RunEnded) as err:

@@ -8,12 +8,9 @@ import math
 
 import pytest
 
-from chainfountain.level import io
-from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Simulation
 from chainfountain.sim.apparatus.parts import RollerUnit
-
-LEVELS = shipped_dir()
+from tests import shipped
 
 
 def _drive_force(unit: RollerUnit) -> float:
@@ -28,8 +25,8 @@ def _drive_force(unit: RollerUnit) -> float:
     return push * (b.x - a.x) / dist * unit.direction
 
 
-def test_a_cart_spring_pushes_with_the_cart_force_wherever_the_carriage_rolls() -> None:
-    sim = Simulation(io.load(LEVELS / "apparatus_special.toml").sim)
+def test_a_cart_spring_pushes_with_the_cart_force_wherever_the_carriage_rolls(level) -> None:
+    sim = Simulation(level("apparatus_special").sim)
     for unit in (sim.apparatus.upper, sim.apparatus.lower):
         f0 = unit.cart.mass * 9.81 * math.sin(unit.cart.incline)
         assert _drive_force(unit) == pytest.approx(f0, abs=1e-9)
@@ -38,8 +35,8 @@ def test_a_cart_spring_pushes_with_the_cart_force_wherever_the_carriage_rolls() 
         assert _drive_force(unit) == pytest.approx(f0, abs=5e-5)  # 0.01 g of cart
 
 
-def test_live_changes_reach_the_springs() -> None:
-    sim = Simulation(io.load(LEVELS / "apparatus_special.toml").sim)
+def test_live_changes_reach_the_springs(level) -> None:
+    sim = Simulation(level("apparatus_special").sim)
     app = sim.apparatus
     sim.set_param("carts[1].mass", 0.056)
     assert _drive_force(app.lower) == pytest.approx(0.056 * 9.81 * 0.5, abs=1e-9)
@@ -55,31 +52,31 @@ def test_the_fold_brake_acts_on_the_folding_roller_alone() -> None:
     and leaves the cart's force as it is."""
     from chainfountain.study.changes import with_changes
 
-    level = with_changes(io.load(LEVELS / "apparatus_special.toml"),
+    level = with_changes(shipped.level("apparatus_special"),
                          {"apparatus.bearing_drag": 0.002, "apparatus.fold_brake": 0.5})
     app = Simulation(level.sim).apparatus
     assert app.upper.drive.damping == 0.002
     assert app.lower.drive.damping == pytest.approx(0.502, abs=1e-15)
-    sim = Simulation(io.load(LEVELS / "apparatus_special.toml").sim)
+    sim = Simulation(shipped.level("apparatus_special").sim)
     sim.set_param("apparatus.fold_brake", 1.0)
     app = sim.apparatus
     assert app.upper.drive.damping == 0.0 and app.lower.drive.damping == 1.0
     assert _drive_force(app.lower) == pytest.approx(app.lower.force, abs=1e-9)
 
 
-def test_the_fold_brake_is_refused_where_there_is_no_folding_roller() -> None:
+def test_the_fold_brake_is_refused_where_there_is_no_folding_roller(level) -> None:
     from chainfountain.level.model import LevelError
     from chainfountain.study.changes import with_changes
 
     with pytest.raises(LevelError, match=r"apparatus\.fold_brake.*allowed: 0"):
-        with_changes(io.load(LEVELS / "apparatus_floor.toml"), {"apparatus.fold_brake": 1.0})
+        with_changes(level("apparatus_floor"), {"apparatus.fold_brake": 1.0})
 
 
-def test_the_swing_damper_axis_is_horizontal() -> None:
+def test_the_swing_damper_axis_is_horizontal(level) -> None:
     """The damper's axis runs from the upper carriage to an anchor 1 km behind the lower
     one, so it damps the carriages' relative speed along ``x`` (to 1 mrad), not the
     height between their tracks."""
-    sim = Simulation(io.load(LEVELS / "apparatus_special.toml").sim)
+    sim = Simulation(level("apparatus_special").sim)
     app = sim.apparatus
     s = app.swing_spring
     up, lo = app.upper.carriage, app.lower.carriage

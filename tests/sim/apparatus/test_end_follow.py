@@ -26,12 +26,12 @@ import pytest
 
 from chainfountain.errors import RunEnded
 from chainfountain.level import io
-from chainfountain.level.library import shipped_dir
 from chainfountain.level.model import LevelError
 from chainfountain.sim import Simulation
 from chainfountain.study.changes import laid_on_path, with_changes
+from tests import shipped
 
-LEVEL = shipped_dir() / "apparatus_fold_gripped.toml"
+LEVEL = shipped.path("apparatus_fold_gripped")
 SEEDS = (0, 1)
 CHANGE_AT, END = 2.0, 12.0
 DM = 0.008
@@ -105,13 +105,13 @@ def test_the_guide_moves_as_one_piece() -> None:
     assert [el.carrier for el in app.guide] == [carrier] * (len(app.guide) - 1) + [None]
 
 
-@pytest.mark.parametrize("level, changes", [
+@pytest.mark.parametrize("name, changes", [
     ("apparatus_floor", {"apparatus.end_follow": 1.0}),
     ("apparatus_fold_gripped", {"apparatus.plate": "contact", "apparatus.plate_links": 0,
       "apparatus.fold_roller": "contact", "apparatus.fold_roller_radius": 0.0,
       "apparatus.end_follow": 1.0}),
 ])
-def test_a_following_guide_needs_the_fold_s_joint_guide(level: str, changes: dict) -> None:
+def test_a_following_guide_needs_the_fold_s_joint_guide(level, name: str, changes: dict) -> None:
     with pytest.raises(LevelError) as err:
-        with_changes(laid_on_path(io.load(LEVEL.parent / f"{level}.toml")), changes)
+        with_changes(laid_on_path(level(name)), changes)
     assert "apparatus.end_follow" in str(err.value) and "\n" not in str(err.value)

@@ -36,14 +36,14 @@ import pytest
 
 from chainfountain.headless import run_level
 from chainfountain.level import io
-from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import report
 from chainfountain.sim.budget import EnergyBudget, rig_law_speed
 from chainfountain.sim.guide import PLAY
+from tests import shipped
 from tests.sim.apparatus.runs import load_on_path
 
-LEVEL = shipped_dir() / "apparatus_floor.toml"
+LEVEL = shipped.path("apparatus_floor")
 RUN = 6.0
 STEADY = (3.0, RUN)
 REST = (6.0, 16.0)

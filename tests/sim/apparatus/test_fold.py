@@ -31,10 +31,10 @@ from __future__ import annotations
 
 import pytest
 
-from chainfountain.level.library import shipped_dir
+from tests import shipped
 from tests.sim.apparatus.runs import load_real_geometry, run_fold
 
-LEVEL = shipped_dir() / "apparatus_fold.toml"
+LEVEL = shipped.path("apparatus_fold")
 CLEAN = (0.2, 2.5)
 RUN = 3.0
 WINDOWS = [(0.5 * i, 0.5 * i + 0.5) for i in range(1, 6)]

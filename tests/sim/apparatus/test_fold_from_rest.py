@@ -24,13 +24,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from chainfountain.level import io
-from chainfountain.level.library import shipped_dir
 from chainfountain.level.model import LevelError
 from chainfountain.sim import Simulation
 from chainfountain.study.changes import with_changes
+from tests import shipped
 
-LEVELS = shipped_dir()
 HELD_SPEED = {"apparatus_fold_gripped": 2.9838, "apparatus_special_gripped": 2.9656}
 """Mean speed (m/s) of each preset over 600 s from rest at its step (10-s windows after
 the first; docs/apparatus.md, "Starting the gripped folds from rest")."""
@@ -41,7 +39,7 @@ pytestmark = pytest.mark.xdist_group("apparatus_from_rest")
 @pytest.mark.parametrize("seed", [0, 1])
 @pytest.mark.parametrize("name", sorted(HELD_SPEED))
 def test_a_gripped_fold_forms_from_rest_and_holds(name: str, seed: int) -> None:
-    level = io.load(LEVELS / f"{name}.toml")
+    level = shipped.level(name)
     assert level.sim.initial.mode == "stub"  # as shipped: from rest
     sim = Simulation(level.sim)
     app = sim.apparatus
@@ -70,7 +68,7 @@ def test_a_gripped_fold_forms_from_rest_and_holds(name: str, seed: int) -> None:
     ({"initial.stub_length": 0.2}, "initial.stub_length"),
     ({"apparatus.starter": 0.0}, "apparatus.starter"),
 ])
-def test_a_fold_that_cannot_start_from_rest_is_refused(changes: dict, field: str) -> None:
+def test_a_fold_that_cannot_start_from_rest_is_refused(level, changes: dict, field: str) -> None:
     with pytest.raises(LevelError) as err:
-        with_changes(io.load(LEVELS / "apparatus_fold_gripped.toml"), changes)
+        with_changes(level("apparatus_fold_gripped"), changes)
     assert field in str(err.value) and "\n" not in str(err.value)

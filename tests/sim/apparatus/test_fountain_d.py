@@ -42,13 +42,12 @@ import re
 import pytest
 
 from chainfountain.level import io
-from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import report
 from chainfountain.theory import Fountain
+from tests import shipped
 from tests.sim.apparatus.runs import design_speed
 
-LEVELS = shipped_dir()
 L_D, H_D, H = 0.33, 0.28, 2.0  # the paper's fountain D: l = kappa*H, h = xi*H
 K_D = 0.377  # the paper's fountain D (Fig. "schematic_chain_fountain")
 RUN = 1.5
@@ -63,7 +62,7 @@ def _fountain_d(k: float | None) -> Fountain:
 
 
 def _check_preset(name: str, f: Fountain, depth: float) -> None:
-    cfg = io.load(LEVELS / f"{name}.toml").sim
+    cfg = shipped.level(name).sim
     a = cfg.apparatus
     assert a.variant == "floor" and a.end == "absorbing"  # free end at the floor
     assert a.drop == H and a.end_tension == 0.0
@@ -91,7 +90,7 @@ def test_preset_is_fountain_d_at_0377() -> None:
 
 
 def _run(name: str) -> dict:
-    sim = Simulation(io.load(LEVELS / f"{name}.toml").sim)
+    sim = Simulation(shipped.level(name).sim)
     rec = Recorder(sim, profiles=False)
     sim.advance(RUN)
     return report(sim, rec, *WINDOW)
@@ -133,7 +132,7 @@ def test_speed_is_fountain_d(d377_run) -> None:
      r"allowed: a speed > sqrt\(g\*\(H \+ floor_depth\)\) = 4\.778"),
 ])
 def test_floor_depth_bad_input_is_one_clear_error(tmp_path, old, new, field, allowed) -> None:
-    text = (LEVELS / "apparatus_fountain_d.toml").read_text()
+    text = shipped.path("apparatus_fountain_d").read_text()
     assert text.count(old) == 1
     p = tmp_path / "bad.toml"
     p.write_text(text.replace(old, new))

@@ -35,14 +35,14 @@ import pytest
 
 from chainfountain.errors import RunEnded
 from chainfountain.level import io
-from chainfountain.level.library import shipped_dir
 from chainfountain.level.model import LevelError
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus import gripped_putdown
 from chainfountain.sim.apparatus_report import report
 from chainfountain.study.changes import laid_on_path, with_changes
+from tests import shipped
 
-LEVEL = shipped_dir() / "apparatus_fold.toml"
+LEVEL = shipped.path("apparatus_fold")
 GRIPPED = {"apparatus.fold_roller": "gripped", "apparatus.fold_roller_radius": 0.1,
            "carts[0].mass": 0.019, "carts[1].mass": 0.002, "apparatus.plate_links": 0}
 SAMPLE = 0.002

@@ -29,13 +29,13 @@ import math
 import pytest
 
 from chainfountain.level import io
-from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus import FoldCollapsed
 from chainfountain.sim.apparatus_report import report
+from tests import shipped
 from tests.sim.apparatus.runs import DESIGN_RIG_2CM, design_pickup
 
-LEVEL = shipped_dir() / "apparatus_limit.toml"
+LEVEL = shipped.path("apparatus_limit")
 RUN = 2.0
 EARLY = (0.05, 0.5)
 """Window before the catch is lost (the roller rolls back from about 0.95 s)."""

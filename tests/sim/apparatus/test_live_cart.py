@@ -21,13 +21,13 @@ import numpy as np
 import pytest
 
 from chainfountain.errors import RunEnded
-from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Simulation
 from chainfountain.sim.apparatus.laws import FLOOR_KH_MAX, floor_runs_on, floor_speeds
 from chainfountain.sim.apparatus.stall_watch import ChainStalled
+from tests import shipped
 from tests.sim.apparatus.runs import load_on_path
 
-LEVEL = shipped_dir() / "apparatus_floor.toml"
+LEVEL = shipped.path("apparatus_floor")
 
 
 def heaviest_running_cart(cfg) -> float:

@@ -30,12 +30,12 @@ import numpy as np
 import pytest
 
 from chainfountain.level import io
-from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Simulation
 from chainfountain.sim.apparatus import FoldCollapsed
+from tests import shipped
 from tests.sim.apparatus.runs import load_undamped
 
-LEVEL = shipped_dir() / "apparatus_special.toml"
+LEVEL = shipped.path("apparatus_special")
 pytestmark = pytest.mark.xdist_group("apparatus_long_run")
 
 

@@ -36,14 +36,14 @@ import numpy as np
 import pytest
 
 from chainfountain.level import io
-from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import report
 from chainfountain.sim.budget import open_windows
+from tests import shipped
 from tests.sim.apparatus.runs import load_on_path
 
-LEVEL = shipped_dir() / "apparatus_open.toml"
-FLOOR = LEVEL.with_name("apparatus_floor.toml")
+LEVEL = shipped.path("apparatus_open")
+FLOOR = shipped.path("apparatus_floor")
 RUN = 2.2
 FLOOR_SPEED = 2.929
 """Measured speed of ``apparatus_floor`` with the channel's walls (same chain, cart and

@@ -7,11 +7,11 @@ from __future__ import annotations
 import pytest
 
 from chainfountain.level import io
-from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Simulation
+from tests import shipped
 from tests.sim.apparatus.runs import load_undamped
 
-LEVEL = shipped_dir() / "apparatus_special.toml"
+LEVEL = shipped.path("apparatus_special")
 
 
 def _resting(sim: Simulation) -> tuple[int, int]:

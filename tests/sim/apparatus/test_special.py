@@ -35,11 +35,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from chainfountain.level.library import shipped_dir
 from chainfountain.sim.apparatus_report import pivot_offset
+from tests import shipped
 from tests.sim.apparatus.runs import load_undamped, run_fold
 
-LEVEL = shipped_dir() / "apparatus_special.toml"
+LEVEL = shipped.path("apparatus_special")
 CLEAN = (0.2, 6.0)
 WINDOWS = [(0.5 * i, 0.5 * i + 0.5) for i in range(1, 12)]
 

@@ -19,13 +19,13 @@ from __future__ import annotations
 
 import pytest
 
-from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus_report import report
 from chainfountain.sim.budget import EnergyBudget, rig_law_speed
+from tests import shipped
 from tests.sim.apparatus.runs import load_on_path
 
-LEVEL = shipped_dir() / "apparatus_floor_heavy.toml"
+LEVEL = shipped.path("apparatus_floor_heavy")
 RUN = 5.0
 
 

@@ -28,14 +28,14 @@ import pymunk
 import pytest
 
 from chainfountain.level import io
-from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus import TableUsedUp
 from chainfountain.sim.apparatus_report import report
+from tests import shipped
 from tests.sim.apparatus.runs import load_on_path, load_real_geometry
 
-LEVEL = shipped_dir() / "apparatus_floor.toml"
-FOLD = LEVEL.with_name("apparatus_fold.toml")
+LEVEL = shipped.path("apparatus_floor")
+FOLD = shipped.path("apparatus_fold")
 RUN = 1.5
 FOLD_RUN = 2.5
 
