@@ -193,6 +193,7 @@ def test_the_rollers_turn_with_the_chain(tmp_path, monkeypatch) -> None:
         app.finish()
 
 
+@pytest.mark.slow
 def test_the_chain_is_drawn_over_the_papers_curve_and_stands_out(tmp_path, monkeypatch) -> None:
     """Where the chain lies on the paper's curve the class sees the chain: its pixels are
     the chain's colour (or its marks'), never the curve's; the curve is a thin dashed

@@ -157,7 +157,8 @@ def test_an_unwritable_out_folder_is_bad_input_before_running(tmp_path, quick_le
     assert "running" not in r.stderr  # refused before simulating
 
 
-@pytest.mark.parametrize("sig, status", [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
+@pytest.mark.parametrize("sig, status", [(signal.SIGINT, 130),
+                                         pytest.param(signal.SIGTERM, 143, marks=pytest.mark.slow)])
 def test_a_signal_leaves_complete_outputs_of_the_part_run(tmp_path, sig, status):
     """A real signal to a real `chainfountain run`: the part run is written completely."""
     out = tmp_path / "out"

@@ -22,7 +22,7 @@ def _cli(*args: str, cwd: Path, env: dict | None = None) -> subprocess.Completed
 SWEEP = 'base = "wide_low"\nduration = 0.2\n[grid]\n"feed.speed" = [4.0]\n'
 
 
-@pytest.mark.parametrize("bad", ["/proc/x", "afile/x"])
+@pytest.mark.parametrize("bad", [pytest.param("/proc/x", marks=pytest.mark.slow), "afile/x"])
 @pytest.mark.parametrize("args, flag", [
     (["converge", "wide_low", "--json", "{}.json"], "--json"),
     (["run", "wide_low", "--out", "{}"], "--out"),

@@ -31,7 +31,9 @@ def _beaker(**changes):
     return with_changes(lv, changes) if changes else lv
 
 
-@pytest.fixture(scope="module", params=SEEDS)
+# the first seed's run is in the fast tier (make check), the others only in the whole suite
+@pytest.fixture(scope="module",
+                params=[SEEDS[0], *(pytest.param(s, marks=pytest.mark.slow) for s in SEEDS[1:])])
 def run(request, tmp_path_factory):
     out = tmp_path_factory.mktemp(f"beaker{request.param}")
     # formed by about 4 s (steady since 3.1-3.5 s in 30-s runs): average the last 3 s

@@ -168,6 +168,7 @@ def test_settings_the_machine_cannot_run_are_refused(level, changes, field, word
         assert w in msg, msg
 
 
+@pytest.mark.slow
 def test_a_machine_held_back_too_hard_stops_with_one_sentence() -> None:
     """An upper cart of 0.6 N put on the special case (as the API allows; files and
     the window refuse it) slows the chain to a stop: the run ends with one sentence saying
@@ -200,6 +201,7 @@ def test_a_machine_cannot_start_from_a_stub_without_a_starter(level) -> None:
     assert str(exc.value).startswith("bad.toml: feed.starter")
 
 
+@pytest.mark.slow
 def test_the_starter_forms_the_fountain_and_hands_it_to_the_laws(level) -> None:
     """``ideal_limit`` as shipped: a starter motor fires the chain from a stub at 3.6 m/s
     until 5 s after it lands; then the machine runs on its laws and climbs to the speed

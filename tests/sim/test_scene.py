@@ -30,6 +30,7 @@ def test_hanging_chain_tension_is_the_weight_below() -> None:
     assert np.abs(sc.velocities()).max() < 0.01
 
 
+@pytest.mark.slow
 def test_chain_on_a_floor_presses_with_its_weight() -> None:
     n, L = 40, 0.01
     pts = np.column_stack((L * np.arange(n + 1), np.full(n + 1, 0.002)))

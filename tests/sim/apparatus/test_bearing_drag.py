@@ -37,6 +37,7 @@ def _ratio(drag: float) -> tuple[float, float]:
     return sel["v_measured"] / sel["v_rig_2cm"], sel["v_rig_2cm"]
 
 
+@pytest.mark.slow
 def test_drag_lowers_the_selected_speed_as_the_law_says() -> None:
     r0, v0 = _ratio(0.0)
     r1, v1 = _ratio(0.01)

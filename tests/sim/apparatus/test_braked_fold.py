@@ -40,7 +40,7 @@ from chainfountain.study.changes import laid_on_path, with_changes
 from tests import shipped
 
 WINDOW = (2.0, 5.0)
-pytestmark = pytest.mark.xdist_group("apparatus_braked")
+pytestmark = [pytest.mark.slow, pytest.mark.xdist_group("apparatus_braked")]
 
 
 def _speed(name: str, changes: dict) -> float:

@@ -58,6 +58,7 @@ def _run(seed: int, changes: dict) -> tuple[Simulation, list[tuple[float, float,
     return sim, rows, ""
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("seed", SEEDS)
 def test_the_end_guide_follows_a_heavier_upper_cart(seed: int) -> None:
     _, rows, ended = _run(seed, {})
@@ -67,6 +68,7 @@ def test_the_end_guide_follows_a_heavier_upper_cart(seed: int) -> None:
     assert abs(float(np.nanmean(late[:, 2]))) < 0.03  # landing back on the radius
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("seed", SEEDS)
 def test_a_fixed_end_guide_loses_the_same_fountain(seed: int) -> None:
     _, _, ended = _run(seed, {"apparatus.end_follow": 0.0})

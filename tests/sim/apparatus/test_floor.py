@@ -281,6 +281,7 @@ def test_joint_guide_adds_the_weight_of_the_rise_in_the_steady_window(run) -> No
     assert m["T0_bar"] - m["T_pickup_exit_bar"] == pytest.approx(m["xi2"] * m["kH"], abs=0.04)
 
 
+@pytest.mark.slow
 def test_too_heavy_a_cart_stops_the_chain_with_one_plain_sentence(tmp_path):
     """A 30 g upper cart holds the chain back harder than the fall pulls it on: once the
     starter lets go (about 4 s in) the chain slows and stops, and the run ends saying so
@@ -296,6 +297,7 @@ def test_too_heavy_a_cart_stops_the_chain_with_one_plain_sentence(tmp_path):
     assert "\n" not in ended["reason"]
 
 
+@pytest.mark.slow
 def test_forms_from_rest_and_selects_the_same_speed(run, from_rest) -> None:
     """The shipped level starts at rest; the starter runs the chain up, lets go 3 s after
     it lands (about 4 s in), and the machine alone then holds the speed it selects: over

@@ -36,6 +36,7 @@ END, WINDOW = 15.0, (10.0, 15.0)
 pytestmark = pytest.mark.xdist_group("apparatus_from_rest")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("seed", [0, 1])
 @pytest.mark.parametrize("name", sorted(HELD_SPEED))
 def test_a_gripped_fold_forms_from_rest_and_holds(name: str, seed: int) -> None:

@@ -61,6 +61,7 @@ def test_the_running_limit_is_where_the_law_says() -> None:
     assert 0.015 < m < 0.016  # the shipped heavy preset's 15 g is just inside
 
 
+@pytest.mark.slow
 def test_the_heaviest_running_cart_keeps_the_chain_running() -> None:
     cfg = load_on_path(LEVEL).sim
     m = heaviest_running_cart(cfg)
@@ -71,6 +72,7 @@ def test_the_heaviest_running_cart_keeps_the_chain_running() -> None:
     assert 0.9 * law < last < law
 
 
+@pytest.mark.slow
 def test_a_cart_beyond_it_stops_the_chain_saying_so() -> None:
     with pytest.raises(ChainStalled, match="make the upper cart lighter") as info:
         run_with_cart(0.030, 8.0)

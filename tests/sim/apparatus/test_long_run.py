@@ -36,7 +36,7 @@ from tests import shipped
 from tests.sim.apparatus.runs import load_undamped
 
 LEVEL = shipped.path("apparatus_special")
-pytestmark = pytest.mark.xdist_group("apparatus_long_run")
+pytestmark = [pytest.mark.slow, pytest.mark.xdist_group("apparatus_long_run")]
 
 
 UNDAMPED_RUN = 40.0

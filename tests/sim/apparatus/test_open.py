@@ -227,6 +227,7 @@ def budget_run():
     return sim, open_windows(sim, *BUDGET_WINDOWS)
 
 
+@pytest.mark.slow
 def test_open_budget_sweep_is_exact(budget_run) -> None:
     """The sweep closes through the lumped tail (its end link heavier), the turn's slide
     joints and the grooves: the free links' rotation residual stays at rounding."""
@@ -236,6 +237,7 @@ def test_open_budget_sweep_is_exact(budget_run) -> None:
         assert w.budget.steps > 300 and w.budget.exact
 
 
+@pytest.mark.slow
 def test_open_deceleration_is_the_measured_loss(budget_run) -> None:
     """``M dv/dt = F_drive - T_exit(v) - D/v`` with the rig law's exit tension and the
     budget's loss ``D`` gives the measured acceleration within three sigma in each window;
@@ -254,6 +256,7 @@ def test_open_deceleration_is_the_measured_loss(budget_run) -> None:
         A_FIT_SIGMA, 0.0065 * lam * late.v**2 / late.mass)
 
 
+@pytest.mark.slow
 def test_open_turn_takes_a_growing_loss(budget_run) -> None:
     """The turn after landing loses most, and more as the run goes on (8 starts: 0.040-0.046
     of 0.062-0.067, then 0.125-0.150 of 0.170-0.184 ``lambda v**3``): its loss lowers the

@@ -59,16 +59,19 @@ def rep(runs):
     return runs[0]
 
 
+@pytest.mark.slow
 def test_heavier_cart_selects_a_lower_speed(rep) -> None:
     sel = rep["speed_selection"]
     assert sel["v_measured"] < 2.93 - 0.1  # light preset: 2.93 m/s; measured 2.78
     assert sel["v_measured"] > sel["v_paper_p_half"] * 1.2  # paper p = 1/2: far too slow
 
 
+@pytest.mark.slow
 def test_heavy_cart_steady(rep) -> None:
     assert abs(rep["measured"]["speed_drift_per_s"]) <= 0.01
 
 
+@pytest.mark.slow
 @pytest.mark.xfail(strict=True, reason="measured 2.78 m/s against the rig law's 2.876 +- "
                    "0.014 (-3.4 %): the law assumes an ideal guide; the energy budget finds "
                    "0.014 lambda v^3 lost in the discrete guide, grooves and flight (next "
@@ -78,6 +81,7 @@ def test_heavy_cart_within_two_sigma_of_the_rig_law(rep) -> None:
     assert abs(sel["v_measured"] - sel["v_rig_2cm"]) <= 2.0 * sel["v_rig_2cm_sigma"]
 
 
+@pytest.mark.slow
 def test_heavy_cart_within_two_sigma_of_the_rig_law_with_the_losses(runs) -> None:
     """Over three starts the chain runs within 2 sigma of the rig law with the guide's
     measured loss (measured: 1.6-1.8 sigma below, the starts within 0.1 sigma of each
@@ -90,6 +94,7 @@ def test_heavy_cart_within_two_sigma_of_the_rig_law_with_the_losses(runs) -> Non
     assert abs(sum(off) / len(off)) <= 2.0, off
 
 
+@pytest.mark.slow
 def test_heavy_cart_free_end(runs) -> None:
     """A free end: ``Tbar_0 = k*H`` with ``Tbar_E`` near 0, as means over the three starts
     (3-5 s). ``Tbar_0 - Tbar_E`` falls short of ``k*H`` by about 0.03 (one start at a time

@@ -196,6 +196,7 @@ def fold_runs():
     return out
 
 
+@pytest.mark.slow
 def test_folding_roller_stays_in_place(fold_runs) -> None:
     sim, _, xs, _, _ = fold_runs[20]
     app = sim.apparatus
@@ -208,6 +209,7 @@ def test_folding_roller_stays_in_place(fold_runs) -> None:
     assert app.travel(1) / FOLD_RUN == pytest.approx(0.5 * app.speed, rel=0.05)
 
 
+@pytest.mark.slow
 def test_lower_strand_keeps_its_length(fold_runs) -> None:
     sim, _, _, strand, _ = fold_runs[20]
     _, _, _, strand_real, _ = fold_runs[0]
@@ -216,6 +218,7 @@ def test_lower_strand_keeps_its_length(fold_runs) -> None:
     assert strand_real[-1] - strand_real[0] > 0.4 * (FOLD_RUN - 0.1) * 3.0 / sim.chain.L
 
 
+@pytest.mark.slow
 def test_cuts_keep_the_lower_strand_joined(fold_runs) -> None:
     *_, gaps = fold_runs[20]
     *_, gaps_real = fold_runs[0]
@@ -225,6 +228,7 @@ def test_cuts_keep_the_lower_strand_joined(fold_runs) -> None:
     assert gaps.max() < 2.0 * gaps_real.max() + 1e-4
 
 
+@pytest.mark.slow
 def test_fold_treadmill_keeps_the_speed_and_kH(fold_runs) -> None:
     (_, tm, *_), (_, real, *_) = fold_runs[20], fold_runs[0]
     a, b = tm["measured"], real["measured"]
