@@ -88,9 +88,8 @@ def test_projector_mode_keeps_the_windows_size_whichever_way_it_starts(tmp_path,
 DEMOS = ("beaker", "apparatus_fold_gripped", "ideal_fold", "classroom")
 
 
-# the default level in the fast tier (make check), every demonstration in the whole suite
-@pytest.mark.parametrize("name", [DEMOS[0], *(pytest.param(n, marks=pytest.mark.slow)
-                                            for n in DEMOS[1:])])
+@pytest.mark.slow
+@pytest.mark.parametrize("name", DEMOS)
 def test_no_text_runs_out_of_its_box_at_any_size(level, name, tmp_path, monkeypatch) -> None:
     """Every text the window draws into a box (the readout, the card, the help, the
     picker, the scene's controls, the messages) stays inside it, in both views, at every

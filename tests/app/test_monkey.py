@@ -32,7 +32,8 @@ def _invariants(app: App) -> None:
         assert spec.clamp(v)[0] == v  # every value stays inside the schema
 
 
-@pytest.mark.parametrize("seed", [1234, pytest.param(99, marks=pytest.mark.slow)])
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", [1234, 99])
 def test_monkey(tmp_path, monkeypatch, seed):
     monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
     cfg = SimConfig()

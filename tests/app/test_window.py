@@ -491,7 +491,8 @@ def _press_every_key(app: App) -> tuple[list[str], set[str]]:
     return fails, pressed
 
 
-@pytest.mark.parametrize("end", [pygame.K_RETURN, pygame.K_ESCAPE], ids=["enter", "esc"])
+@pytest.mark.parametrize("end", [pytest.param(pygame.K_RETURN, id="enter", marks=pytest.mark.slow),
+                                 pytest.param(pygame.K_ESCAPE, id="esc")])
 def test_every_key_works_after_typing_in_any_field(app, end):
     """Enter or Esc in a field gives the keys back to the scene: after each field of the
     panel is typed into, every key of the help acts at once, and Esc (twice) quits."""
@@ -601,6 +602,7 @@ def test_the_level_says_what_to_watch_until_i_hides_it(app, tmp_path):
     assert not app.about_visible
 
 
+@pytest.mark.slow
 def test_the_scene_opens_below_the_card_and_takes_the_view_when_it_goes(level, tmp_path,
                                                                         monkeypatch):
     monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))

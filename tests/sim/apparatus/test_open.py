@@ -114,6 +114,7 @@ def mean(values) -> float:
     return float(np.mean(list(values)))
 
 
+@pytest.mark.slow
 def test_open_guide_catches_the_chain(runs) -> None:
     for r in runs:
         app = r.sim.apparatus
@@ -121,6 +122,7 @@ def test_open_guide_catches_the_chain(runs) -> None:
         assert app.tail_grooved >= 25 and app.tail_mass > 0.05  # the tail slides away (lumped)
 
 
+@pytest.mark.slow
 def test_open_end_tension_is_the_weight_in_the_turn(runs) -> None:
     """Over 0.1-0.8 s, while the turn loses little: measured 0.139 against 0.144 (one
     start; 8 starts differ by 0.006). Later the turn's growing loss lowers it (0.086 over
@@ -136,6 +138,7 @@ def test_open_end_tension_is_the_weight_in_the_turn(runs) -> None:
     assert mean(excess(r) for r in runs) == pytest.approx(0.0, abs=0.04)
 
 
+@pytest.mark.slow
 def test_open_fountain_carries_kH(runs) -> None:
     """``Tbar_0 - Tbar_E = k*H`` within 0.06 (as for the fold presets) over 0.1-2.2 s:
     one start reads 0.627 against 0.584; 8 starts give -0.035 ... +0.035 about ``k*H``,
@@ -145,6 +148,7 @@ def test_open_fountain_carries_kH(runs) -> None:
                                                                                  abs=0.06)
 
 
+@pytest.mark.slow
 def test_open_moving_mass_grows_at_half_the_chain_speed(runs) -> None:
     for r in runs:
         lam = r.sim.config.chain.linear_density
@@ -153,6 +157,7 @@ def test_open_moving_mass_grows_at_half_the_chain_speed(runs) -> None:
         assert rate == pytest.approx(0.5 * lam * v, rel=0.05)  # 8 starts: +0.2 ... +0.8 %
 
 
+@pytest.mark.slow
 def test_open_exit_tension_is_the_rig_laws(runs) -> None:
     """The pick-up's exit tension, read through the turn, the flight and the channel's
     corrected contacts from the tail's end, is the rig law's at the measured speed and
@@ -168,6 +173,7 @@ def test_open_exit_tension_is_the_rig_laws(runs) -> None:
     assert abs(mean(dev(r) for r in runs)) <= 2.0 * math.hypot(0.002, 0.0065)
 
 
+@pytest.mark.slow
 def test_open_plate_reaction_grows_with_the_tail(runs) -> None:
     """The paper's point of the arrangement: "the reaction force change is exactly known
     over time". The lower plate carries the chain moving away, so its reaction grows at
@@ -184,6 +190,7 @@ def test_open_plate_reaction_grows_with_the_tail(runs) -> None:
     assert mean(rates) == pytest.approx(1.0, rel=0.05)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("start, end", [(0.1, 0.8), (0.8, 1.5), (1.5, 2.2)])
 def test_open_plate_reaction_rate_in_each_third(runs, start, end) -> None:
     """The rate holds in each third of the run, also while the turn's loss grows: over 8
@@ -197,11 +204,13 @@ def test_open_plate_reaction_rate_in_each_third(runs, start, end) -> None:
     assert mean(rates) == pytest.approx(1.0, rel=0.05)
 
 
+@pytest.mark.slow
 def test_open_speed_is_the_floor_presets(runs) -> None:
     v = mean(r.report(0.1, RUN)["measured"]["v"] for r in runs)
     assert v == pytest.approx(FLOOR_SPEED, rel=0.02)  # 8 starts: -0.9 ... -0.04 %
 
 
+@pytest.mark.slow
 def test_open_speed_falls_where_the_loss_free_balance_says_it_rises(runs) -> None:
     """The loss-free momentum balance with the measured exit tension (the rig law's)
     predicts +1.1 %/s; the chain slows, -1.0 +- 0.2 %/s over 8 starts (-1.5 ... -0.1 %/s):
