@@ -5,7 +5,7 @@ is built: each dynamic body's velocity changes by about 1e-12 of itself (seeded 
 of 1 mm/s at rest), far below anything physical, as a different machine or library build
 would change the last bits of a trajectory. Running the suite with ``--perturb 1``,
 ``2``, ... and comparing the verdicts shows that no test depends on one trajectory of a
-chaotic run (``benchmarks/`` has no part in it; see the README, "Quick start").
+chaotic run (``benchmarks/`` has no part in it; see the README, "Tests").
 
 The ``level`` fixture finds a shipped level by name (``level("beaker")``), the one way
 the tests find a level (:mod:`tests.shipped`).
