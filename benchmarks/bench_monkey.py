@@ -10,7 +10,7 @@ extreme field values, resizes, level loads (L), saves (Ctrl+S), clips (G) and
 screenshots (F12), in chunks of 500 frames until the time is up, and prints frames,
 frames per second and the peak resident memory after each chunk. An exception ends
 the script with a traceback (exit status 1). The suite runs 600 frames of the same
-(``tests/app/test_app_monkey.py``).
+(``tests/app/test_monkey.py``).
 """
 
 from __future__ import annotations

@@ -81,7 +81,7 @@ def cart_step(seed: int) -> dict[str, float]:
 
 def open_run(seed: int) -> dict[str, float]:
     """The open arrangement over 2.2 s, window 0.1-2.2 s
-    (tests/apparatus/test_apparatus_open.py)."""
+    (tests/sim/apparatus/test_open.py)."""
     from chainfountain.sim import Recorder
     from chainfountain.sim.apparatus_report import report
 

@@ -5,14 +5,22 @@ is built: each dynamic body's velocity changes by about 1e-12 of itself (seeded 
 of 1 mm/s at rest), far below anything physical, as a different machine or library build
 would change the last bits of a trajectory. Running the suite with ``--perturb 1``,
 ``2``, ... and comparing the verdicts shows that no test depends on one trajectory of a
-chaotic run (``benchmarks/`` has no part in it; see the README, "Quick start").
+chaotic run (``benchmarks/`` has no part in it; see the README, "Tests").
+
+The ``level`` fixture finds a shipped level by name (``level("beaker")``), the one way
+the tests find a level (:mod:`tests.shipped`).
 """
 
 from __future__ import annotations
 
 import zlib
+from collections.abc import Callable
+from typing import TYPE_CHECKING
 
 import pytest
+
+if TYPE_CHECKING:
+    from chainfountain.level.model import Level
 
 
 def pytest_addoption(parser: pytest.Parser) -> None:
@@ -48,3 +56,12 @@ def _perturb_starts(request: pytest.FixtureRequest):
         mp.setattr(Simulation, "_build", nudged)
         mp.setattr(SceneSimulation, "__init__", nudged_scene)
         yield
+
+
+@pytest.fixture(scope="session")
+def level() -> Callable[[str], Level]:
+    """``level("beaker")``: the shipped level of that name, parsed afresh
+    (:func:`tests.shipped.level`; session-scoped, so module-scoped runs can take it)."""
+    from tests import shipped
+
+    return shipped.level

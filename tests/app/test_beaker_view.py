@@ -12,12 +12,13 @@ from chainfountain import cli  # noqa: E402
 from chainfountain.app import cost as budget  # noqa: E402
 from chainfountain.app.readout import Readout  # noqa: E402
 from chainfountain.app.readout_text import readout_rows  # noqa: E402
-from chainfountain.level import io, library  # noqa: E402
+from chainfountain.level import library  # noqa: E402
 from chainfountain.sim.world import Simulation  # noqa: E402
+from tests import shipped
 
 
 def _beaker():
-    return io.load(library.resolve("beaker"))
+    return shipped.level("beaker")
 
 
 def test_the_default_level_is_the_beaker():
@@ -64,11 +65,11 @@ def test_offscreen_window_draws_the_beaker(tmp_path, monkeypatch):
     assert shot.stat().st_size > 10_000
 
 
-def test_the_bend_limit_has_a_slider_in_the_beaker_only():
+def test_the_bend_limit_has_a_slider_in_the_beaker_only(level):
     from chainfountain.app.controls import control_fields
 
     def paths(name):
-        return {f.path for f in control_fields(io.load(library.resolve(name)).sim)}
+        return {f.path for f in control_fields(level(name).sim)}
 
     assert {"beaker.drop", "beaker.pile_depth", "chain.bend_limit"} <= paths("beaker")
     for name in ("classroom", "ideal_fold", "apparatus_floor"):

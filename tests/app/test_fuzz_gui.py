@@ -20,8 +20,6 @@ from __future__ import annotations
 import math
 import os
 
-from chainfountain.level.library import shipped_dir
-
 os.environ["SDL_VIDEODRIVER"] = "dummy"
 os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
 
@@ -30,9 +28,7 @@ import pytest  # noqa: E402
 from chainfountain.app.controls import FieldSpec  # noqa: E402
 from chainfountain.app.session import Session  # noqa: E402
 from chainfountain.app.window import App  # noqa: E402
-from chainfountain.level import io  # noqa: E402
-
-LEVELS = shipped_dir()
+from tests import shipped
 
 NUMBERS = [math.nan, math.inf, -math.inf, 1e308, -1e308, 0.0, -0.0, -1.0, -1e-9, 5e-324,
            1e-300, 1e9]
@@ -66,7 +62,7 @@ def in_range(spec: FieldSpec, v: float) -> bool:
 def app(request, tmp_path, monkeypatch):
     monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
     monkeypatch.setenv("SDL_VIDEODRIVER", "dummy")
-    a = App(Session(io.load(LEVELS / f"{request.param}.toml")), size=(1280, 760),
+    a = App(Session(shipped.level(request.param)), size=(1280, 760),
             offscreen=True)
     yield a
     a.finish()

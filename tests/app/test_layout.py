@@ -15,7 +15,7 @@ import pytest  # noqa: E402
 from chainfountain.app import layout, text  # noqa: E402
 from chainfountain.app.session import Session  # noqa: E402
 from chainfountain.app.window import App  # noqa: E402
-from chainfountain.level import io, library  # noqa: E402
+from tests import shipped
 
 SIZES = ((720, 540), (900, 600), (1280, 760), (1920, 1080), (800, 1100), (1080, 1920))
 """The smallest supported window, a small laptop's, the default, a projector's, and two
@@ -53,7 +53,7 @@ def test_text_grows_with_the_window_and_more_in_projector_mode() -> None:
 @pytest.fixture
 def beaker_app(tmp_path, monkeypatch):
     monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
-    a = App(Session(io.load(library.resolve("beaker"))), size=(1280, 760), offscreen=True)
+    a = App(Session(shipped.level("beaker")), size=(1280, 760), offscreen=True)
     yield a
     a.finish()
 
@@ -63,7 +63,7 @@ def test_projector_mode_keeps_the_windows_size_whichever_way_it_starts(tmp_path,
     """P and ``--projector`` give the same text scale and layout, and the window keeps its
     size either way (leaving P does not snap it back to another size)."""
     monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
-    level = io.load(library.resolve("ideal_fold"))
+    level = shipped.level("ideal_fold")
     a = App(Session(level), size=(1600, 900), offscreen=True, projector=True)
     try:
         started = (text.text_scale(), a.scene_rect.copy(), a.size)
@@ -88,14 +88,15 @@ def test_projector_mode_keeps_the_windows_size_whichever_way_it_starts(tmp_path,
 DEMOS = ("beaker", "apparatus_fold_gripped", "ideal_fold", "classroom")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", DEMOS)
-def test_no_text_runs_out_of_its_box_at_any_size(name, tmp_path, monkeypatch) -> None:
+def test_no_text_runs_out_of_its_box_at_any_size(level, name, tmp_path, monkeypatch) -> None:
     """Every text the window draws into a box (the readout, the card, the help, the
     picker, the scene's controls, the messages) stays inside it, in both views, at every
     supported size, with and without projector mode."""
     monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
     monkeypatch.setattr(text, "OVERFLOWS", [])
-    a = App(Session(io.load(library.resolve(name))), size=(1280, 760), offscreen=True)
+    a = App(Session(level(name)), size=(1280, 760), offscreen=True)
     try:
         for _ in range(90):
             a.run_frame()

@@ -20,8 +20,9 @@ from chainfountain.app.labels import LabelLayout, Request  # noqa: E402
 from chainfountain.app.machine_view import MachineView, ideal_parts  # noqa: E402
 from chainfountain.app.session import Session  # noqa: E402
 from chainfountain.app.window import App  # noqa: E402
-from chainfountain.level import io, library  # noqa: E402
+from chainfountain.level import io  # noqa: E402
 from chainfountain.sim.world import Simulation  # noqa: E402
+from tests import shipped
 
 pygame.font.init()
 
@@ -37,7 +38,7 @@ def test_the_marks_never_strobe_on_any_shipped_level() -> None:
     """At the window's lowest frame rate a mark moves at most a third of the marks'
     spacing in a frame (a mark that jumps more than half of it is seen moving backwards),
     and there are at least ten links between two marks."""
-    for path in library.shipped_dir().glob("*.toml"):
+    for path in shipped.PATHS:
         level = io.load(path)
         if level.sim.kind == "scene":
             continue
@@ -50,7 +51,7 @@ def test_the_marks_never_strobe_on_any_shipped_level() -> None:
 def test_the_marks_travel_with_the_links() -> None:
     """A link keeps its number while it exists, whatever enters or leaves the chain, so a
     marked link stays marked as it moves from the guide to the floor."""
-    level = io.load(library.resolve("wide_low"))
+    level = shipped.level("wide_low")
     sim = Simulation(level.sim)
     serials = chain_view.LinkSerials()
     sim.advance(0.5)
@@ -68,7 +69,7 @@ def test_the_marks_travel_with_the_links() -> None:
 
 def _app(tmp_path, monkeypatch, name: str, size=(1920, 1080), projector=False) -> App:
     monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
-    return App(Session(io.load(library.resolve(name))), size=size, offscreen=True,
+    return App(Session(shipped.level(name)), size=size, offscreen=True,
                projector=projector)
 
 
@@ -87,7 +88,7 @@ def _assert_labels_clear(app: App, where: str) -> None:
         assert r.collidelist(app.timebar.keep_clear()) < 0, (where, placed[i].key)
 
 
-MACHINES = sorted(p.stem for p in library.shipped_dir().glob("*.toml")
+MACHINES = sorted(p.stem for p in shipped.PATHS
                   if p.stem.startswith(("apparatus_", "ideal_")) or p.stem == "beaker")
 
 
@@ -146,13 +147,13 @@ def test_every_slider_of_an_ideal_machine_moves_something_drawn(tmp_path, monkey
     geometry: the upper table sits ``xi2*H`` below the start and the lower table ``xi3*H``
     above the end, so each offset's slider moves its table; each cart's slider changes
     what the cart says and how big it is drawn."""
-    level = io.load(library.resolve("ideal_fold"))
+    level = shipped.level("ideal_fold")
     sim = Simulation(level.sim)
     base = ideal_parts(sim)
     H = level.sim.feed.drop
     assert base.upper.table[0][1] == pytest.approx(-level.sim.feed.xi2 * H, abs=0.08)
     for path, attr in (("xi2", "upper"), ("xi3", "lower")):
-        moved = io.load(library.resolve("ideal_fold"))
+        moved = shipped.level("ideal_fold")
         setattr(moved.sim.feed, path, getattr(moved.sim.feed, path) + 0.1)
         parts = ideal_parts(Simulation(moved.sim))
         dy = getattr(parts, attr).table[0][1] - getattr(base, attr).table[0][1]
@@ -192,6 +193,7 @@ def test_the_rollers_turn_with_the_chain(tmp_path, monkeypatch) -> None:
         app.finish()
 
 
+@pytest.mark.slow
 def test_the_chain_is_drawn_over_the_papers_curve_and_stands_out(tmp_path, monkeypatch) -> None:
     """Where the chain lies on the paper's curve the class sees the chain: its pixels are
     the chain's colour (or its marks'), never the curve's; the curve is a thin dashed
@@ -218,7 +220,7 @@ def test_the_chain_is_drawn_over_the_papers_curve_and_stands_out(tmp_path, monke
 def test_the_beakers_pile_is_drawn_as_chain(tmp_path, monkeypatch) -> None:
     """The part of the pile the solver does not hold is drawn as rows of links in the pot
     (chain-coloured pixels below its plate)."""
-    level = io.load(library.resolve("beaker"))
+    level = shipped.level("beaker")
     sim = Simulation(level.sim)
     surf = pygame.Surface((800, 800))
     cam = Camera(pygame.Rect(0, 0, 800, 800), scale=900.0, cx=-0.1, cy=-0.1)

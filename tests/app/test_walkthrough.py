@@ -26,7 +26,8 @@ import pytest  # noqa: E402
 from chainfountain.app import chain_view, text  # noqa: E402
 from chainfountain.app.session import Session  # noqa: E402
 from chainfountain.app.window import App  # noqa: E402
-from chainfountain.level import io, library  # noqa: E402
+from chainfountain.level import library  # noqa: E402
+from tests import shipped
 
 RESEARCHER = re.compile(r"lambda|Tbar|\bxi[23]\b|links \d+ free|N\*s/m|\[live\]|\[rebuild\]|"
                         r"docs/|\.md\b|real-time factor")
@@ -68,7 +69,7 @@ def teacher(tmp_path, monkeypatch):
     monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
     monkeypatch.setattr(text, "SEEN", set())
     monkeypatch.setattr(text, "OVERFLOWS", [])
-    app = App(Session(library.default_level(), library.resolve("beaker")),
+    app = App(Session(library.default_level(), shipped.path("beaker")),
               size=(1920, 1080), offscreen=True)
     yield app
     app.finish()
@@ -175,11 +176,11 @@ def test_a_teacher_prepares_a_demo(teacher, tmp_path) -> None:
     assert not app.running
 
 
-def test_the_picker_takes_every_key_while_it_is_open(tmp_path, monkeypatch) -> None:
+def test_the_picker_takes_every_key_while_it_is_open(level, tmp_path, monkeypatch) -> None:
     """Up/Down choose (headings skipped), Esc closes without opening, and no key reaches
     the scene behind it."""
     monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
-    app = App(Session(io.load(library.resolve("classroom"))), size=(1280, 760),
+    app = App(Session(level("classroom")), size=(1280, 760),
               offscreen=True)
     try:
         key(app, pygame.K_l)
@@ -204,13 +205,14 @@ def test_the_picker_takes_every_key_while_it_is_open(tmp_path, monkeypatch) -> N
         app.finish()
 
 
-def test_the_theory_is_on_where_the_paper_predicts_the_fountain(tmp_path, monkeypatch) -> None:
+def test_the_theory_is_on_where_the_paper_predicts_the_fountain(level, tmp_path,
+                                                                monkeypatch) -> None:
     """The paper's curve is shown over the machines and fed fountains, not over the
     beaker's chain (its fountain is the chain's own; T shows the fit)."""
     monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
     for name, shown in (("beaker", False), ("ideal_fold", True), ("classroom", True),
                         ("apparatus_special_gripped", True)):
-        app = App(Session(io.load(library.resolve(name))), size=(900, 600), offscreen=True)
+        app = App(Session(level(name)), size=(900, 600), offscreen=True)
         try:
             assert app.show_theory is shown, name
         finally:

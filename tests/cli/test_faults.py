@@ -18,11 +18,9 @@ import pytest
 from chainfountain import atomic, headless
 from chainfountain.headless import exit_status, run_level
 from chainfountain.level import io, library
-from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Simulation
 from chainfountain.sim.watchdog import CHECK_INTERVAL, Diverged
-
-LEVELS = shipped_dir()
+from tests import shipped
 
 
 def _cli(*args: str, **kw) -> subprocess.CompletedProcess:
@@ -64,7 +62,7 @@ def _diverging_level(tmp_path: Path) -> Path:
     machine can do anything else (measured: at 0.040-0.058 s from four nudged starts,
     after the first 10-ms sample; at 0.1 N*m/rad it does not diverge, at 1 N*m/rad it does before
     any sample)."""
-    text = (LEVELS / "apparatus_floor.toml").read_text()
+    text = shipped.path("apparatus_floor").read_text()
     text = text.replace('mode = "stub"', 'mode = "catenary"').replace("starter = 3.0\n", "")
     text = text.replace("bending_stiffness = 0.0", "bending_stiffness = 0.25")
     assert "bending_stiffness = 0.25" in text and 'mode = "catenary"' in text
@@ -159,7 +157,8 @@ def test_an_unwritable_out_folder_is_bad_input_before_running(tmp_path, quick_le
     assert "running" not in r.stderr  # refused before simulating
 
 
-@pytest.mark.parametrize("sig, status", [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
+@pytest.mark.parametrize("sig, status", [(signal.SIGINT, 130),
+                                         pytest.param(signal.SIGTERM, 143, marks=pytest.mark.slow)])
 def test_a_signal_leaves_complete_outputs_of_the_part_run(tmp_path, sig, status):
     """A real signal to a real `chainfountain run`: the part run is written completely."""
     out = tmp_path / "out"
@@ -182,7 +181,7 @@ def test_a_signal_leaves_complete_outputs_of_the_part_run(tmp_path, sig, status)
 
 
 def test_library_resolves_every_shipped_level():
-    for p in sorted(LEVELS.glob("*.toml")):
+    for p in shipped.PATHS:
         assert library.resolve(p.stem) is not None
 
 

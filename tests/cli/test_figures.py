@@ -21,6 +21,7 @@ def out(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, list[Path]]:
     return d, figures.main(d, progress=False, dpi=60)
 
 
+@pytest.mark.slow
 def test_main_writes_all(out: tuple[Path, list[Path]]) -> None:
     d, written = out
     names = set(figures.FIGURES)
@@ -37,6 +38,7 @@ def test_main_writes_all(out: tuple[Path, list[Path]]) -> None:
         assert (d / f"{n}.txt").read_text().startswith(f"Fig. {n}")
 
 
+@pytest.mark.slow
 def test_captions_carry_numbers(out: tuple[Path, list[Path]]) -> None:
     d, _ = out
     assert "44.20" in (d / "sol.txt").read_text()
@@ -45,6 +47,7 @@ def test_captions_carry_numbers(out: tuple[Path, list[Path]]) -> None:
     assert "0.4301" in (d / "force_ranges.txt").read_text()
 
 
+@pytest.mark.slow
 def test_files_readable_by_others(out: tuple[Path, list[Path]]) -> None:
     d, written = out
     umask = os.umask(0)
@@ -113,6 +116,7 @@ def test_sim_vs_theory_hook(tmp_path: Path) -> None:
         fig_sim_vs_theory(sx, sy[:-1], tx, ty, Ty, Tb, f.q, f.k)
 
 
+@pytest.mark.slow
 def test_sim_vs_theory_states_its_agreement_with_the_paper(
         out: tuple[Path, list[Path]]) -> None:
     """The figure runs ``paper_tall`` as it ships until it is steady and says so; what its

@@ -139,7 +139,7 @@ def test_design_out(tmp_path, blocked, capsys):
     assert status == 0 and io.load(tmp_path / "d.toml").sim.feed.speed == pytest.approx(5.0)
 
 
-@pytest.mark.parametrize("flag", ["--duration", "--seed"])
+@pytest.mark.parametrize("flag", [pytest.param("--duration", marks=pytest.mark.slow), "--seed"])
 def test_run_flags(flag, level_file, tmp_path, capsys):
     base = ["run", level_file, "--quiet", "--out", str(tmp_path / "o")]
     if flag != "--duration":

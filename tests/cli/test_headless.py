@@ -9,7 +9,7 @@ import pytest
 
 from chainfountain.headless import run_level
 from chainfountain.level import io
-from chainfountain.level.library import shipped_dir
+from tests import shipped
 
 KEYS = ["level", "duration_s", "steps", "links", "wall_s", "realtime_factor", "steady_since_s",
         "v", "speed_cv", "max_stretch", "vertex_x", "h", "l", "H", "q", "T0_bar", "TE_bar",
@@ -73,7 +73,7 @@ def test_cli_run_and_bad_flags(tmp_path, quick_level):
     assert r.returncode == 2 and "no such file" in r.stderr and "Traceback" not in r.stderr
 
 
-def test_a_seed_nudges_an_apparatus_start_and_repeats_it() -> None:
+def test_a_seed_nudges_an_apparatus_start_and_repeats_it(level) -> None:
     """``initial.seed`` above 0 (``run --seed``, a sweep's ``seeds``) nudges an apparatus's
     start by 1e-12 as :meth:`Simulation.nudge` does: another run of the chaotic machine,
     the same one for the same seed; 0 leaves the level's own start."""
@@ -81,11 +81,9 @@ def test_a_seed_nudges_an_apparatus_start_and_repeats_it() -> None:
 
     import numpy as np
 
-    from chainfountain.level import io as level_io
     from chainfountain.sim import Simulation
 
-    base = level_io.load(shipped_dir()
-                         / "apparatus_special.toml").sim
+    base = level("apparatus_special").sim
 
     def velocities(seed: int, nudge: int | None = None) -> np.ndarray:
         cfg = dataclasses.replace(base, initial=dataclasses.replace(base.initial, seed=seed))
@@ -101,45 +99,39 @@ def test_a_seed_nudges_an_apparatus_start_and_repeats_it() -> None:
     assert 0 < d.max() < 1e-10 * (np.abs(plain).max() + 1.0)
 
 
-def test_default_duration_of_a_table_sized_apparatus_is_its_own() -> None:
+def test_default_duration_of_a_table_sized_apparatus_is_its_own(level) -> None:
     from chainfountain.headless import DEFAULT_DURATION, FORMING_DURATION, default_duration
-    from chainfountain.level import io as level_io
 
-    levels = shipped_dir()
-    fold = level_io.load(levels / "apparatus_limit.toml")
+    fold = level("apparatus_limit")
     assert fold.sim.apparatus.plate_links == 0
     assert default_duration(fold) == fold.sim.apparatus.duration  # the table is sized for it
-    floor = level_io.load(levels / "apparatus_floor.toml")  # treadmill, from rest: forms
+    floor = level("apparatus_floor")  # treadmill, from rest: forms
     assert floor.sim.initial.mode == "stub" and default_duration(floor) == FORMING_DURATION
-    special = level_io.load(levels / "apparatus_special.toml")  # treadmill, on its path
+    special = level("apparatus_special")  # treadmill, on its path
     assert special.sim.apparatus.plate_links and default_duration(special) == DEFAULT_DURATION
 
 
-def test_demo_fed_levels_form_from_a_stub_and_run_long_enough_to_be_averaged() -> None:
+def test_demo_fed_levels_form_from_a_stub_and_run_long_enough_to_be_averaged(level) -> None:
     """The ordinary fed levels start from rest on a stub and form (steady after 4-12 s,
     research/long_runs.py); a headless run of them lasts long enough to average the
     formed fountain over the level's window."""
     from chainfountain.headless import FORMING_DURATION, default_duration
-    from chainfountain.level import io as level_io
 
-    levels = shipped_dir()
     for name in ("classroom", "paper_tall", "paper_tall_fine", "wide_low"):
-        lvl = level_io.load(levels / f"{name}.toml")
+        lvl = level(name)
         assert lvl.sim.initial.mode == "stub", name
         assert default_duration(lvl) == FORMING_DURATION
         assert FORMING_DURATION >= 12.5 + 2 * lvl.sim.recording.window
 
 
-def test_ideal_machines_from_a_stub_run_long_enough_to_settle() -> None:
+def test_ideal_machines_from_a_stub_run_long_enough_to_settle(level) -> None:
     """The ideal presets start from a stub with a 5-s starter and settle on their laws'
     speed 10-15 s after it hands over: their headless run is long enough for that and a
     window."""
     from chainfountain.headless import MACHINE_FORMING_DURATION, default_duration
-    from chainfountain.level import io as level_io
 
-    levels = shipped_dir()
     for name in ("ideal_floor", "ideal_fold", "ideal_special", "ideal_limit", "ideal_open"):
-        lvl = level_io.load(levels / f"{name}.toml")
+        lvl = level(name)
         assert lvl.sim.initial.mode == "stub" and lvl.sim.feed.starter > 0, name
         assert default_duration(lvl) == MACHINE_FORMING_DURATION
         assert MACHINE_FORMING_DURATION >= 2 + lvl.sim.feed.starter + 15 + \
@@ -173,13 +165,12 @@ def test_run_that_ends_early_writes_its_part_and_exits_3(tmp_path):
     assert " ".join(ln.strip() for ln in out[i:]).count("folding roller rolls backwards") == 1
 
 
-def test_open_arrangement_writes_its_reaction(tmp_path):
+def test_open_arrangement_writes_its_reaction(level, tmp_path):
     """The 'open' preset: apparatus.csv carries the lower plate's reaction per sample, it
     grows, reaction.png draws it, and summary.json and the terminal list both files."""
     from chainfountain.headless import describe_outputs
-    from chainfountain.level import library
 
-    path = run_level(io.load(library.resolve("apparatus_open")), tmp_path, 0.6,
+    path = run_level(level("apparatus_open"), tmp_path, 0.6,
                      progress=False)
     s = json.loads(path.read_text())
     # a short run is not "steady" because its last samples settle: it is averaged whole
@@ -211,12 +202,11 @@ def test_progress_lines_when_not_a_terminal(tmp_path, quick_level, capsys, monke
 
 
 @pytest.mark.slow
-def test_a_fountain_formed_from_its_stub_is_steady_from_when_it_formed(tmp_path):
+def test_a_fountain_formed_from_its_stub_is_steady_from_when_it_formed(level, tmp_path):
     """wide_low forms from its stub in about 4 s (research/long_runs.py): its default run
     reports it steady from then and averages the formed fountain, not the whole run."""
-    from chainfountain.level import library
 
-    lvl = io.load(library.resolve("wide_low"))
+    lvl = level("wide_low")
     s = json.loads(run_level(lvl, tmp_path, progress=False).read_text())
     assert s["duration_s"] == pytest.approx(20.0)
     assert s["steady"] and 2.0 < s["steady_since_s"] < 8.0, s["steady_since_s"]
@@ -253,11 +243,10 @@ def test_a_braked_fold_says_the_speed_it_selects(tmp_path):
     """``apparatus_fold_gripped``: the terminal gives the measured speed beside the one the
     carts and the brake select by the paper's laws (``laws.braked_fold_speed``)."""
     from chainfountain.headless import describe_outputs
-    from chainfountain.level import library
     from chainfountain.sim.apparatus import braked_fold_speed
     from chainfountain.study.changes import laid_on_path
 
-    level = laid_on_path(io.load(library.resolve("apparatus_fold_gripped")))
+    level = laid_on_path(shipped.level("apparatus_fold_gripped"))
     path = run_level(level, tmp_path, 0.5, progress=False)
     s = json.loads(path.read_text())
     v_sel = braked_fold_speed(level.sim)

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from chainfountain.level import library
+from tests import shipped
 
 
 def _cli(*args: str, cwd: Path, env: dict | None = None) -> subprocess.CompletedProcess:
@@ -22,7 +22,7 @@ def _cli(*args: str, cwd: Path, env: dict | None = None) -> subprocess.Completed
 SWEEP = 'base = "wide_low"\nduration = 0.2\n[grid]\n"feed.speed" = [4.0]\n'
 
 
-@pytest.mark.parametrize("bad", ["/proc/x", "afile/x"])
+@pytest.mark.parametrize("bad", [pytest.param("/proc/x", marks=pytest.mark.slow), "afile/x"])
 @pytest.mark.parametrize("args, flag", [
     (["converge", "wide_low", "--json", "{}.json"], "--json"),
     (["run", "wide_low", "--out", "{}"], "--out"),
@@ -91,7 +91,7 @@ def test_run_takes_field_overrides_checked_as_a_level_file(tmp_path, capsys, mon
 
 
 def test_check_reports_every_bad_file(tmp_path):
-    wide = (library.shipped_dir() / "wide_low.toml").read_text()
+    wide = shipped.path("wide_low").read_text()
     (tmp_path / "bom.toml").write_bytes(b"\xef\xbb\xbf" + wide.encode())
     (tmp_path / "noname.toml").write_text(
         "\n".join(x for x in wide.splitlines() if not x.startswith("name = ")))
@@ -111,11 +111,11 @@ def test_levels_lists_what_is_installed(tmp_path):
 
     (tmp_path / "home" / "levels").mkdir(parents=True)
     (tmp_path / "home" / "levels" / "mine.toml").write_text(
-        (library.shipped_dir() / "wide_low.toml").read_text())
+        shipped.path("wide_low").read_text())
     r = _cli("levels", cwd=tmp_path, env={**os.environ, "CHAINFOUNTAIN_HOME": str(
         tmp_path / "home")})
     assert r.returncode == 0, r.stderr
     names = [line.split()[0] for line in r.stdout.splitlines()]
-    assert names == sorted(p.stem for p in library.shipped_dir().glob("*.toml")) + ["mine"]
+    assert names == sorted(p.stem for p in shipped.PATHS) + ["mine"]
     assert "beaker" in names and "scene" in r.stdout and "shipped" in r.stdout
     assert r.stdout.splitlines()[-1].split()[1:3] == ["feed", "yours"]

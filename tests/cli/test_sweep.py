@@ -11,10 +11,11 @@ import sys
 import pytest
 
 import chainfountain
-from chainfountain.level import io, library
+from chainfountain.level import io
 from chainfountain.level.model import LevelError
 from chainfountain.study import run, with_changes
 from chainfountain.study.api import load
+from tests import shipped
 
 
 class _InProcess:
@@ -96,7 +97,7 @@ def test_a_rerun_reuses_exactly_the_points_that_would_run_the_same(tmp_path, cap
     point, an edited base level (gravity) runs every point again and gives other numbers,
     a grid over a field that was fixed gets its column; nothing is reused by its place."""
     sweep = _InProcess(capsys, monkeypatch, tmp_path)
-    base = (library.shipped_dir() / "wide_low.toml").read_text()
+    base = shipped.path("wide_low").read_text()
     (tmp_path / "mine.toml").write_text(base)
     (tmp_path / "s.toml").write_text(
         'base = "mine.toml"\nduration = 0.2\n[grid]\n"feed.speed" = [4.0, 4.5]\n')
@@ -137,6 +138,7 @@ def test_a_rerun_reuses_exactly_the_points_that_would_run_the_same(tmp_path, cap
     assert r.returncode == 0 and "0 recorded before, 1 to run" in r.stderr, r.stderr
 
 
+@pytest.mark.slow
 def test_fixed_changes_list_items_and_a_sweep_over_seeds_alone(tmp_path):
     """[changes] sets a field in every point without a one-value list; a grid can sweep a
     field inside an array of tables (a pin's release time); seeds alone make a sweep."""
@@ -231,6 +233,7 @@ def test_bad_sweep_files_one_line_and_nothing_written(tmp_path, text, words):
     assert not (tmp_path / "out").exists()
 
 
+@pytest.mark.slow
 def test_a_sweep_runs_on_a_dask_cluster_as_it_does_locally(tmp_path):
     """A real local cluster (two worker processes, no shared folder used): the points run on
     the workers, come back with their outputs, and the table matches a local run of the same
@@ -257,6 +260,7 @@ def test_a_sweep_runs_on_a_dask_cluster_as_it_does_locally(tmp_path):
     assert (tmp_path / "dask" / "results.parquet").is_file()
 
 
+@pytest.mark.slow
 def test_an_unreachable_scheduler_is_one_clear_message(tmp_path):
     pytest.importorskip("distributed")
     (tmp_path / "s.toml").write_text(
@@ -269,6 +273,7 @@ def test_an_unreachable_scheduler_is_one_clear_message(tmp_path):
     assert "Traceback" not in r.stderr
 
 
+@pytest.mark.slow
 def test_a_scene_runs_as_a_call_and_sweeps_over_seeds(tmp_path):
     """A scene level through the same doors: the Python call gives each probe's columns,
     and a sweep over seeds gives one row per seed with the closed form's figure."""

@@ -95,6 +95,7 @@ def _stop_midway(tmp_path: Path, sig: signal.Signals, group: bool) -> tuple[int,
     return proc.returncode, err.strip().splitlines()[-1], rows
 
 
+@pytest.mark.slow
 def test_sigterm_ends_the_sweep_and_its_workers_and_a_rerun_finishes_it(tmp_path):
     status, last, rows = _stop_midway(tmp_path, signal.SIGTERM, group=False)
     assert status == 143, last
@@ -115,6 +116,7 @@ def test_sigterm_ends_the_sweep_and_its_workers_and_a_rerun_finishes_it(tmp_path
     assert {row["key"]: row["wall_s"] for row in rows if row["key"] in done} == before
 
 
+@pytest.mark.slow
 def test_ctrl_c_to_the_process_group_ends_the_sweep_and_its_workers(tmp_path):
     status, last, rows = _stop_midway(tmp_path, signal.SIGINT, group=True)
     assert status == 130, last

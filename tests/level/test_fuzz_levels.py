@@ -9,16 +9,13 @@ examples are derandomized, so every machine runs the same mutants;
 from __future__ import annotations
 
 import re
-import sys
 from pathlib import Path
 
 import pytest
 from hypothesis import HealthCheck, assume, given, settings
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-import levelfuzz as lf  # noqa: E402
-
-from chainfountain.level import io  # noqa: E402
+from chainfountain.level import io
+from tests.level import levelfuzz as lf
 
 SETTINGS = settings(derandomize=True, database=None, deadline=None,
                     suppress_health_check=list(HealthCheck))

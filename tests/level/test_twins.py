@@ -28,8 +28,9 @@ from chainfountain.sim.kinds.ideal.checks import IDEAL_MIN_KQ
 from chainfountain.sim.machine_rules import keeps_any_speed
 from chainfountain.sim.reference import LaunchReference
 from chainfountain.theory import apparatus as ap
+from tests import shipped
 
-CONTACT = sorted(p.stem for p in library.shipped_dir().glob("*.toml")
+CONTACT = sorted(p.stem for p in shipped.PATHS
                  if io.load(p).sim.kind == "apparatus")
 """Every shipped contact machine preset (the eight of the brief and the fountain-D pair)."""
 
@@ -38,7 +39,7 @@ VARIANT_OF_DRIVE = {"ideal_floor": "floor", "ideal_fold": "fold", "ideal_open": 
 
 
 def _load(name: str) -> io.Level:
-    return io.load(library.shipped_dir() / f"{name}.toml")
+    return shipped.level(name)
 
 
 def _source_TE(level: io.Level) -> float:

@@ -15,13 +15,11 @@ import math
 import pytest
 
 from chainfountain.level import io
-from chainfountain.level.library import shipped_dir
 from chainfountain.level.model import LevelError
 from chainfountain.refine import measure
 from chainfountain.sim import accuracy
 from chainfountain.sim.reference import LaunchReference
-
-LEVELS = shipped_dir()
+from tests import shipped
 
 WIDE_LOW = LaunchReference.from_launch(4.0, math.radians(60.0), 0.5)
 PULL = LaunchReference.from_launch(5.0, math.radians(75.0), 1.0, TE_bar=0.15)
@@ -67,7 +65,7 @@ def test_unconverged_solver_has_no_bound():
 
 
 def _level_text(name: str, solver_extra: str) -> str:
-    text = (LEVELS / f"{name}.toml").read_text()
+    text = shipped.path(name).read_text()
     return text.replace("[solver]\n", f"[solver]\n{solver_extra}\n", 1)
 
 

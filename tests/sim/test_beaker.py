@@ -17,9 +17,9 @@ import numpy as np
 import pytest
 
 from chainfountain.headless import run_and_record
-from chainfountain.level import io, library
 from chainfountain.sim.world import Simulation
 from chainfountain.study import with_changes
+from tests import shipped
 
 G = 9.81
 SEEDS = (0, 1)
@@ -27,11 +27,13 @@ pytestmark = pytest.mark.xdist_group("beaker")  # one worker builds the module's
 
 
 def _beaker(**changes):
-    lv = io.load(library.resolve("beaker"))
+    lv = shipped.level("beaker")
     return with_changes(lv, changes) if changes else lv
 
 
-@pytest.fixture(scope="module", params=SEEDS)
+# the first seed's run is in the fast tier (make check), the others only in the whole suite
+@pytest.fixture(scope="module",
+                params=[SEEDS[0], *(pytest.param(s, marks=pytest.mark.slow) for s in SEEDS[1:])])
 def run(request, tmp_path_factory):
     out = tmp_path_factory.mktemp(f"beaker{request.param}")
     # formed by about 4 s (steady since 3.1-3.5 s in 30-s runs): average the last 3 s

@@ -20,13 +20,11 @@ import dataclasses
 import pytest
 
 from chainfountain.design_level import design_sim_config
-from chainfountain.level import io
-from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.theory import Fountain
 from chainfountain.theory.design import design
+from tests import shipped
 
-LEVELS = shipped_dir()
 L_D, H_D, H = 0.33, 0.28, 2.0  # the paper's fountain D: l = kappa*H, h = xi*H
 SETTLE, WINDOW = 0.5, 1.0
 
@@ -39,26 +37,26 @@ def _fountain(k: float | None = None) -> Fountain:
     return base.with_k(k if k is not None else base.k_max)
 
 
-def test_fountain_d_presets_are_the_designed_levels() -> None:
+def test_fountain_d_presets_are_the_designed_levels(level) -> None:
     # the presets are exactly what `chainfountain design` writes for fountain D today
     for name, f in (("fountain_d", _fountain(0.377)), ("fountain_d_kmax", _fountain())):
-        cfg = io.load(LEVELS / f"{name}.toml").sim
+        cfg = level(name).sim
         want = design_sim_config(design(f, cfg.chain.linear_density))
         assert cfg == dataclasses.replace(want, name=name), name
 
 
-def test_fountain_d_kmax_is_the_limit_case() -> None:
+def test_fountain_d_kmax_is_the_limit_case(level) -> None:
     f = _fountain()
     assert f.k == pytest.approx(0.4301, abs=5e-5)  # physics notes: k_max = 0.4301 1/m
     assert f.TE_bar == pytest.approx(0.0, abs=1e-12)
     assert f.T0_bar == pytest.approx(f.k * H, abs=1e-12)
-    cfg = io.load(LEVELS / "fountain_d_kmax.toml").sim
+    cfg = level("fountain_d_kmax").sim
     assert cfg.feed.end_tension == 0.0 and cfg.feed.floor == "absorbing"  # a free end
 
 
 @pytest.fixture(scope="module")
 def kmax_run():
-    cfg = io.load(LEVELS / "fountain_d_kmax.toml").sim
+    cfg = shipped.level("fountain_d_kmax").sim
     sim = Simulation(cfg)
     sim.advance(SETTLE)
     rec = Recorder(sim)

@@ -13,13 +13,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from chainfountain.level import io, library
+from chainfountain.level import io
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.theory.apparatus import ideal_floor_speed
+from tests import shipped
 
 
 def _run(xi2: float | None = None, seconds: float = 8.0, push: float | None = None):
-    lvl = io.load(library.resolve("ideal_floor"))
+    lvl = shipped.level("ideal_floor")
     lvl.sim.initial.mode, lvl.sim.feed.starter = "catenary", 0.0  # from the fountain on
     if xi2 is not None:
         lvl.sim.feed.xi2 = xi2
@@ -63,8 +64,8 @@ def test_pushed_it_comes_back() -> None:
     (("cart_force", 0.15), "feed.xi2", ["selects 2.781 m/s", "allowed: xi2 < 0.1942"]),
     (("floor", "solid"), "feed.floor", ["feed.drive = 'ideal_floor'"]),
 ])
-def test_settings_the_machine_cannot_run_are_refused(tmp_path, change, field, words) -> None:
-    lvl = io.load(library.resolve("ideal_floor"))
+def test_settings_the_machine_cannot_run_are_refused(level, tmp_path, change, field, words) -> None:
+    lvl = level("ideal_floor")
     setattr(lvl.sim.feed, *change)
     text = io.dumps(lvl)
     with pytest.raises(io.LevelError) as exc:

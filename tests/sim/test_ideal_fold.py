@@ -22,13 +22,14 @@ import math
 import numpy as np
 import pytest
 
-from chainfountain.level import io, library
+from chainfountain.level import io
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.theory import apparatus as ap
+from tests import shipped
 
 
 def _sim(name: str, **feed):
-    lvl = io.load(library.resolve(name))
+    lvl = shipped.level(name)
     # the laws from the fountain on: no stub, no starter (test_starter_forms_the_fountain)
     lvl.sim.initial.mode, lvl.sim.feed.starter = "catenary", 0.0
     for k, v in feed.items():
@@ -154,8 +155,8 @@ def test_a_change_of_an_offset_keeps_the_loss_free_machine_balanced() -> None:
     ({"speed": 3.5}, "feed.speed", ["Tbar_0 = 1/2 + Tbar_uc + xi2*k*H", "= 4.139 m/s"]),
     ({"bearing_drag": 0.1}, "feed.cart_force", ["selects no speed"]),
 ])
-def test_settings_the_machine_cannot_run_are_refused(changes, field, words) -> None:
-    lvl = io.load(library.resolve("ideal_special"))
+def test_settings_the_machine_cannot_run_are_refused(level, changes, field, words) -> None:
+    lvl = level("ideal_special")
     lvl.sim.feed.bearing_drag, lvl.sim.feed.cart_force = 0.0, 0.183  # loss-free, balanced
     for k, v in changes.items():
         setattr(lvl.sim.feed, k, v)
@@ -167,6 +168,7 @@ def test_settings_the_machine_cannot_run_are_refused(changes, field, words) -> N
         assert w in msg, msg
 
 
+@pytest.mark.slow
 def test_a_machine_held_back_too_hard_stops_with_one_sentence() -> None:
     """An upper cart of 0.6 N put on the special case (as the API allows; files and
     the window refuse it) slows the chain to a stop: the run ends with one sentence saying
@@ -183,11 +185,11 @@ def test_a_machine_held_back_too_hard_stops_with_one_sentence() -> None:
     assert "\n" not in msg and sim.time < 4.0
 
 
-def test_a_machine_cannot_start_from_a_stub_without_a_starter() -> None:
+def test_a_machine_cannot_start_from_a_stub_without_a_starter(level) -> None:
     """The machine is driven by the fall of its fountain: from a stub the laws hold the chain
     back before it lands (measured: ideal_fold stops at 1.4 s), so a stub needs a starter;
     a starter on a machine started on its fountain has nothing to do."""
-    lvl = io.load(library.resolve("ideal_fold"))
+    lvl = level("ideal_fold")
     lvl.sim.initial.mode, lvl.sim.feed.starter = "stub", 0.0
     with pytest.raises(io.LevelError) as exc:
         io.loads(io.dumps(lvl), "bad.toml")
@@ -199,11 +201,12 @@ def test_a_machine_cannot_start_from_a_stub_without_a_starter() -> None:
     assert str(exc.value).startswith("bad.toml: feed.starter")
 
 
-def test_the_starter_forms_the_fountain_and_hands_it_to_the_laws() -> None:
+@pytest.mark.slow
+def test_the_starter_forms_the_fountain_and_hands_it_to_the_laws(level) -> None:
     """``ideal_limit`` as shipped: a starter motor fires the chain from a stub at 3.6 m/s
     until 5 s after it lands; then the machine runs on its laws and climbs to the speed
     they select, 3.744 m/s (from the stub: 3.737 m/s at 8 s, 3.738-3.745 m/s over 10-40 s)."""
-    lvl = io.load(library.resolve("ideal_limit"))
+    lvl = level("ideal_limit")
     assert lvl.sim.initial.mode == "stub" and lvl.sim.feed.starter > 0
     sim = Simulation(lvl.sim)
     rec = Recorder(sim, profiles=False)

@@ -19,15 +19,16 @@ import math
 import numpy as np
 import pytest
 
-from chainfountain.level import io, library
+from chainfountain.level import io
 from chainfountain.level.io import LevelError
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.slide_away_report import report
 from chainfountain.theory.apparatus import ideal_open_speed
+from tests import shipped
 
 
 def _level():
-    lvl = io.load(library.resolve("ideal_open"))
+    lvl = shipped.level("ideal_open")
     lvl.sim.initial.mode, lvl.sim.feed.starter = "catenary", 0.0  # from the fountain on
     return lvl
 
@@ -146,10 +147,10 @@ def test_the_run_ends_in_one_sentence_when_the_table_is_empty() -> None:
     ({"end_tension": 0.1}, "feed.end_tension", ["the turn onto the plate sets the pull"]),
     ({"drive": "ideal_floor"}, "feed.turn_drop", ["has no effect with feed.drive"]),
 ])
-def test_settings_without_an_open_fountain_are_refused(changes, field, words) -> None:
+def test_settings_without_an_open_fountain_are_refused(level, changes, field, words) -> None:
     """A setting that leaves no fountain, or a field the drive ignores, is refused in one
     message naming the field."""
-    lvl = io.load(library.resolve("ideal_open"))
+    lvl = level("ideal_open")
     for name, value in changes.items():
         setattr(lvl.sim.feed, name, value)
     with pytest.raises(LevelError) as err:

@@ -9,8 +9,9 @@ import sys
 import pytest
 
 from chainfountain.errors import UserError
-from chainfountain.level import io, library
+from chainfountain.level import io
 from chainfountain.refine import FIGURES, refine, refined_config
+from tests import shipped
 
 
 def _cli(*args: str) -> subprocess.CompletedProcess:
@@ -20,11 +21,11 @@ def _cli(*args: str) -> subprocess.CompletedProcess:
 
 @pytest.fixture(scope="module")
 def wide_low():
-    return refine(io.load(library.resolve("wide_low")).sim, "wide_low")
+    return refine(shipped.level("wide_low").sim, "wide_low")
 
 
-def test_refined_config_halves_link_and_step_and_starts_on_the_catenary() -> None:
-    cfg = io.load(library.resolve("classroom")).sim
+def test_refined_config_halves_link_and_step_and_starts_on_the_catenary(level) -> None:
+    cfg = level("classroom").sim
     fine = refined_config(cfg, 2)
     assert fine.chain.link_length == cfg.chain.link_length / 2
     assert fine.solver.dt == cfg.solver.dt / 2
@@ -58,10 +59,10 @@ def test_converge_on_an_apparatus_level_is_refused_in_one_line() -> None:
     assert "kind = 'apparatus'" in r.stderr and len(r.stderr.strip().splitlines()) == 1
 
 
-def test_converge_below_the_smallest_link_is_refused() -> None:
+def test_converge_below_the_smallest_link_is_refused(level) -> None:
     """fountain_d has 4-mm links: a fourth run (L/8 = 0.5 mm) is below the schema's 1 mm;
     refused before anything runs, in one line naming the option, the field and the limit."""
-    lvl = io.load(library.resolve("fountain_d"))
+    lvl = level("fountain_d")
     with pytest.raises(UserError, match="chain.link_length"):
         refine(lvl.sim, "fountain_d", refinements=4)
     r = _cli("converge", "fountain_d", "--refinements", "4")
@@ -79,8 +80,8 @@ def test_run_error_bars_only_on_fed_levels() -> None:
 
 
 @pytest.mark.slow
-def test_run_with_error_bars_writes_them_next_to_the_figures(tmp_path) -> None:
-    lvl = io.load(library.resolve("wide_low"))
+def test_run_with_error_bars_writes_them_next_to_the_figures(level, tmp_path) -> None:
+    lvl = level("wide_low")
     lvl.sim.solver.dt = 1e-3  # a coarse, cheap run: the estimate is about the settings
     lvl.sim.solver.accuracy = 0.0  # (else the loader chooses the step again)
     path = io.save(lvl, tmp_path / "coarse.toml")
@@ -98,13 +99,12 @@ def test_run_with_error_bars_writes_them_next_to_the_figures(tmp_path) -> None:
     assert "discretisation error bars" in r.stdout
 
 
-def test_refinement_starts_an_ideal_machine_at_the_speed_it_selects():
+def test_refinement_starts_an_ideal_machine_at_the_speed_it_selects(level):
     """A machine is refined from its own fountain: ``ideal_fold`` starts at 4.7 m/s but
     selects 5.0 m/s, and its refined runs start there."""
-    from chainfountain.level import io, library
     from chainfountain.refine import refined_config
 
-    cfg = io.load(library.resolve("ideal_fold")).sim
+    cfg = level("ideal_fold").sim
     for factor in (1, 2):
         out = refined_config(cfg, factor, "ideal_fold")
         assert out.feed.speed == pytest.approx(5.0)

@@ -26,15 +26,16 @@ import numpy as np
 import pytest
 
 from chainfountain.headless import run_and_record
-from chainfountain.level import io, library
+from chainfountain.level import io
 from chainfountain.study import with_changes
 from chainfountain.theory import falling
+from tests import shipped
 
 G = 9.81
 
 
 def _level(name: str):
-    return io.load(library.resolve(name))
+    return shipped.level(name)
 
 
 @pytest.fixture(scope="module")
@@ -91,6 +92,7 @@ def _scale_error(seed: int, tmp_path) -> float:
     return json.loads(path.read_text())["closed_form"]["force_rel_error"]
 
 
+@pytest.mark.slow
 def test_chain_dropped_on_a_scale_reads_three_times_the_landed_weight(tmp_path) -> None:
     errors = [_scale_error(seed, tmp_path) for seed in range(1, 7)]
     assert len(set(errors)) == 6  # the seeds make different piles
