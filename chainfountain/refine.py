@@ -32,7 +32,7 @@ if TYPE_CHECKING:
     from chainfountain.sim.config import SimConfig
 
 SETTLE = 1.5
-"""Simulated seconds from the catenary start before averaging (as tests/sim/test_sim_feed.py)."""
+"""Simulated seconds from the catenary start before averaging (as tests/sim/test_feed.py)."""
 WINDOW = 2.0
 """Simulated seconds averaged."""
 BLOCKS = 4

@@ -65,7 +65,7 @@ def fountain_d(seed: int) -> dict[str, float]:
 
 
 def cart_step(seed: int) -> dict[str, float]:
-    """The heavier cart's step on the floor preset (tests/apparatus/test_apparatus_carts.py)."""
+    """The heavier cart's step on the floor preset (tests/sim/apparatus/test_carts.py)."""
     from chainfountain.level import io
     from chainfountain.sim.apparatus import CART_GAIN_2CM
     from chainfountain.study.changes import laid_on_path

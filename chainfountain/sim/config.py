@@ -220,7 +220,7 @@ class SolverConfig:
     bookkeeping, the recorder and the divergence watchdog run once per ``dt``. Too few
     iterations leave a long strand's tension wrong: a chain of 100 (300) links hanging
     at rest needs 6 (10) iterations at a 62.5-us pymunk step, and 5 read its tension
-    42 % low (``tests/sim/test_sim_tension.py``)."""
+    42 % low (``tests/sim/test_measure.py``)."""
 
     dt: float = param(
         2.5e-4, unit="s", doc="Time step of the simulation's bookkeeping and samples (the "

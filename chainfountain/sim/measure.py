@@ -132,7 +132,7 @@ class ChainReader:
         """Net contact impulse of the last step on every link, chain order, shape ``(n, 2)``.
 
         From the space's arbiters: the impulse on body A is ``+total_impulse``,
-        on body B ``-total_impulse`` (checked in ``tests/sim/test_sim_tension.py``).
+        on body B ``-total_impulse`` (checked in ``tests/sim/test_measure.py``).
         If :meth:`arm` was called before the step, the impulses that re-touching
         contacts started from (reported, never applied) are taken out; otherwise
         they are included, as pymunk reports them.

@@ -29,6 +29,8 @@ import pytest
 
 from research.rigs.pickup import RigConfig, RigResult, lossless_bar, run_rig
 
+pytestmark = pytest.mark.slow  # half a minute of rig runs (a research rig, not the package)
+
 LAM, V = 0.05, 5.0
 _cache: dict[tuple, RigResult] = {}
 

@@ -113,7 +113,7 @@ further below the law and the chain stops. Measured from ``apparatus_floor`` (9 
 laid start changed at 1 s, 25 g ran at 2.29-2.37 m/s and stopped at 19.2 s, 28 and 30 g at
 7.5 and 6.0 s). A bearing drag agrees: 0.02 N s/m (0.59) held 30 s 4-5 % below the
 law, 0.05 (0.72) and 0.1 stopped (``docs/apparatus.md``, "Declared losses";
-``tests/apparatus/test_apparatus_live_cart.py``)."""
+``tests/sim/apparatus/test_live_cart.py``)."""
 
 
 _GRAM_AT_30 = 0.001 * 9.81 * 0.5

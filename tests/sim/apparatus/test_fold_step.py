@@ -40,16 +40,16 @@ from __future__ import annotations
 import dataclasses
 
 import pytest
-from apparatus_runs import load_undamped
 
 from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
 from chainfountain.sim.apparatus import FoldCollapsed
 from chainfountain.sim.apparatus_report import report
 from chainfountain.sim.config import SimConfig
+from tests.sim.apparatus.runs import load_undamped
 
 LEVEL = shipped_dir() / "apparatus_special.toml"
-pytestmark = pytest.mark.xdist_group("apparatus_fold_step")
+pytestmark = [pytest.mark.xdist_group("apparatus_fold_step"), pytest.mark.slow]  # minutes of runs
 
 
 def _special(dt: float, clearance: float = 0.0, lower_cart: float = 0.058) -> SimConfig:

@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from apparatus_runs import load_on_path
 
 from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Recorder, Simulation
@@ -26,10 +25,11 @@ from chainfountain.sim.apparatus_report import report
 from chainfountain.sim.budget import EnergyBudget
 from chainfountain.study.changes import with_changes
 from research.rigs.cart_step import run as cart_step_run
+from tests.sim.apparatus.runs import load_on_path
 
 LEVEL = shipped_dir() / "apparatus_floor.toml"
 
-pytestmark = pytest.mark.xdist_group("apparatus_substeps")
+pytestmark = [pytest.mark.xdist_group("apparatus_substeps"), pytest.mark.slow]  # minutes of runs
 
 
 def _config(substeps: int):

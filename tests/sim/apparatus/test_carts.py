@@ -42,16 +42,16 @@ from __future__ import annotations
 import dataclasses
 
 import pytest
-from apparatus_runs import load_on_path, load_undamped
 
 from chainfountain.level.library import shipped_dir
 from chainfountain.sim.apparatus import CART_GAIN_2CM
 from research.rigs.cart_step import CartStep, cart_step
+from tests.sim.apparatus.runs import load_on_path, load_undamped
 
 LEVEL = shipped_dir() / "apparatus_floor.toml"
 T_SWITCH, WINDOW, HEAVY = 1.0, 0.6, 0.06
 
-pytestmark = pytest.mark.xdist_group("apparatus_carts")
+pytestmark = [pytest.mark.xdist_group("apparatus_carts"), pytest.mark.slow]  # minutes of runs
 """The module-scoped runs are computed once, on one worker (``--dist loadgroup``)."""
 
 
