@@ -147,10 +147,14 @@ def parse_path(path: str) -> list[tuple[str, int | None]]:
 
 
 def _owner(obj: Any, path: str) -> tuple[Any, str]:
+    """The object holding the last field of ``path`` and that field's name; ``KeyError``
+    when ``obj`` has no such field (a list item beyond its list included)."""
     parts = parse_path(path)
     for name, idx in parts[:-1]:
         obj = getattr(obj, name)
         if idx is not None:
+            if not -len(obj) <= idx < len(obj):
+                raise KeyError(path)
             obj = obj[idx]
     name, idx = parts[-1]
     if idx is not None:
