@@ -57,7 +57,7 @@ FOLLOW_TRAVEL = 0.30
 """Farthest a following end guide moves from where the level puts it (m, either way)."""
 TAIL_KEEP = 30
 """'open': links kept in the lower plate grooves; the tail beyond is lumped into the
-end link (:meth:`~.open_tail.OpenTail._lump_tail`)."""
+end link (:meth:`~.open_tail.OpenTail.lump_tail`)."""
 LO_START = 0.15
 """'fold': start distance (m) of the folding roller from the end channel's exit."""
 COLLAPSE_TIME = 0.05
