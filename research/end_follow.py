@@ -83,8 +83,7 @@ def main() -> None:
                 if sess.stopped:
                     raise RunEnded(sess.stopped)
                 v.append(app.speed)
-                if app._mouth_dr is not None:
-                    dr.append(app._mouth_dr)
+                dr.append(app.fold.mouth_dr)
             fx = app.end_shift
             print(f"  t {sim.time:5.1f} s: v {np.mean(v):.3f} m/s, landing dr "
                   f"{100 * np.mean(dr) if dr else math.nan:+.1f} cm, guide shift "

@@ -707,18 +707,6 @@ class Apparatus:
     def last_mouth_offset(self) -> float:
         return self.fold.last_mouth_offset if self.fold is not None else math.nan
 
-    @property
-    def fold_capture(self) -> tuple[float, float]:
-        """'fold' joint guide: the first turn's capture band (m) and angular margin (rad)."""
-        if self.fold is not None:
-            return self.fold.capture
-        return self.tuning.capture(self.layout.end_follow > 0.0)
-
-    @property
-    def fold_close_rate(self) -> float:
-        """Joint guides: the speed (m/s) at which a captured link's limits close in."""
-        return self.upper_guide.close_rate
-
     def fold_guided_range(self, position: np.ndarray, x_lower: float) -> tuple[int, int]:
         """:meth:`.fold.FoldPart.fold_guided_range` ('fold' only)."""
         if self.fold is None:
