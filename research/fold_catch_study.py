@@ -3,13 +3,13 @@ run ends, and how long runs hold with a changed catch, aim, damper or carts.
 
 Builds ``apparatus_fold`` with the gripped 100-mm folding roller as
 ``research/gripped_fold.py`` does (laid on its path, ``--set`` changes), optionally nudged
-(``--seeds``), and varies the catch through the built apparatus's fold part (``--capture
-BAND MARGIN_DEG``, ``--close RATE``). Every bookkeeping step it reads, for the first link
-not yet captured (the one hanging at the mouth), its offset from the first turn's radius
-``dr`` (m, > 0 outside) and its angle from the mouth ``dth`` (deg, < 0 before the mouth),
-and the offset of every link that enters through the mouth. Per run it prints how the run
-ended, the mean speed, the spread of the mouth offsets per 5-s window and, for a run that
-ended, the last ``--tail`` s of the catch (0.1-s rows).
+(``--seeds``), and varies the catch (``--capture BAND MARGIN_DEG``, ``--close RATE``: a
+:class:`~chainfountain.sim.apparatus.Tuning`). Every bookkeeping step it reads, for the
+first link not yet captured (the one hanging at the mouth), its offset from the first
+turn's radius ``dr`` (m, > 0 outside) and its angle from the mouth ``dth`` (deg, < 0
+before the mouth), and the offset of every link that enters through the mouth. Per run it
+prints how the run ended, the mean speed, the spread of the mouth offsets per 5-s window
+and, for a run that ended, the last ``--tail`` s of the catch (0.1-s rows).
 
 Usage::
 
@@ -38,6 +38,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from gripped_fold import _value, build  # noqa: E402
 
 from chainfountain.errors import RunEnded  # noqa: E402
+from chainfountain.sim.apparatus import Tuning  # noqa: E402
 from chainfountain.sim.fastbody import pos  # noqa: E402
 
 
@@ -170,6 +171,8 @@ def main(argv: list[str] | None = None) -> int:
                     help="seconds of 0.1-s rows before the end (0: none)")
     ap.add_argument("--tail-always", action="store_true", help="rows for held runs too")
     a = ap.parse_args(argv)
+    tuning = Tuning(fold_capture=(a.capture[0], math.radians(a.capture[1])) if a.capture
+                    else None, fold_close_rate=a.close)
     changes = {}
     for item in a.set:
         key, _, val = item.partition("=")
@@ -177,11 +180,7 @@ def main(argv: list[str] | None = None) -> int:
     for f in a.dt_factor:
         for seed in a.seeds:
             sim = build(a.level, changes, f, False)
-            fold = sim.apparatus.fold  # the catch is read only while stepping
-            if a.capture:
-                fold.capture = (a.capture[0], math.radians(a.capture[1]))
-            if a.close is not None:
-                fold.close_rate = sim.apparatus.upper_guide.close_rate = a.close
+            sim.apparatus.retune(tuning)
             if seed >= 0:
                 sim.nudge(seed)
             if a.snap:

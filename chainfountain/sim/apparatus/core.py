@@ -251,6 +251,20 @@ class Apparatus:
         self.space.add(s)
         return s
 
+    def retune(self, tuning: Tuning) -> None:
+        """Give the built apparatus ``tuning``'s catch and close rate: the parts read them
+        only while stepping, so this is as if it had been built with them (for a study
+        whose :class:`~chainfountain.sim.Simulation` builds the apparatus).
+        ``lay_at_rest`` acts in the build only."""
+        if tuning.lay_at_rest != self.tuning.lay_at_rest:
+            raise ValueError("Tuning.lay_at_rest acts when the apparatus is built only")
+        following = self.layout.end_follow > 0.0
+        self.tuning = tuning
+        self.upper_guide.close_rate = tuning.close_rate(following)
+        if self.fold is not None:
+            self.fold.capture = tuning.capture(following)
+            self.fold.close_rate = tuning.close_rate(following)
+
     # ------------------------------------------------------------------ feed interface
     @property
     def n_free(self) -> int:
