@@ -99,7 +99,7 @@ class Apparatus:
         """Links taken out at the downstream end (the floor, the lower table)."""
         self.added = 0
         """Links laid and added at the upstream end (and by the upper treadmill)."""
-        # the parts, upstream to downstream
+        # the parts built into the space, upstream to downstream
         self.upper_part = UpperPart(space, lay)
         path = self.upper_part.path()
         laid = self._fountain_path()
@@ -116,13 +116,8 @@ class Apparatus:
         self.walls: list[pymunk.Segment] = self.upper_part.walls + self.end_part.walls
         """The channels' walls (static segments; drawn only where a joint guide holds the
         chain)."""
-        beyond = self.end_part.path()
-        if self.tail is not None:
-            beyond += self.tail.path()
-        if self.fold is not None:
-            beyond += self.fold.path()
         if not lay.threads:  # else the starter threads the head through later
-            path += beyond
+            path += self._path_beyond()
         self._lay_along(path)
         # the bookkeeping parts
         self.upper_guide = UpperJointGuide(space, chain, lay, self.upper_part, close_rate)
@@ -159,37 +154,47 @@ class Apparatus:
         """The chain's path through the predicted fountain (to ``x_floor``, the end's x
         without a ``floor_depth``); from rest, a straight stub along the launch line, and
         in 'fold' none (the starter threads the head through, :mod:`.starter`)."""
-        if self.threads:
+        if self.layout.threads:
             return np.empty((0, 2))  # the head waits inside the upper guide (_lay_along)
-        if self.from_rest:
-            s = np.linspace(0.0, self.stub_length, 8)[1:]
+        if self.layout.from_rest:
+            s = np.linspace(0.0, self.layout.stub_length, 8)[1:]
             return np.column_stack((s * self.launch_u[0], s * self.launch_u[1]))
         f = self.fountain
         x_rise = self.vertex_pred[0]
-        xs = np.linspace(0.0, self.x_floor, 400)[1:]  # x_floor = ex without a floor_depth
+        xs = np.linspace(0.0, self.layout.x_floor, 400)[1:]  # x_floor = ex without a floor_depth
         return np.column_stack((xs, f.h + f.y_of_x(xs - x_rise)))
+
+    def _path_beyond(self) -> list[np.ndarray]:
+        """The chain's path beyond the fountain: through the end channel and onto the
+        tail's plate or over the folding roller (none for 'floor')."""
+        beyond = self.end_part.path()
+        if self.tail is not None:
+            beyond += self.tail.path()
+        if self.fold is not None:
+            beyond += self.fold.path()
+        return beyond
 
     def _lay_along(self, parts: list[np.ndarray]) -> None:
         """Lay the chain along the path (upstream to downstream), one link per link
         length, moving as the steady state would: at rest on the tables, rolling with
         the rollers on their wraps, at the start speed elsewhere."""
         L = self.L
-        v0 = self.v_lay
+        v0 = self.layout.v_lay
         vR = 0.5 * v0
         R = self.r + self.rho
-        s_wrap0 = self.n_ahead * L
+        s_wrap0 = self.layout.n_ahead * L
         s_wrap1 = s_wrap0 + math.pi * R
         s_lo_wrap = math.inf
         path = np.vstack(parts)
         seg = np.linalg.norm(np.diff(path, axis=0), axis=1)
         s_all = np.concatenate([[0.0], np.cumsum(seg)])
-        if self.lower is not None and not self.threads:
+        if self.lower is not None and not self.layout.threads:
             # arc length where the lower wrap starts: the point (x_lo, y_lo)
             idx = int(np.flatnonzero(np.isclose(path[:, 0], self.lower.x)
                                      & np.isclose(path[:, 1], self.y_lo))[0])
             s_lo_wrap = float(s_all[idx])
         pts, s = resample(path, L)
-        if self.threads:
+        if self.layout.threads:
             n = int(round(HEAD_BACK / L))
             pts, s = pts[:-n], s[:-n]
         self._lay(pts, s, s_wrap0, s_wrap1, s_lo_wrap, v0, vR, R)
@@ -385,7 +390,7 @@ class Apparatus:
         L = self.L
         x_R = self.upper.x
         last = links[-1].body
-        while pos(last).x < x_R + self.n_ahead * L:
+        while pos(last).x < x_R + self.layout.n_ahead * L:
             c = last.position
             new = chain.make_body((c.x + L, self.y_table_up + self.rho), math.pi)
             chain.append(new)
@@ -419,7 +424,7 @@ class Apparatus:
             popped = self.grip.land()
             self.absorbed += popped
         elif self.lower is not None:
-            x_lim = self.lower.x - 2.0 * self.r_lo - n_keep * L
+            x_lim = self.lower.x - 2.0 * self.layout.r_lo - n_keep * L
             y_rest = self.y_table_lo + 2.0 * self.rho
             while len(links) > n_keep + 10:
                 p = pos(links[0].body)
@@ -485,10 +490,6 @@ class Apparatus:
         return self.layout.r
 
     @property
-    def r_lo(self) -> float:
-        return self.layout.r_lo
-
-    @property
     def R_lo(self) -> float:
         return self.layout.R_lo
 
@@ -521,28 +522,8 @@ class Apparatus:
         return self.layout.gripped
 
     @property
-    def n_ahead(self) -> int:
-        return self.layout.n_ahead
-
-    @property
     def floor_depth(self) -> float:
         return self.layout.floor_depth
-
-    @property
-    def from_rest(self) -> bool:
-        return self.layout.from_rest
-
-    @property
-    def threads(self) -> bool:
-        return self.layout.threads
-
-    @property
-    def stub_length(self) -> float:
-        return self.layout.stub_length
-
-    @property
-    def v_lay(self) -> float:
-        return self.layout.v_lay
 
     @property
     def fountain(self) -> Fountain:
@@ -551,10 +532,6 @@ class Apparatus:
     @property
     def vertex_pred(self) -> tuple[float, float]:
         return self.layout.vertex_pred
-
-    @property
-    def x_floor(self) -> float:
-        return self.layout.x_floor
 
     @property
     def y_up(self) -> float:
@@ -567,10 +544,6 @@ class Apparatus:
     @property
     def channel_up(self) -> np.ndarray:
         return self.layout.channel_up
-
-    @property
-    def R_up(self) -> float:
-        return self.layout.R_up
 
     @property
     def x_plate_up_end(self) -> float:
@@ -653,10 +626,6 @@ class Apparatus:
     @property
     def channel_lo(self) -> np.ndarray | None:
         return self.end_part.channel_lo
-
-    @property
-    def i_end(self) -> int:
-        return self.end_part.i_end
 
     @property
     def end_walls(self) -> list[pymunk.Segment]:
@@ -744,10 +713,6 @@ class Apparatus:
         """'open' guide: the links held on the turn (chain indices from
         :attr:`tail_grooved` on) with their slide joints. Read only."""
         return self.tail.arc if self.tail is not None else deque()
-
-    @property
-    def far_lo(self) -> float:
-        return self.tail.far_lo if self.tail is not None else math.nan
 
     @property
     def end_pull(self) -> float:
