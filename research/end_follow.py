@@ -2,7 +2,7 @@
 :mod:`chainfountain.sim.apparatus.follow`), with live cart changes.
 
 ``--gain`` sets ``apparatus.end_follow`` (1/s; 0: a fixed guide); ``--capture`` and
-``--close`` vary the first turn's catch on :class:`~chainfountain.sim.apparatus.Apparatus`.
+``--close`` vary the first turn's catch (a :class:`~chainfountain.sim.apparatus.Tuning`).
 
 Per run: the chain speed, the landing offset and the guide's shift every ``--every`` s,
 and how the run ended.
@@ -24,7 +24,7 @@ import numpy as np
 from chainfountain.errors import RunEnded
 from chainfountain.level import io
 from chainfountain.level.library import shipped_dir
-from chainfountain.sim.apparatus import Apparatus
+from chainfountain.sim.apparatus import Tuning
 from chainfountain.study.changes import laid_on_path, with_changes
 from research.gripped_fold import _value
 
@@ -44,10 +44,8 @@ def main() -> None:
     ap.add_argument("--capture", type=float, nargs=2, metavar=("BAND_M", "MARGIN_DEG"))
     ap.add_argument("--close", type=float)
     a = ap.parse_args()
-    if a.capture:
-        Apparatus.fold_capture = (a.capture[0], math.radians(a.capture[1]))
-    if a.close is not None:
-        Apparatus.fold_close_rate = a.close
+    tuning = Tuning(fold_capture=(a.capture[0], math.radians(a.capture[1])) if a.capture
+                    else None, fold_close_rate=a.close)
     lvl = io.load(LEVELS / f"{a.level}.toml")
     ch = {k: _value(v) for k, v in (x.split("=", 1) for x in a.set)}
     ch["apparatus.end_follow"] = a.gain
@@ -60,6 +58,7 @@ def main() -> None:
     sess = Session(lvl)
     sim = sess.sim
     app = sim.apparatus
+    app.retune(tuning)
     changes = sorted((float(t), kv) for t, kv in a.change)
     print(f"{a.level} {' '.join(a.set)}: gain {a.gain:g}/s, h {sim.h * 1e3:g} ms")
     note = f"held {a.seconds:g} s"
@@ -77,8 +76,7 @@ def main() -> None:
                 if sess.stopped:
                     raise RunEnded(sess.stopped)
                 v.append(app.speed)
-                if app._mouth_dr is not None:
-                    dr.append(app._mouth_dr)
+                dr.append(app.fold.mouth_dr)
             fx = app.end_shift
             print(f"  t {sim.time:5.1f} s: v {np.mean(v):.3f} m/s, landing dr "
                   f"{100 * np.mean(dr) if dr else math.nan:+.1f} cm, guide shift "

@@ -2,15 +2,14 @@
 run ends, and how long runs hold with a changed catch, aim, damper or carts.
 
 Builds ``apparatus_fold`` with the gripped 100-mm folding roller as
-``research/gripped_fold.py`` does (laid on its path, ``--set`` changes), optionally
-nudged (``--seeds``), and varies the catch through the
-:class:`~chainfountain.sim.apparatus.Apparatus` class attributes (``--capture BAND
-MARGIN_DEG``, ``--close RATE``). Every bookkeeping step it reads, for the first link
-not yet captured (the one hanging at the mouth), its offset from the first turn's radius
-``dr`` (m, > 0 outside) and its angle from the mouth ``dth`` (deg, < 0 before the mouth),
-and the offset of every link that enters through the mouth. Per run it prints how the run
-ended, the mean speed, the spread of the mouth offsets per 5-s window and, for a run that
-ended, the last ``--tail`` s of the catch (0.1-s rows).
+``research/gripped_fold.py`` does (laid on its path, ``--set`` changes), optionally nudged
+(``--seeds``), and varies the catch (``--capture BAND MARGIN_DEG``, ``--close RATE``: a
+:class:`~chainfountain.sim.apparatus.Tuning`). Every bookkeeping step it reads, for the
+first link not yet captured (the one hanging at the mouth), its offset from the first
+turn's radius ``dr`` (m, > 0 outside) and its angle from the mouth ``dth`` (deg, < 0
+before the mouth), and the offset of every link that enters through the mouth. Per run it
+prints how the run ended, the mean speed, the spread of the mouth offsets per 5-s window
+and, for a run that ended, the last ``--tail`` s of the catch (0.1-s rows).
 
 Usage::
 
@@ -33,7 +32,7 @@ import time
 import numpy as np
 
 from chainfountain.errors import RunEnded
-from chainfountain.sim.apparatus import Apparatus
+from chainfountain.sim.apparatus import Tuning
 from chainfountain.sim.fastbody import pos
 from research.gripped_fold import _value, build
 
@@ -47,26 +46,27 @@ class Watch:
         self.app = app
         self.hang: list[tuple[float, float, float]] = []
         self.entries: list[tuple[float, float]] = []
-        orig = app._capture_at_mouth
+        fold = app.fold
+        orig = fold.capture_at_mouth
         el0 = app.guide[0]
         cx, cy = el0.a
         Rc, th0 = el0.R, el0.th0
 
         def capture(popped: int) -> None:
-            before = app._mouth_t
-            n0 = app._cap_next - popped
+            before = fold.mouth_t
+            n0 = fold.cap_next - popped
             orig(popped)
-            if app._mouth_t is not None and (app._mouth_t != before or app._cap_next > n0 + 1):
-                self.entries.append((app._t, app._mouth_dr))
-            i = app._cap_next
+            if fold.mouth_t is not None and (fold.mouth_t != before or fold.cap_next > n0 + 1):
+                self.entries.append((app.time, fold.mouth_dr))
+            i = fold.cap_next
             if 0 <= i < len(sim.chain.links):
                 p = pos(sim.chain.links[i].body)
                 d = math.hypot(p.x - cx, p.y - cy)
                 th = math.atan2(p.y - cy, p.x - cx)
                 dth = (th - th0 + math.pi) % (2.0 * math.pi) - math.pi
-                self.hang.append((app._t, d - Rc, math.degrees(dth)))
+                self.hang.append((app.time, d - Rc, math.degrees(dth)))
 
-        app._capture_at_mouth = capture
+        fold.capture_at_mouth = capture
 
 
 def run(sim, seconds: float) -> tuple[Watch, list[float], str]:
@@ -125,7 +125,7 @@ def snap(sim, times: list[float], out: str) -> None:
         except RunEnded as e:
             print("ended", getattr(e, "plain", e))
         cx, cy = el0.a
-        R, (band, marg) = el0.R, app.fold_capture
+        R, (band, marg) = el0.R, app.fold.capture
         th = np.linspace(el0.th0, el0.th1, 100)
         ax.plot(cx + R * np.cos(th), cy + R * np.sin(th), "g-", lw=3, alpha=0.4)
         for r in (R - band, R + band):
@@ -138,7 +138,7 @@ def snap(sim, times: list[float], out: str) -> None:
             if not (cx - 0.45 < p.x < cx + 0.2 and cy - 0.3 < p.y < cy + 0.3):
                 continue
             f, bb = b.local_to_world((0.01, 0)), b.local_to_world((-0.01, 0))
-            col = "blue" if id(lk) in held else ("red" if i == app._cap_next else "orange")
+            col = "blue" if id(lk) in held else ("red" if i == app.fold.cap_next else "orange")
             ax.plot([f.x, bb.x], [f.y, bb.y], "-o", color=col, ms=2, lw=1.2)
         ax.set_xlim(cx - 0.45, cx + 0.2)
         ax.set_ylim(cy - 0.3, cy + 0.3)
@@ -159,17 +159,15 @@ def main(argv: list[str] | None = None) -> int:
                     help="sim.nudge(seed) after building; -1: not nudged")
     ap.add_argument("--set", nargs="*", default=[], metavar="PATH=VALUE")
     ap.add_argument("--capture", type=float, nargs=2, metavar=("BAND_M", "MARGIN_DEG"))
-    ap.add_argument("--close", type=float, help="Apparatus.fold_close_rate (m/s)")
+    ap.add_argument("--close", type=float, help="the joint guides' close rate (m/s)")
     ap.add_argument("--snap", help="comma-separated times: draw the mouth region")
     ap.add_argument("--out", default="/tmp/fold_catch_snap.png")
     ap.add_argument("--tail", type=float, default=1.5,
                     help="seconds of 0.1-s rows before the end (0: none)")
     ap.add_argument("--tail-always", action="store_true", help="rows for held runs too")
     a = ap.parse_args(argv)
-    if a.capture:
-        Apparatus.fold_capture = (a.capture[0], math.radians(a.capture[1]))
-    if a.close is not None:
-        Apparatus.fold_close_rate = a.close
+    tuning = Tuning(fold_capture=(a.capture[0], math.radians(a.capture[1])) if a.capture
+                    else None, fold_close_rate=a.close)
     changes = {}
     for item in a.set:
         key, _, val = item.partition("=")
@@ -177,6 +175,7 @@ def main(argv: list[str] | None = None) -> int:
     for f in a.dt_factor:
         for seed in a.seeds:
             sim = build(a.level, changes, f, False)
+            sim.apparatus.retune(tuning)
             if seed >= 0:
                 sim.nudge(seed)
             if a.snap:
@@ -184,9 +183,9 @@ def main(argv: list[str] | None = None) -> int:
                 continue
             t0 = time.perf_counter()
             w, v, end = run(sim, a.seconds)
-            cap = Apparatus.fold_capture
+            cap = sim.apparatus.fold.capture
             label = (f"h {sim.h * 1e3:g} ms seed {seed} capture {100 * cap[0]:g} cm/"
-                     f"{math.degrees(cap[1]):g} deg close {Apparatus.fold_close_rate:g} "
+                     f"{math.degrees(cap[1]):g} deg close {sim.apparatus.fold.close_rate:g} "
                      + " ".join(a.set))
             report(w, v, end, label, time.perf_counter() - t0,
                    a.tail if (end.startswith("ended") or a.tail_always) else 0.0)

@@ -28,6 +28,7 @@ import numpy as np
 from chainfountain.level import io
 from chainfountain.level.library import shipped_dir
 from chainfountain.sim import Simulation
+from chainfountain.sim.apparatus import Tuning
 from chainfountain.sim.fastbody import PIVOT_JACC as JACC
 from chainfountain.sim.fastbody import pivot_impulse
 from chainfountain.study.changes import laid_on_path, with_changes
@@ -63,11 +64,8 @@ def parse_val(v: str):
 def apply_patches(patches: dict) -> None:
     import chainfountain.sim.apparatus.fold as fold
     import chainfountain.sim.guide as guide
-    from chainfountain.sim.apparatus import Apparatus
     if "nokeep" in patches:
         fold.keep_on_arcs = lambda *a, **k: None
-    if "close" in patches:
-        Apparatus.fold_close_rate = float(patches["close"])
     if "gbias" in patches:
         guide.GUIDE_BIAS = float(patches["gbias"])
     if "release" in patches:
@@ -96,6 +94,8 @@ def run(level: str, h: float, sets: dict, patches: dict, t0: float, t1: float,
     lvl = with_changes(lvl, ch)
     sim = Simulation(laid_on_path(lvl).sim)
     app = sim.apparatus
+    if "close" in patches:
+        app.retune(Tuning(fold_close_rate=float(patches["close"])))
     if "cbias" in patches:
         sim.chain.set_error_bias(float(patches["cbias"]))
     lam = lvl.sim.chain.linear_density

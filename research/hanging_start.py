@@ -1,13 +1,15 @@
 """Starting the gripped fold from rest with the chain hanging between the machine's guides.
 
-A prototype (monkeypatched, not in the package). The chain lies at rest along its whole
-path: on the upper table, round the pick-up roller, up the upper guide, then *hanging*
-under its weight from the fountain start to the end guide's mouth (a catenary through the
-two points, ``--slack`` longer than the chord), through the lower guide and round the
-folding roller onto the lower table. A starter motor runs both rollers up from rest to
-``apparatus.speed`` over 0.5 s (the upper guide's links, as the floor presets' starter,
-and the folding roller's carriage at half the speed) and lets go at ``--hand-over`` s;
-then only the carts, the brake and the fall drive the chain.
+A prototype (not in the package): its own starter (a
+:class:`~chainfountain.sim.apparatus.Starter`), the path it lays the chain along and a
+:class:`~chainfountain.sim.apparatus.Tuning`, passed to the apparatus. The chain lies at
+rest along its whole path: on the upper table, round the pick-up roller, up the upper
+guide, then *hanging* under its weight from the fountain start to the end guide's mouth (a
+catenary through the two points, ``--slack`` longer than the chord), through the lower
+guide and round the folding roller onto the lower table. A starter motor runs both rollers
+up from rest to ``apparatus.speed`` over 0.5 s (the upper guide's links, as the floor
+presets' starter, and the folding roller's carriage at half the speed) and lets go at
+``--hand-over`` s; then only the carts, the brake and the fall drive the chain.
 
 Prints the chain speed's and the landing's (``dr``, the entering link's offset from the
 first turn's radius) 0.5-s means, and how the run ended.
@@ -22,7 +24,10 @@ Usage::
 from __future__ import annotations
 
 import argparse
+import functools
 import math
+from typing import Any
+from unittest import mock
 
 import numpy as np
 from scipy.optimize import brentq
@@ -30,8 +35,9 @@ from scipy.optimize import brentq
 from chainfountain.errors import RunEnded
 from chainfountain.level import io
 from chainfountain.level.library import shipped_dir
-from chainfountain.sim import Simulation
-from chainfountain.sim.apparatus import Apparatus, starter
+from chainfountain.sim import Simulation, world
+from chainfountain.sim.apparatus import Apparatus, Layout, Starter, Tuning, starter
+from chainfountain.sim.config import SimConfig
 from chainfountain.study.changes import laid_on_path, with_changes
 
 LEVELS = shipped_dir()
@@ -53,88 +59,107 @@ def hanging_path(xe: float, ye: float, slack: float, n: int = 400) -> np.ndarray
     return np.column_stack((xs, c + a * np.cosh((xs - x0) / a)))
 
 
-def patch(slack: float, hand_over: float, capture: tuple[float, float], keep: bool,
-          shape: str, lag_factor: float,
-          fade: tuple[float, float], boost: float, drive_lower: str,
-          steer: float) -> None:
-    read0, path0 = Apparatus._read_config, Apparatus._fountain_path
-    starter0, drive0 = Apparatus._init_starter_state, Apparatus._drive_starter
+class Start:
+    """The hanging start's settings, and what it measured when the chain was laid."""
 
-    def read(self, space, chain, cfg) -> None:
-        read0(self, space, chain, cfg)
-        self.v_lay = 0.0
+    def __init__(self, slack: float, hand_over: float, capture: tuple[float, float],
+                 keep: bool, shape: str, lag_factor: float, fade: tuple[float, float],
+                 boost: float, drive_lower: str, steer: float, ramp: float) -> None:
+        self.slack, self.hand_over, self.capture, self.keep = slack, hand_over, capture, keep
+        self.shape, self.lag_factor, self.fade, self.boost = shape, lag_factor, fade, boost
+        self.drive_lower, self.steer, self.ramp = drive_lower, steer, ramp
+        self.lag = 0.0
+        """How much later (s) the lower roller starts than the upper, so that the loop
+        gets the fountain's length (set when the chain is laid)."""
 
-    def fountain_path(self) -> np.ndarray:
-        laid = path0(self)
-        if shape == "fountain":
-            self._lag = 0.0
+    def fountain_path(self, layout: Layout, laid: np.ndarray) -> np.ndarray:
+        """The chain's path between the guides (``Apparatus(fountain_path=...)``): hanging,
+        or the predicted fountain's."""
+        if self.shape == "fountain":
+            self.lag = 0.0
             return laid
-        hang = hanging_path(self.end[0], self.end[1], slack)
+        hang = hanging_path(layout.end[0], layout.end[1], self.slack)
 
         def arc(p: np.ndarray) -> float:
             p = np.vstack(([0.0, 0.0], p))
             return float(np.sum(np.hypot(*np.diff(p, axis=0).T)))
 
         # the lower roller starts later, so that the loop gets the fountain's length
-        self._lag = lag_factor * (arc(laid) - arc(hang)) / float(self.cfg.speed)
+        self.lag = self.lag_factor * (arc(laid) - arc(hang)) / float(layout.cfg.speed)
         return hang
 
-    def init_starter(self) -> None:
-        starter0(self)
-        self.starting = True
-        self._shipped_capture = self.fold_capture
-        self.fold_capture = (capture[0], math.radians(capture[1]))
+    def starter(self) -> type[Starter]:
+        """The starter motor of this start (``Apparatus(starter=...)``)."""
+        st = self
 
-    def drive(self) -> None:
-        drive0(self)
-        v = boost * float(self.cfg.speed) * min(1.0, max(0.0, self._t - self._lag) / starter.RAMP)
-        if drive_lower == "none":
-            return
-        if drive_lower == "hand":  # hold back the lower cart's push until the chain runs
-            lo = self.lower
-            f = -lo.direction * lo.force * (1.0 - v / (boost * float(self.cfg.speed)))
-            lo.carriage.apply_force_at_world_point((f, 0.0), lo.carriage.position)
-            if lo.carriage.velocity.x < 0.0:  # a pawl: it does not roll back
-                lo.carriage.velocity = (0.0, 0.0)
-            return
-        if drive_lower == "carriage":
-            self.lower.carriage.velocity = (0.5 * v, 0.0)
-            return
-        if drive_lower == "steer":  # store chain while the fountain lands short
-            dr = self._mouth_dr if self._mouth_dr is not None else 0.0
-            f = min(1.2, max(0.5, 1.0 - steer * dr))
-            self.lower.carriage.velocity = (0.5 * v * f, 0.0)
-            return
-        starter.run_along(self.guide, self._gq, v)  # the chain in the lower guide
+        class HangingStarter(Starter):
+            """Runs both rollers up from rest and lets go at ``hand_over``."""
 
-    def check(self) -> None:
-        if self._t >= hand_over:
-            self.starting = False
-            if not keep:
-                self.fold_capture = self._shipped_capture
+            def __init__(self, *args: Any) -> None:
+                super().__init__(*args)
+                assert self.fold is not None, "the hanging start is for 'fold' levels"
+                self.starting = True
+                self.shipped_capture = self.fold.capture
+                self.fold.capture = (st.capture[0], math.radians(st.capture[1]))
 
-    before0 = Apparatus.before_step
+            @property
+            def speed(self) -> float:
+                return st.boost * float(self.cfg.speed) * min(1.0, self.clock.t / st.ramp)
 
-    def before(self) -> None:
-        before0(self)
-        t = self._t - hand_over
-        if self.starting or t >= fade[1] or fade[0] <= 0.0:
-            return
-        c = fade[0] * (1.0 - t / fade[1])
-        u_s = 0.5 * float(self.cfg.speed)
-        for unit in (self.upper, self.lower):
-            body = unit.carriage
-            body.apply_force_at_world_point((-c * (body.velocity.x - u_s), 0.0),
-                                            body.position)
+            def drive(self) -> None:
+                super().drive()
+                fold, lo = self.fold, self.lower
+                assert fold is not None and lo is not None
+                v_full = st.boost * float(self.cfg.speed)
+                v = v_full * min(1.0, max(0.0, self.clock.t - st.lag) / st.ramp)
+                if st.drive_lower == "none":
+                    return
+                if st.drive_lower == "hand":  # hold back the lower cart's push until it runs
+                    f = -lo.direction * lo.force * (1.0 - v / v_full)
+                    lo.carriage.apply_force_at_world_point((f, 0.0), lo.carriage.position)
+                    if lo.carriage.velocity.x < 0.0:  # a pawl: it does not roll back
+                        lo.carriage.velocity = (0.0, 0.0)
+                    return
+                if st.drive_lower == "carriage":
+                    lo.carriage.velocity = (0.5 * v, 0.0)
+                    return
+                if st.drive_lower == "steer":  # store chain while the fountain lands short
+                    f = min(1.2, max(0.5, 1.0 - st.steer * fold.mouth_dr))
+                    lo.carriage.velocity = (0.5 * v * f, 0.0)
+                    return
+                starter.run_along(fold.guide, fold.held, v)  # the chain in the lower guide
 
-    Apparatus.before_step = before
-    Apparatus.starter_speed = property(
-        lambda self: boost * float(self.cfg.speed) * min(1.0, self._t / starter.RAMP))
-    Apparatus._read_config = read
-    Apparatus._fountain_path = fountain_path
-    Apparatus._init_starter_state = init_starter
-    Apparatus._drive_starter = drive
-    Apparatus._check_starter = check
+            def check(self, absorbed: int, chain_speed: float) -> None:
+                if self.clock.t >= st.hand_over:
+                    self.starting = False
+                    if not st.keep and self.fold is not None:
+                        self.fold.capture = self.shipped_capture
+
+            def before_step(self) -> None:
+                super().before_step()
+                t = self.clock.t - st.hand_over
+                c0, span = st.fade
+                if self.starting or t >= span or c0 <= 0.0 or self.lower is None:
+                    return
+                c = c0 * (1.0 - t / span)
+                u_s = 0.5 * float(self.cfg.speed)
+                for unit in (self.upper, self.lower):
+                    body = unit.carriage
+                    body.apply_force_at_world_point((-c * (body.velocity.x - u_s), 0.0),
+                                                    body.position)
+
+        return HangingStarter
+
+
+def simulation(cfg: SimConfig, start: Start, tuning: Tuning) -> Simulation:
+    """A simulation of ``cfg`` whose apparatus is built with ``start``'s path and starter
+    and with ``tuning``. (:class:`~chainfountain.sim.Simulation` builds its apparatus
+    itself and takes no apparatus arguments yet, so its module's ``Apparatus`` is this
+    apparatus's builder while it does.)"""
+    build = functools.partial(Apparatus, tuning=tuning, starter=start.starter(),
+                              fountain_path=start.fountain_path)
+    with mock.patch.object(world, "Apparatus", build):
+        return Simulation(cfg)
 
 
 def main() -> None:
@@ -159,7 +184,7 @@ def main() -> None:
     ap.add_argument("--boost", type=float, default=1.0,
                     help="the starter runs at this times apparatus.speed")
     ap.add_argument("--close", type=float,
-                    help="Apparatus.fold_close_rate (m/s): how fast a link captured off "
+                    help="Tuning.fold_close_rate (m/s): how fast a link captured off "
                     "the first turn's radius is brought onto it")
     ap.add_argument("--drive-lower", default="chain",
                     choices=("chain", "carriage", "none", "hand", "steer"),
@@ -172,21 +197,20 @@ def main() -> None:
     ap.add_argument("--keep-capture", action="store_true",
                     help="keep that catch after the hand-over (else the level's)")
     a = ap.parse_args()
-    starter.RAMP = a.ramp
-    if a.close is not None:
-        Apparatus.fold_close_rate = a.close
-    patch(a.slack, a.hand_over, tuple(a.capture), a.keep_capture, a.shape,
-          a.lag_factor, tuple(a.fade), a.boost, a.drive_lower, a.steer)
+    start = Start(a.slack, a.hand_over, tuple(a.capture), a.keep_capture, a.shape,
+                  a.lag_factor, tuple(a.fade), a.boost, a.drive_lower, a.steer, a.ramp)
+    tuning = Tuning(fold_close_rate=a.close, lay_at_rest=True)
     lvl = laid_on_path(io.load(LEVELS / f"{a.level}.toml"))
     ch = {k: float(v) for k, v in (x.split("=", 1) for x in a.set)}
     if a.dt_factor != 1.0:
         ch["solver.dt"] = lvl.sim.solver.dt * a.dt_factor
     lvl = with_changes(lvl, ch) if ch else lvl
-    sim = Simulation(lvl.sim)
+    sim = simulation(lvl.sim, start, tuning)
     app = sim.apparatus
-    print(f"lower roller starts {app._lag:.3f} s after the upper")
+    assert app is not None and app.fold is not None
+    print(f"lower roller starts {start.lag:.3f} s after the upper")
     print(f"{a.level}: hanging start, slack {a.slack:g}, hand-over {a.hand_over:g} s, "
-          f"h {sim.h * 1e3:g} ms; ramp {starter.RAMP} s")
+          f"h {sim.h * 1e3:g} ms; ramp {a.ramp} s")
     note = f"held {a.seconds:g} s"
     try:
         while sim.time < a.seconds - 1e-9:
@@ -195,8 +219,7 @@ def main() -> None:
                 sim.advance(0.01)
                 v.append(app.speed)
                 vout.append(2.0 * app.lower.speed)
-                if app._mouth_dr is not None:
-                    dr.append(app._mouth_dr)
+                dr.append(app.fold.mouth_dr)
             mdr = 100 * np.mean(dr) if dr else math.nan
             top = max((lk.body.position.y for lk in sim.chain.links), default=math.nan)
             print(f"  t {sim.time:5.1f} s: v_in {np.mean(v):.3f} v_out {np.mean(vout):.3f} "

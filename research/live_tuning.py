@@ -35,23 +35,21 @@ def run(level: str, field: str, value: float, at: float, after: float, every: fl
         catch: tuple[float, float, float] | None = None, laid: bool = False) -> str:
     """One run; a line with the speeds after the change, or where it stopped. ``also``:
     more fields set at the same moment, before ``field``; ``catch``: the 'fold' guide's
-    capture band (m), margin (deg) and close rate (m/s), set on
-    :class:`~chainfountain.sim.apparatus.Apparatus` (a study of the catch)."""
+    capture band (m), margin (deg) and close rate (m/s), given to the apparatus
+    (:meth:`~chainfountain.sim.apparatus.Apparatus.retune`; a study of the catch)."""
     os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
     import math
 
     from chainfountain.app.session import Session
     from chainfountain.level import io, library
-    from chainfountain.sim.apparatus import Apparatus
-
-    if catch is not None:
-        Apparatus.fold_capture = (catch[0], math.radians(catch[1]))
-        Apparatus.fold_close_rate = catch[2]
-
+    from chainfountain.sim.apparatus import Tuning
     from chainfountain.study.changes import laid_on_path
 
     lvl = io.load(library.resolve(level))
     s = Session(laid_on_path(lvl) if laid else lvl)
+    if catch is not None:  # the catch is read while stepping (a rebuild would drop it)
+        s.sim.apparatus.retune(Tuning(fold_capture=(catch[0], math.radians(catch[1])),
+                                      fold_close_rate=catch[2]))
     s.advance(at)
     for other, v in also:
         res = s.set_field(other, v)

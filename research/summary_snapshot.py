@@ -13,6 +13,7 @@ Usage::
     python research/summary_snapshot.py --out after.json           # on the new code
     python research/summary_snapshot.py --compare before.json after.json
     python research/summary_snapshot.py --hashes --out before_h.json   # link states
+    python research/summary_snapshot.py --hashes --only 'apparatus_*' --out a.json  # some
 
 About 8 minutes at the default 3 s, long enough for the steady-state path (the
 near-critical fountain D presets dominate).
@@ -35,11 +36,12 @@ VOLATILE = {"wall_s", "realtime_factor", "outputs"}
 """Keys that differ between identical runs (timing) or name files."""
 
 
-def snapshot(duration: float) -> dict[str, dict]:
-    """Figures of every shipped level after ``duration`` simulated seconds."""
+def snapshot(duration: float, only: str = "*") -> dict[str, dict]:
+    """Figures of every shipped level (whose name matches ``only``) after ``duration``
+    simulated seconds."""
     out: dict[str, dict] = {}
     with tempfile.TemporaryDirectory() as tmp:
-        for path in sorted(LEVELS.glob("*.toml")):
+        for path in sorted(LEVELS.glob(f"{only}.toml")):
             d = Path(tmp) / path.stem
             r = subprocess.run([sys.executable, "-m", "chainfountain", "run", str(path),
                                 "--duration", str(duration), "--quiet", "--out", str(d)],
@@ -55,7 +57,7 @@ def snapshot(duration: float) -> dict[str, dict]:
     return out
 
 
-def state_hashes(duration: float) -> dict[str, str]:
+def state_hashes(duration: float, only: str = "*") -> dict[str, str]:
     """A SHA-256 of every body's position, velocity, angle and spin in each shipped level
     after ``duration`` simulated seconds from its start (``chainfountain.start``): equal
     hashes mean the refactored code steps the same bodies to the last bit."""
@@ -64,7 +66,7 @@ def state_hashes(duration: float) -> dict[str, str]:
     import chainfountain
 
     out: dict[str, str] = {}
-    for path in sorted(LEVELS.glob("*.toml")):
+    for path in sorted(LEVELS.glob(f"{only}.toml")):
         sim = chainfountain.start(str(path))
         ended = sim.advance(duration)
         space = getattr(sim.sim, "space", None) or sim.sim.scene.space
@@ -135,6 +137,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--out", type=Path)
     ap.add_argument("--hashes", action="store_true",
                     help="link-state hashes after --duration (default 2 s) instead of figures")
+    ap.add_argument("--only", default="*", metavar="GLOB",
+                    help="only the levels whose name matches GLOB (e.g. 'apparatus_*')")
     ap.add_argument("--compare", nargs=2, type=Path, metavar=("BEFORE", "AFTER"))
     a = ap.parse_args(argv)
     if a.compare:
@@ -142,7 +146,8 @@ def main(argv: list[str] | None = None) -> int:
         return 1 if compare(before, after) else 0
     if a.out is None:
         ap.error("--out FILE or --compare BEFORE AFTER")
-    data = state_hashes(a.duration or 2.0) if a.hashes else snapshot(a.duration or 3.0)
+    data = (state_hashes(a.duration or 2.0, a.only) if a.hashes
+            else snapshot(a.duration or 3.0, a.only))
     a.out.write_text(json.dumps(data, indent=1, sort_keys=True))
     print(f"wrote {a.out}")
     return 0

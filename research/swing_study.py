@@ -17,8 +17,8 @@ over 0.5-3.5 s and over the last 3 s before the end (or before ``--seconds`` min
 and a fit ``v = c0 + c1 t + A exp(sigma t) sin(omega t + phi)`` over 0.5 s to 1 s before
 the end: ``sigma`` (1/s, growth rate of the swing; > 0 grows) and the period.
 ``--close-rate`` sets the catch's closing speed (m/s, the class attribute
-``Apparatus.fold_close_rate``, 5 as shipped), ``--band`` its capture band (m, the first
-element of ``Apparatus.fold_capture``, 0.06 as shipped). "catch lost s" is the time the
+``Tuning.fold_close_rate``, 5 as shipped), ``--band`` its capture band (m, the first
+element of ``Tuning.fold_capture``, 0.06 as shipped). "catch lost s" is the time the
 last link entered the end guide through its mouth when that was
 :data:`~chainfountain.sim.apparatus.tuning.CATCH_LOST` s or more before the end (``-``
 otherwise). ``--upper-drag c`` (N s/m) adds a damper to the pick-up carriage about the
@@ -43,8 +43,8 @@ from scipy.optimize import curve_fit
 
 from chainfountain.errors import RunEnded
 from chainfountain.sim import Simulation, fastbody
-from chainfountain.sim.apparatus import Apparatus
-from chainfountain.sim.apparatus.tuning import CATCH_LOST
+from chainfountain.sim.apparatus import Apparatus, Tuning
+from chainfountain.sim.apparatus.tuning import CATCH_LOST, FOLD_CAPTURE
 from chainfountain.sim.config import SimConfig
 from research.fold_step_study import fold_config, positive
 
@@ -64,12 +64,14 @@ def _upper_drag(app: Apparatus, c: float, v0: float) -> None:
     app.before_step = step
 
 
-def trace(cfg: SimConfig, seconds: float, upper_drag: float = 0.0
-          ) -> tuple[np.ndarray, np.ndarray, float | None, float]:
+def trace(cfg: SimConfig, seconds: float, upper_drag: float = 0.0,
+          tuning: Tuning | None = None) -> tuple[np.ndarray, np.ndarray, float | None, float]:
     """Strand speed every :data:`SAMPLE` s, the time the run ended (None: it did not) and
     the time the last link entered the end guide through its mouth."""
     sim = Simulation(cfg)
     app = sim.apparatus
+    if tuning is not None:
+        app.retune(tuning)
     if upper_drag:
         _upper_drag(app, upper_drag, cfg.apparatus.speed)
     t, v = [], []
@@ -109,7 +111,7 @@ def figure(cfg: SimConfig, seconds: float, out: str) -> None:
     ax.set_ylim(0.0, 4.5)
     ax.set_ylabel("chain speed (m/s)")
     fresh = t - r[:, 3] < 2.0 * SAMPLE  # a link entered through the mouth in this sample
-    band = 100.0 * Apparatus.fold_capture[0]
+    band = 100.0 * app.fold.capture[0]
     bx.axhspan(-band, band, color="0.9", label="catch band")
     bx.plot(t[fresh], 100.0 * r[fresh, 4], ".", ms=2, color="C2",
             label="landing offset in the mouth (> 0: short)")
@@ -201,12 +203,11 @@ def main(argv: list[str] | None = None) -> int:
           "| upper guide | ended s | catch lost s | v m/s (0.5-8 s) | swing early m/s "
           "| swing late m/s | sigma 1/s | period s | wall s |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
-    shipped, shipped_band = Apparatus.fold_close_rate, Apparatus.fold_capture
     for dt, its, mass, v0, rate, band, drag, guide in itertools.product(
             args.dt, args.iterations, args.lower_cart, args.speeds, args.close_rate, args.band,
             args.upper_drag, args.upper_guide):
-        Apparatus.fold_close_rate = shipped if rate is None else rate
-        Apparatus.fold_capture = shipped_band if band is None else (band, shipped_band[1])
+        tuning = Tuning(fold_close_rate=rate, fold_capture=None if band is None
+                        else (band, FOLD_CAPTURE[1]))
         cfg = fold_config(args.level, dt * 1e-3, args.clearance, mass, v0)
         if its is not None:
             cfg = dataclasses.replace(cfg, solver=dataclasses.replace(cfg.solver, iterations=its))
@@ -214,7 +215,7 @@ def main(argv: list[str] | None = None) -> int:
             cfg = dataclasses.replace(cfg, apparatus=dataclasses.replace(
                 cfg.apparatus, upper_guide=guide))
         w0 = time.perf_counter()
-        t, v, ended, mouth = trace(cfg, args.seconds, drag)
+        t, v, ended, mouth = trace(cfg, args.seconds, drag, tuning)
         lost = ended is not None and ended - mouth >= CATCH_LOST
         end = ended if ended is not None else args.seconds
         late = (max(0.5, end - 4.0), end - 1.0)
@@ -222,13 +223,12 @@ def main(argv: list[str] | None = None) -> int:
         s, period = growth(t, v, 0.5, end - 1.0)
         print(f"| {dt:g} | {cfg.solver.iterations} | {1e3 * cfg.carts[1].mass:g} | "
               f"{cfg.apparatus.speed:g} | "
-              f"{Apparatus.fold_close_rate:g} | {Apparatus.fold_capture[0]:g} | {drag:g} | "
+              f"{tuning.close_rate(False):g} | {tuning.capture(False)[0]:g} | {drag:g} | "
               f"{cfg.apparatus.upper_guide} | {'-' if ended is None else f'{ended:.2f}'} | "
               f"{f'{mouth:.2f}' if lost else '-'} | "
               f"{float(np.mean(mean)) if len(mean) else math.nan:.3f} | "
               f"{swing(t, v, 0.5, 3.5):.3f} | {swing(t, v, *late):.3f} | {s:+.3f} | "
               f"{period:.2f} | {time.perf_counter() - w0:.0f} |", flush=True)
-    Apparatus.fold_close_rate, Apparatus.fold_capture = shipped, shipped_band
     return 0
 
 

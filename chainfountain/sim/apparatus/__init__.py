@@ -52,15 +52,23 @@ The channels' centre lines and the joint-guide pieces are in
 :mod:`chainfountain.sim.guide`; measuring a run (tensions along the path,
 ``summary.json``'s ``apparatus`` object) is in :mod:`chainfountain.sim.apparatus_report`.
 
-Modules, one part each: :mod:`.laws` (the measured pick-up and put-down laws, speed
-selection), :mod:`.tuning` (the model's numeric choices and their reasons),
-:mod:`.parts` (roller units, static segments and walls), :mod:`.core`
+Modules, one part each (each part an object given what it reads; :class:`Apparatus`
+composes them): :mod:`.laws` (the measured pick-up and put-down laws, speed selection),
+:mod:`.tuning` (the model's numeric choices and their reasons, and :class:`Tuning`, what a
+study may vary), :mod:`.layout` (the level's figures and the derived positions the parts
+share), :mod:`.parts` (roller units, static segments and walls), :mod:`.core`
 (:class:`Apparatus`: build order, feed interface, stepping), :mod:`.upper` (pick-up
 roller, upper table, plate and channel), :mod:`.grooves` (the upper plate's grooves),
 :mod:`.upper_guide` (the upper joint guide), :mod:`.joints` (holding links in a joint
 guide), :mod:`.ends` (floor or end channel), :mod:`.fold` (folding roller and lower
-joint guide), :mod:`.fold_watch` (the fold's collapse check and messages),
-:mod:`.treadmill` (the plate treadmills), :mod:`.open_tail` ('open': the tail).
+joint guide), :mod:`.grip` (the gripped folding roller), :mod:`.follow` (the end guide
+that follows the landing), :mod:`.fold_watch` (the fold's collapse check and messages),
+:mod:`.stall_watch` (the stall check), :mod:`.treadmill` (the plate treadmills),
+:mod:`.open_tail` ('open': the tail), :mod:`.starter` (the starter motor).
+
+A study varies the model through :class:`Tuning` and the constructor's ``starter`` and
+``fountain_path`` (``Apparatus(space, chain, cfg, tuning=Tuning(fold_close_rate=20.0))``),
+never by setting attributes of the class.
 """
 
 from chainfountain.errors import RunEnded
@@ -82,7 +90,10 @@ from chainfountain.sim.apparatus.laws import (
     rig_exit_tension,
     selected_speed,
 )
+from chainfountain.sim.apparatus.layout import Layout
 from chainfountain.sim.apparatus.parts import RollerUnit
+from chainfountain.sim.apparatus.starter import Starter
+from chainfountain.sim.apparatus.tuning import Tuning
 
 __all__ = [
     "CART_GAIN_2CM",
@@ -97,9 +108,12 @@ __all__ = [
     "RIG_2CM_LAMBDA",
     "Apparatus",
     "FoldCollapsed",
+    "Layout",
     "RollerUnit",
     "RunEnded",
+    "Starter",
     "TableUsedUp",
+    "Tuning",
     "pickup_rig_2cm",
     "pickup_rig_2cm_drag",
     "rig_exit_tension",

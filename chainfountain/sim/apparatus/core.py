@@ -1,19 +1,24 @@
-"""The apparatus as one object: :class:`Apparatus` builds the parts (in the order the
-solver sees them) and steps them; each part's code is in its own module, composed here
-as a mixin.
+"""The apparatus as one object: :class:`Apparatus` builds its parts (in the order the
+solver sees them), steps them and answers for them; each part is an object of its own
+module, given what it reads.
 
-Build steps, upstream to downstream (:meth:`Apparatus.__init__`): the predicted
-fountain (layout), the upper part (:mod:`.upper`), the end by variant (:mod:`.ends`;
-the open tail's plate, :mod:`.open_tail`; the folding roller and lower guide,
-:mod:`.fold`), the chain laid along the path, then the links taken into their grooves
-and joint guides (:mod:`.grooves`, :mod:`.upper_guide`, :mod:`.fold`). Each step adds
-its bodies, shapes and joints to the space in the order the single constructor did
-(the solver's results depend on it).
+Build steps, upstream to downstream (:meth:`Apparatus.__init__`): the layout
+(:mod:`.layout`: the predicted fountain and the upper heights), the upper part
+(:mod:`.upper`), the end by variant (:mod:`.ends`; the open tail's plate,
+:mod:`.open_tail`; the folding roller and lower guide, :mod:`.fold`), the chain laid
+along the path, the bookkeeping parts (:mod:`.upper_guide`, :mod:`.grooves`,
+:mod:`.grip`, :mod:`.follow`, :mod:`.treadmill`, :mod:`.fold_watch`,
+:mod:`.stall_watch`, :mod:`.starter`), then the links taken into their grooves and
+joint guides. Each step adds its bodies, shapes and joints to the space in the order
+the single constructor did (the solver's results depend on it).
 """
 
 from __future__ import annotations
 
 import math
+from collections import deque
+from collections.abc import Callable
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pymunk
@@ -25,28 +30,32 @@ from chainfountain.sim.apparatus.fold_watch import FoldWatch
 from chainfountain.sim.apparatus.follow import FollowingEnd
 from chainfountain.sim.apparatus.grip import GrippedFold
 from chainfountain.sim.apparatus.grooves import PlateGrooves
+from chainfountain.sim.apparatus.layout import Layout
 from chainfountain.sim.apparatus.open_tail import OpenTail
-from chainfountain.sim.apparatus.parts import DRIVE_REACH
+from chainfountain.sim.apparatus.parts import DRIVE_REACH, Clock, RollerUnit
 from chainfountain.sim.apparatus.stall_watch import StallWatch
-from chainfountain.sim.apparatus.starter import StarterPart
+from chainfountain.sim.apparatus.starter import Starter
 from chainfountain.sim.apparatus.treadmill import Treadmills
-from chainfountain.sim.apparatus.tuning import (
-    FOLD_CAPTURE,
-    FOLD_CLOSE_RATE,
-    FOLLOW_CAPTURE,
-    FOLLOW_CLOSE_RATE,
-)
+from chainfountain.sim.apparatus.tuning import Tuning
 from chainfountain.sim.apparatus.upper import UpperPart
 from chainfountain.sim.apparatus.upper_guide import UpperJointGuide
 from chainfountain.sim.chain import Chain, Link
-from chainfountain.sim.config import SimConfig
+from chainfountain.sim.config import ApparatusConfig, SimConfig
 from chainfountain.sim.fastbody import pos
-from chainfountain.sim.guide import resample
+from chainfountain.sim.guide import GuideElement, resample
+
+if TYPE_CHECKING:
+    from chainfountain.theory import Fountain
 
 HEAD_BACK = 0.1
 """'fold' from rest: how far (m) inside the upper guide the chain's head waits, so that
 the starter has it at its launch speed before it leaves (a head that leaves slowly
 droops and falls short)."""
+
+FountainPath = Callable[[Layout, np.ndarray], np.ndarray]
+"""A study's chain path through the fountain: given the layout and the path the model
+lays (:meth:`Apparatus._fountain_path`), the points to lay instead (``research/
+hanging_start.py``)."""
 
 
 class TableUsedUp(RunEnded):
@@ -55,8 +64,7 @@ class TableUsedUp(RunEnded):
     CLI writes what was simulated and says so)."""
 
 
-class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, GrippedFold,
-                FoldWatch, FollowingEnd, StallWatch, Treadmills, OpenTail, StarterPart):
+class Apparatus:
     """Builds the apparatus into a space and keeps its bookkeeping (duck-types the
     :class:`~chainfountain.sim.feed.Feed` interface the simulation uses).
 
@@ -64,140 +72,129 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Gri
     (:class:`~chainfountain.sim.apparatus.parts.RollerUnit`), ``y_up``/``y_lo``
     (roller-top centre lines), ``end`` (fountain end point), ``launch_u`` (unit launch
     direction), ``walls`` (static segments), ``fountain`` (the predicted fountain used
-    for the layout).
+    for the layout); they are read from the parts (:attr:`layout`, :attr:`upper_part`,
+    :attr:`end_part`, :attr:`fold`, :attr:`tail`, ...), which hold the state.
 
-    The parts (mixins, one module each) share this object's state: each builds its
-    attributes in its build step and its bookkeeping in its ``_init_*_state``.
+    ``tuning`` is what a study may vary (:class:`~.tuning.Tuning`; the shipped model's by
+    default), ``starter`` the class of the starter motor (a study's own start subclasses
+    :class:`~.starter.Starter`) and ``fountain_path`` a study's path to lay the chain
+    along through the fountain (:data:`FountainPath`).
     """
 
-    fold_capture: tuple[float, float] = FOLD_CAPTURE
-    """'fold' joint guide: capture band (m) and angular margin (rad) of the first turn
-    (:data:`~.tuning.FOLD_CAPTURE`). A class attribute so that a study can vary it
-    (``research/swing_study.py`` sets it on the class)."""
-    fold_close_rate: float = FOLD_CLOSE_RATE
-    """Joint guides: speed (m/s) at which the limits of a link captured off a turn's
-    radius close in (:data:`~.tuning.FOLD_CLOSE_RATE`); a class attribute as
-    :attr:`fold_capture`."""
-
-    def __init__(self, space: pymunk.Space, chain: Chain, cfg: SimConfig) -> None:
+    def __init__(self, space: pymunk.Space, chain: Chain, cfg: SimConfig,
+                 tuning: Tuning | None = None, starter: type[Starter] = Starter,
+                 fountain_path: FountainPath | None = None) -> None:
         """Build the apparatus into ``space`` and lay ``chain`` along it, part by part in
         the order the solver sees them (module docstring)."""
-        self._read_config(space, chain, cfg)
-        self._predict_fountain()
-        path = self._build_upper()
-        path.append(self._fountain_path())
-        beyond = self._build_end()
-        if not self.threads:  # else the starter threads the head through later
-            path += beyond
-        self._lay_along(path)
-        self._init_state()
-        self._add_swing_damper()
-        self.sync_plates()
-        if self.gripped and not self.threads:
-            self._init_grip()
-        self._take_in_held_links()
-
-    # ------------------------------------------------------------------ build steps
-    def _read_config(self, space: pymunk.Space, chain: Chain, cfg: SimConfig) -> None:
-        """The space, the chain and the level's figures the parts share."""
         self.space = space
         self.chain = chain
         self.sim_cfg = cfg
-        a = self.cfg = cfg.apparatus
-        self.g = float(cfg.gravity)
-        if a.variant == "fold" and a.plate == "groove" and a.end_follow > 0.0:
-            # a following end guide's wide mouth (unless a study has set the class's)
-            if type(self).fold_capture == FOLD_CAPTURE:
-                self.fold_capture = FOLLOW_CAPTURE
-            if type(self).fold_close_rate == FOLD_CLOSE_RATE:
-                self.fold_close_rate = FOLLOW_CLOSE_RATE
-        self.h = float(cfg.solver.dt) / int(cfg.solver.substeps)
-        """pymunk's step (s): ``solver.dt / solver.substeps``. The bookkeeping
-        (:meth:`after_step`) runs once per ``solver.dt``; forces apply in every pymunk step."""
-        self._release_every_step = int(cfg.solver.substeps) > 1 and a.upper_guide == "joints"
-        """Whether the upper joint guide lets links go in every pymunk step as well
-        (:meth:`~.upper_guide.UpperJointGuide._release_upper`)."""
-        self.L = chain.L
-        self.rho = float(cfg.chain.link_radius)
-        self.r = float(a.roller_radius)
-        self.r_lo = float(a.fold_roller_radius) or self.r
-        """Radius (m) of the folding roller ('fold'; ``apparatus.fold_roller_radius``)."""
-        self.R_lo = self.r_lo + self.rho
-        """Radius (m) of the chain's centre line on the folding roller."""
-        self.gripped = a.variant == "fold" and a.fold_roller == "gripped"
-        """The folding roller holds the chain by joints (:mod:`.grip`), not by contact."""
-        self.H = float(a.drop)
-        self.alpha0 = float(a.launch_angle)
-        self.launch_u = (math.cos(self.alpha0), math.sin(self.alpha0))
-        self.variant = a.variant
-        self.n_ahead = int(a.pickup_rest_links or a.rest_links)
-        """Resting links kept in the solver ahead of the pick-up roller."""
+        self.cfg: ApparatusConfig = cfg.apparatus
+        self.tuning = tuning if tuning is not None else Tuning()
+        lay = self.layout = Layout.of(chain.L, cfg, self.tuning)
+        following = lay.end_follow > 0.0
+        close_rate = self.tuning.close_rate(following)
+        self.clock = Clock()
         self.absorbed = 0
+        """Links taken out at the downstream end (the floor, the lower table)."""
         self.added = 0
-        self.floor_depth = float(a.floor_depth) if self.variant == "floor" else 0.0
-        """Depth (m) of the absorbing floor below the fountain end ('floor' variant)."""
-        self.from_rest = cfg.initial.mode == "stub"
-        """The chain starts at rest with a stub at the start, run up by the starter
-        (:mod:`.starter`); else it starts laid along its path, moving."""
-        self.threads = self.from_rest and a.variant == "fold"
-        """From rest in 'fold': the chain ends inside the upper guide, and the starter
-        threads its head through the end guide and round the folding roller."""
-        self.stub_length = float(cfg.initial.stub_length)
-        self.v_lay = 0.0 if self.from_rest else float(a.speed)
-        """The speed (m/s) the chain is laid moving at."""
+        """Links laid and added at the upstream end (and by the upper treadmill)."""
+        # the parts built into the space, upstream to downstream
+        self.upper_part = UpperPart(space, lay)
+        path = self.upper_part.path()
+        laid = self._fountain_path()
+        path.append(laid if fountain_path is None else fountain_path(lay, laid))
+        self.end_part = EndPart(space, lay)
+        self.tail: OpenTail | None = (OpenTail(space, chain, lay, self.end_part)
+                                      if lay.variant == "open" else None)
+        """'open': the tail on the long lower plate."""
+        self.fold: FoldPart | None = (
+            FoldPart(space, chain, lay, self.end_part, self.clock,
+                     self.tuning.capture(following), close_rate)
+            if lay.variant == "fold" else None)
+        """'fold': the folding roller, the lower plate and the lower joint guide."""
+        self.walls: list[pymunk.Segment] = self.upper_part.walls + self.end_part.walls
+        """The channels' walls (static segments; drawn only where a joint guide holds the
+        chain)."""
+        if not lay.threads:  # else the starter threads the head through later
+            path += self._path_beyond()
+        self._lay_along(path)
+        # the bookkeeping parts
+        self.upper_guide = UpperJointGuide(space, chain, lay, self.upper_part, close_rate)
+        self.grooves = PlateGrooves(space, chain, lay, self.upper_part,
+                                    self.upper_guide if lay.upper_guided else None)
+        self.grip: GrippedFold | None = (GrippedFold(space, chain, lay, self.fold)
+                                         if lay.gripped and self.fold is not None else None)
+        """The gripped folding roller's welds ('fold' with ``fold_roller = "gripped"``)."""
+        self.follow = FollowingEnd(space, lay, self.end_part, self.fold)
+        self.treadmills = Treadmills(space, chain, lay, self.upper, self.grooves, self.fold,
+                                     self.grip)
+        self.fold_watch: FoldWatch | None = (
+            FoldWatch(lay, self.upper, self.fold, self.clock) if self.fold is not None
+            else None)
+        self.stall_watch = StallWatch(self.cfg, self.upper, self.lower, self.clock)
+        self.starter: Starter = starter(lay, self.clock, self.upper, self.upper_guide,
+                                        self.end_part, self.fold, self.follow)
+        self._plate_ends = [float(self.plate_up.a.x), float(self.plate_lo.b.x)
+                            if self.plate_lo is not None else 0.0]
+        """x of the upper plate's start and the lower plate's end (m)."""
+        self._plates_collide = self.plate_up.space is not None or (
+            self.plate_lo is not None and self.plate_lo.space is not None)
+        """Whether a plate is a collision shape (``plate = "contact"``): its ends then
+        follow the rollers every step; with grooves the plates are only drawn, and their
+        ends follow when read (:meth:`sync_plates`)."""
+        self.swing_spring: pymunk.DampedSpring | None = self._add_swing_damper()
+        self.sync_plates()
+        if self.grip is not None and not lay.threads:
+            self.absorbed += self.grip.take_in()
+        self._take_in_held_links()
 
-    def _predict_fountain(self) -> None:
-        """The predicted fountain (the layout; it aims the end channel). A floor ``d``
-        below the end adds the hanging strand's weight: ``Tbar_E = g*d/v**2``."""
-        from chainfountain.theory import Fountain
-
-        a, H = self.cfg, self.H
-        v0 = float(a.speed)
-        TE_lay = float(a.end_tension) + self.g * self.floor_depth / v0**2
-        self.fountain = Fountain.from_launch(v=v0, alpha0=self.alpha0, H=H,
-                                             TE_bar=TE_lay, g=self.g)
-        f = self.fountain
-        x_rise = math.acosh(1.0 + f.q * f.h) / f.q
-        self.vertex_pred = (x_rise, f.h)
-        self.end = (x_rise + math.acosh(1.0 + f.q * (f.h + H)) / f.q, -H)
-        self.x_floor = x_rise + math.acosh(1.0 + f.q * (f.h + H + self.floor_depth)) / f.q
-        """x where the catenary, continued below the end, meets the floor ('floor')."""
-
+    # ------------------------------------------------------------------ build steps
     def _fountain_path(self) -> np.ndarray:
         """The chain's path through the predicted fountain (to ``x_floor``, the end's x
         without a ``floor_depth``); from rest, a straight stub along the launch line, and
         in 'fold' none (the starter threads the head through, :mod:`.starter`)."""
-        if self.threads:
+        if self.layout.threads:
             return np.empty((0, 2))  # the head waits inside the upper guide (_lay_along)
-        if self.from_rest:
-            s = np.linspace(0.0, self.stub_length, 8)[1:]
+        if self.layout.from_rest:
+            s = np.linspace(0.0, self.layout.stub_length, 8)[1:]
             return np.column_stack((s * self.launch_u[0], s * self.launch_u[1]))
         f = self.fountain
         x_rise = self.vertex_pred[0]
-        xs = np.linspace(0.0, self.x_floor, 400)[1:]  # x_floor = ex without a floor_depth
+        xs = np.linspace(0.0, self.layout.x_floor, 400)[1:]  # x_floor = ex without a floor_depth
         return np.column_stack((xs, f.h + f.y_of_x(xs - x_rise)))
+
+    def _path_beyond(self) -> list[np.ndarray]:
+        """The chain's path beyond the fountain: through the end channel and onto the
+        tail's plate or over the folding roller (none for 'floor')."""
+        beyond = self.end_part.path()
+        if self.tail is not None:
+            beyond += self.tail.path()
+        if self.fold is not None:
+            beyond += self.fold.path()
+        return beyond
 
     def _lay_along(self, parts: list[np.ndarray]) -> None:
         """Lay the chain along the path (upstream to downstream), one link per link
         length, moving as the steady state would: at rest on the tables, rolling with
         the rollers on their wraps, at the start speed elsewhere."""
         L = self.L
-        v0 = self.v_lay
+        v0 = self.layout.v_lay
         vR = 0.5 * v0
         R = self.r + self.rho
-        s_wrap0 = self.n_ahead * L
+        s_wrap0 = self.layout.n_ahead * L
         s_wrap1 = s_wrap0 + math.pi * R
         s_lo_wrap = math.inf
         path = np.vstack(parts)
         seg = np.linalg.norm(np.diff(path, axis=0), axis=1)
         s_all = np.concatenate([[0.0], np.cumsum(seg)])
-        if self.lower is not None and not self.threads:
+        if self.lower is not None and not self.layout.threads:
             # arc length where the lower wrap starts: the point (x_lo, y_lo)
             idx = int(np.flatnonzero(np.isclose(path[:, 0], self.lower.x)
                                      & np.isclose(path[:, 1], self.y_lo))[0])
             s_lo_wrap = float(s_all[idx])
         pts, s = resample(path, L)
-        if self.threads:
+        if self.layout.threads:
             n = int(round(HEAD_BACK / L))
             pts, s = pts[:-n], s[:-n]
         self._lay(pts, s, s_wrap0, s_wrap1, s_lo_wrap, v0, vR, R)
@@ -232,41 +229,46 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Gri
             self.chain.append(link)
         self.added = len(links)
 
-    def _init_state(self) -> None:
-        """The bookkeeping of every part (before any link is taken into a guide)."""
-        self.start_x = (self.upper.x, self.lower.x if self.lower is not None else 0.0)
-        self._plate_ends = [float(self.plate_up.a.x), float(self.plate_lo.b.x)
-                            if self.plate_lo is not None else 0.0]
-        """x of the upper plate's start and the lower plate's end (m)."""
-        self._plates_collide = self.plate_up.space is not None or (
-            self.plate_lo is not None and self.plate_lo.space is not None)
-        """Whether a plate is a collision shape (``plate = "contact"``): its ends then
-        follow the rollers every step; with grooves the plates are only drawn, and their
-        ends follow when read (:meth:`sync_plates`)."""
-        self._t = 0.0
-        self._init_groove_state()
-        self._init_upper_guide_state()
-        self._init_treadmill_state()
-        self._init_open_state()
-        self._init_fold_state()
-        self._init_grip_state()
-        self._init_follow_state()
-        self._init_watch_state()
-        self._init_stall_state()
-        self._init_starter_state()
-
     def _take_in_held_links(self) -> None:
         """Put the links laid on the plates and along the joint guides into their grooves
         and joints."""
-        if self.plate_mode == "groove":
-            self._init_grooves()
-            self._update_lo_grooves()
-        if self.upper_guided:
-            self._init_upper_guide()
-        if self.fold_guided:
-            self._init_fold_guide()
-            self._fly_next = self._cap_next
-            self._update_flight(0)
+        lay = self.layout
+        if lay.plate_mode == "groove":
+            self.grooves.take_in()
+            if self.tail is not None:
+                self.tail.update()
+        if lay.upper_guided:
+            g = self.grooves.held
+            self.upper_guide.take_in(g[0][0] if g else None)
+        if lay.fold_guided and self.fold is not None:
+            self.fold.take_in()
+
+    def _add_swing_damper(self) -> pymunk.DampedSpring | None:
+        """The swing damper (``apparatus.swing_damper`` c, 'fold'): ``-c*(u_up - u_lo)`` on
+        the upper carriage and its opposite on the lower, zero while both roll at one
+        speed; a pymunk damped spring without stiffness between the carriages, its axis
+        horizontal (the lower carriage's anchor :data:`~.parts.DRIVE_REACH` behind it)."""
+        if self.lower is None:
+            return None
+        s = pymunk.DampedSpring(self.upper.carriage, self.lower.carriage, (0.0, 0.0),
+                                (-DRIVE_REACH, 0.0), DRIVE_REACH, 0.0,
+                                float(self.cfg.swing_damper))
+        self.space.add(s)
+        return s
+
+    def retune(self, tuning: Tuning) -> None:
+        """Give the built apparatus ``tuning``'s catch and close rate: the parts read them
+        only while stepping, so this is as if it had been built with them (for a study
+        whose :class:`~chainfountain.sim.Simulation` builds the apparatus).
+        ``lay_at_rest`` acts in the build only."""
+        if tuning.lay_at_rest != self.tuning.lay_at_rest:
+            raise ValueError("Tuning.lay_at_rest acts when the apparatus is built only")
+        following = self.layout.end_follow > 0.0
+        self.tuning = tuning
+        self.upper_guide.close_rate = tuning.close_rate(following)
+        if self.fold is not None:
+            self.fold.capture = tuning.capture(following)
+            self.fold.close_rate = tuning.close_rate(following)
 
     # ------------------------------------------------------------------ feed interface
     @property
@@ -307,26 +309,9 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Gri
         if self.end_pull:
             self.chain.links[0].body.apply_force_at_world_point(
                 (self.end_pull, 0.0), self.chain.links[0].body.position)
-        if self.starting:
-            self._drive_starter()
-        elif self.fading:
-            self._fade_starter()
-        if self._release_every_step:
-            self._release_upper()
-
-    def _add_swing_damper(self) -> None:
-        """The swing damper (``apparatus.swing_damper`` c, 'fold'): ``-c*(u_up - u_lo)`` on
-        the upper carriage and its opposite on the lower, zero while both roll at one
-        speed; a pymunk damped spring without stiffness between the carriages, its axis
-        horizontal (the lower carriage's anchor :data:`~.parts.DRIVE_REACH` behind it)."""
-        self.swing_spring: pymunk.DampedSpring | None = None
-        if self.lower is None:
-            return
-        s = pymunk.DampedSpring(self.upper.carriage, self.lower.carriage, (0.0, 0.0),
-                                (-DRIVE_REACH, 0.0), DRIVE_REACH, 0.0,
-                                float(self.cfg.swing_damper))
-        self.space.add(s)
-        self.swing_spring = s
+        self.starter.before_step()
+        if self.layout.release_every_step:
+            self.upper_guide.release()
 
     def set_losses(self) -> None:
         """Apply the level's cart forces, ``apparatus.bearing_drag``, ``apparatus.fold_brake``
@@ -341,57 +326,59 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Gri
         """Move the plate ends with the rollers; add resting links ahead of the pick-up
         roller; take resting links out of the solver behind the folding roller / on
         the floor; move links along the grooves and joint guides."""
+        lay, fold = self.layout, self.fold
         if self._plates_collide:
             self.sync_plates()
-        if self.end_carrier is not None:
-            self._sync_end_guide()
+        self.follow.sync_end_guide()
         self._check_table()
         self._feed_resting_links()
         # downstream end: absorb at the floor height / drop links that lie at rest
-        self._t += dt
-        popped = self._lump_tail()
-        if self.treadmill:
-            self._treadmill_upper()
+        self.clock.t += dt
+        popped = self.tail.lump_tail() if self.tail is not None else 0
+        if lay.treadmill:
+            self.added += self.treadmills.treadmill_upper()
         popped += self._absorb_end()
-        if self.plate_mode == "groove":
-            self._update_grooves(popped)
-            self._update_lo_grooves()
-        if self.upper_guided:
-            self._update_upper_guide()
-        if self.fold_guided:
-            self._update_flight(popped)
-            self._update_fold_guide(popped)
-            if self.gripped:
-                self._grip_arriving()
-            if self.treadmill:
-                self._treadmill_lower()
-            self._track_landing()
-            if self.end_follow and not self.starting:  # the starter sets the length
-                self._follow_landing(dt)
-        if self.lower is not None:
-            self._check_fold(dt)
-        if self.starting:
-            self._check_starter()
+        if lay.plate_mode == "groove":
+            self.grooves.update(popped)
+            if self.tail is not None:
+                self.tail.update()
+        if lay.upper_guided:
+            self.upper_guide.update()
+        if lay.fold_guided and fold is not None:
+            fold.update_flight(popped)
+            fold.update_guide(popped)
+            if self.grip is not None:
+                self.grip.grip_arriving()
+            if lay.treadmill:
+                self.treadmills.treadmill_lower()
+            self.follow.track_landing()
+            if lay.end_follow and not self.starter.starting:  # the starter sets the length
+                self.follow.follow_landing(dt)
+        if self.fold_watch is not None:
+            self.fold_watch.check(dt)
+        if self.starter.starting:
+            self.starter.check(self.absorbed, self.speed)
         else:
-            self._check_stall(dt)
+            self.stall_watch.check(dt)
 
     def _check_table(self) -> None:
         """Raise :class:`TableUsedUp` once the pick-up roller is within 5 cm of the upper
         channel."""
         x_R = self.upper.x
+        t = self.clock.t
         if x_R > self.x_plate_up_end - 0.05:
             if self.treadmill:
                 raise TableUsedUp(
-                    f"t = {self._t:.2f} s: the pick-up roller has reached the channel although "
+                    f"t = {t:.2f} s: the pick-up roller has reached the channel although "
                     "the treadmill should hold it (the upper strand has left its plate "
                     "grooves); reset the level",
-                    plain=f"At {self._t:.1f} s the chain left the upper treadmill's grooves "
+                    plain=f"At {t:.1f} s the chain left the upper treadmill's grooves "
                     "and the pick-up roller reached the channel")
             raise TableUsedUp(
-                f"t = {self._t:.2f} s: the pick-up roller has reached the channel: the upper "
+                f"t = {t:.2f} s: the pick-up roller has reached the channel: the upper "
                 f"table is used up (apparatus.duration = {self.cfg.duration:g} s sizes it for "
                 f"the start speed; raise it, or set apparatus.plate_links > 0 for a treadmill)",
-                plain=f"At {self._t:.1f} s the upper table ran out of chain: this level's "
+                plain=f"At {t:.1f} s the upper table ran out of chain: this level's "
                 f"table is built for {self.cfg.duration:g} s (a longer one is a level-file "
                 "change, apparatus.duration)")
 
@@ -403,7 +390,7 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Gri
         L = self.L
         x_R = self.upper.x
         last = links[-1].body
-        while pos(last).x < x_R + self.n_ahead * L:
+        while pos(last).x < x_R + self.layout.n_ahead * L:
             c = last.position
             new = chain.make_body((c.x + L, self.y_table_up + self.rho), math.pi)
             chain.append(new)
@@ -433,10 +420,11 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Gri
                 chain.pop_front()
                 self.absorbed += 1
                 popped += 1
-        elif self.gripped:
-            popped = self._land_gripped()
+        elif self.grip is not None:
+            popped = self.grip.land()
+            self.absorbed += popped
         elif self.lower is not None:
-            x_lim = self.lower.x - 2.0 * self.r_lo - n_keep * L
+            x_lim = self.lower.x - 2.0 * self.layout.r_lo - n_keep * L
             y_rest = self.y_table_lo + 2.0 * self.rho
             while len(links) > n_keep + 10:
                 p = pos(links[0].body)
@@ -478,3 +466,351 @@ class Apparatus(UpperPart, EndPart, PlateGrooves, UpperJointGuide, FoldPart, Gri
         brake = 0.5 * self.cfg.fold_brake * v
         lo = self.lower.force - d - brake if self.lower is not None else 0.0
         return (self.upper.force + d) / s, lo / s
+
+    # ------------------------------------------------------------------ the parts' figures
+    @property
+    def time(self) -> float:
+        """The apparatus's time (s), advanced by the bookkeeping."""
+        return self.clock.t
+
+    @property
+    def H(self) -> float:
+        return self.layout.H
+
+    @property
+    def L(self) -> float:
+        return self.layout.L
+
+    @property
+    def rho(self) -> float:
+        return self.layout.rho
+
+    @property
+    def r(self) -> float:
+        return self.layout.r
+
+    @property
+    def R_lo(self) -> float:
+        return self.layout.R_lo
+
+    @property
+    def g(self) -> float:
+        return self.layout.g
+
+    @property
+    def h(self) -> float:
+        return self.layout.h
+
+    @property
+    def alpha0(self) -> float:
+        return self.layout.alpha0
+
+    @property
+    def alphaE(self) -> float:
+        return self.layout.alphaE
+
+    @property
+    def launch_u(self) -> tuple[float, float]:
+        return self.layout.launch_u
+
+    @property
+    def variant(self) -> str:
+        return self.layout.variant
+
+    @property
+    def gripped(self) -> bool:
+        return self.layout.gripped
+
+    @property
+    def floor_depth(self) -> float:
+        return self.layout.floor_depth
+
+    @property
+    def fountain(self) -> Fountain:
+        return self.layout.fountain
+
+    @property
+    def vertex_pred(self) -> tuple[float, float]:
+        return self.layout.vertex_pred
+
+    @property
+    def y_up(self) -> float:
+        return self.layout.y_up
+
+    @property
+    def y_table_up(self) -> float:
+        return self.layout.y_table_up
+
+    @property
+    def channel_up(self) -> np.ndarray:
+        return self.layout.channel_up
+
+    @property
+    def x_plate_up_end(self) -> float:
+        return self.layout.x_plate_up_end
+
+    @property
+    def treadmill(self) -> bool:
+        return self.layout.treadmill
+
+    @property
+    def plate_mode(self) -> str:
+        return self.layout.plate_mode
+
+    @property
+    def upper_guided(self) -> bool:
+        return self.layout.upper_guided
+
+    @property
+    def end_mode(self) -> str:
+        return self.layout.end_mode
+
+    @property
+    def guided(self) -> bool:
+        return self.layout.guided
+
+    @property
+    def fold_guided(self) -> bool:
+        return self.layout.fold_guided
+
+    @property
+    def end_follow(self) -> float:
+        return self.layout.end_follow
+
+    # upper part
+    @property
+    def upper(self) -> RollerUnit:
+        return self.upper_part.upper
+
+    @property
+    def table_up(self) -> pymunk.Segment:
+        return self.upper_part.table_up
+
+    @property
+    def plate_up(self) -> pymunk.Segment:
+        return self.upper_part.plate_up
+
+    @property
+    def up_guide(self) -> list[GuideElement]:
+        return self.upper_part.up_guide
+
+    @property
+    def upper_held(self) -> list[deque[tuple[Link, pymunk.Constraint]]]:
+        """Upper joint guide: the links (with their joints) each element of
+        :attr:`up_guide` holds, most downstream first. Read only."""
+        return self.upper_guide.held
+
+    @property
+    def plate_grooves(self) -> deque[tuple[Link, pymunk.GrooveJoint]]:
+        """``plate = "groove"``: the upper plate strand's links with their groove joints,
+        most downstream first (the newest, at the pick-up roller, last). Read only."""
+        return self.grooves.held
+
+    @property
+    def strand_speed(self) -> float:
+        return self.grooves.strand_speed
+
+    # end
+    @property
+    def end(self) -> tuple[float, float]:
+        return self.end_part.end
+
+    @property
+    def floor(self) -> pymunk.Segment | None:
+        return self.end_part.floor
+
+    @property
+    def floor_span(self) -> tuple[float, float]:
+        return self.end_part.floor_span
+
+    @property
+    def channel_lo(self) -> np.ndarray | None:
+        return self.end_part.channel_lo
+
+    @property
+    def end_walls(self) -> list[pymunk.Segment]:
+        return self.end_part.end_walls
+
+    @property
+    def y_lo(self) -> float:
+        return self.end_part.y_lo
+
+    @property
+    def guide_centre(self) -> tuple[float, float]:
+        return self.fold.guide_centre if self.fold is not None else self.end_part.guide_centre
+
+    @property
+    def guide_radius(self) -> float:
+        return self.fold.guide_radius if self.fold is not None else self.end_part.guide_radius
+
+    @property
+    def x_plate_lo_start(self) -> float:
+        if self.fold is not None:
+            return self.fold.x_plate_lo_start
+        return self.end_part.x_plate_lo_start
+
+    # fold
+    @property
+    def lower(self) -> RollerUnit | None:
+        return self.fold.lower if self.fold is not None else None
+
+    @property
+    def table_lo(self) -> pymunk.Segment | None:
+        return self.fold.table_lo if self.fold is not None else None
+
+    @property
+    def plate_lo(self) -> pymunk.Segment | None:
+        if self.fold is not None:
+            return self.fold.plate_lo
+        return self.tail.plate_lo if self.tail is not None else None
+
+    @property
+    def y_table_lo(self) -> float:
+        return self.fold.y_table_lo if self.fold is not None else math.nan
+
+    @property
+    def guide(self) -> list[GuideElement]:
+        return self.fold.guide if self.fold is not None else []
+
+    @property
+    def fold_held(self) -> list[deque[tuple[Link, pymunk.Constraint]]]:
+        """'fold' guide: the links (with their joints) each element of :attr:`guide`
+        holds, most downstream first (``[-1]``: the lower plate strand). Read only."""
+        return self.fold.held if self.fold is not None else []
+
+    @property
+    def released(self) -> int:
+        return self.fold.released if self.fold is not None else 0
+
+    @property
+    def last_mouth_entry(self) -> float:
+        return self.fold.last_mouth_entry if self.fold is not None else math.nan
+
+    @property
+    def last_mouth_offset(self) -> float:
+        return self.fold.last_mouth_offset if self.fold is not None else math.nan
+
+    def fold_guided_range(self, position: np.ndarray, x_lower: float) -> tuple[int, int]:
+        """:meth:`.fold.FoldPart.fold_guided_range` ('fold' only)."""
+        if self.fold is None:
+            raise ValueError("fold_guided_range: this apparatus has no fold")
+        return self.fold.fold_guided_range(position, x_lower)
+
+    # open tail
+    @property
+    def tail_mass(self) -> float:
+        """'open': mass (kg) of the tail links lumped into the end link."""
+        return self.tail.tail_mass if self.tail is not None else 0.0
+
+    @property
+    def tail_grooved(self) -> int:
+        """'open' with ``plate = "groove"``: how many links (chain indices ``0 ..
+        tail_grooved-1``, the tail) run in the lower plate's grooves."""
+        return self.tail.lo_n if self.tail is not None else 0
+
+    @property
+    def turn_held(self) -> deque[tuple[Link, pymunk.SlideJoint]]:
+        """'open' guide: the links held on the turn (chain indices from
+        :attr:`tail_grooved` on) with their slide joints. Read only."""
+        return self.tail.arc if self.tail is not None else deque()
+
+    @property
+    def end_pull(self) -> float:
+        """Constant pull on the downstream end link in ``+x`` (N; 'open' only)."""
+        return float(self.cfg.end_pull) if self.variant == "open" else 0.0
+
+    @property
+    def open_drive(self) -> float:
+        """'open': the constant force (N) driving the moving chain, the weight of the drop
+        from the upper plate to the tail's plate plus the end pull,
+        ``lambda g (y_up - y_lo) + F_pull``."""
+        lam = self.sim_cfg.chain.linear_density
+        return lam * self.g * (self.y_up - self.y_lo) + self.end_pull
+
+    # gripped fold
+    @property
+    def head_pinned(self) -> bool:
+        return self.grip is not None and self.grip.head_pinned
+
+    @property
+    def n_welded(self) -> int:
+        return self.grip.n_welded if self.grip is not None else 0
+
+    @property
+    def gripped_links(self) -> int:
+        return self.grip.gripped_links if self.grip is not None else 0
+
+    @property
+    def landing_speed(self) -> float:
+        return self.grip.landing_speed if self.grip is not None else 0.0
+
+    # following end guide
+    @property
+    def end_shift(self) -> float:
+        return self.follow.end_shift
+
+    @property
+    def end_carrier(self) -> pymunk.Body | None:
+        return self.follow.end_carrier
+
+    @property
+    def landing_offset(self) -> float:
+        return self.follow.landing_offset
+
+    def sync_end_guide(self) -> None:
+        """:meth:`.follow.FollowingEnd.sync_end_guide`."""
+        self.follow.sync_end_guide()
+
+    def sync_end_walls(self) -> None:
+        """:meth:`.follow.FollowingEnd.sync_end_walls`."""
+        self.follow.sync_end_walls()
+
+    # treadmills
+    @property
+    def start_x(self) -> tuple[float, float]:
+        return self.treadmills.start_x
+
+    @property
+    def moved_back(self) -> int:
+        return self.treadmills.moved_back
+
+    @property
+    def shifted(self) -> float:
+        return self.treadmills.shifted
+
+    @property
+    def cut(self) -> int:
+        return self.treadmills.cut
+
+    @property
+    def shifted_lo(self) -> float:
+        return self.treadmills.shifted_lo
+
+    def travel(self, i: int) -> float:
+        """:meth:`.treadmill.Treadmills.travel`."""
+        return self.treadmills.travel(i)
+
+    # starter
+    @property
+    def starting(self) -> bool:
+        return self.starter.starting
+
+    @property
+    def fading(self) -> bool:
+        return self.starter.fading
+
+    @property
+    def starter_speed(self) -> float:
+        return self.starter.speed
+
+    @property
+    def launch_speed(self) -> float:
+        return self.starter.launch_speed
+
+    @property
+    def head_caught_at(self) -> float:
+        return self.starter.head_caught_at
+
+    def stall_message(self) -> str:
+        return self.stall_watch.stall_message()
+

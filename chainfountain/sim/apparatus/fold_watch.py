@@ -10,6 +10,9 @@ import math
 from collections import deque
 
 from chainfountain.errors import RunEnded
+from chainfountain.sim.apparatus.fold import FoldPart
+from chainfountain.sim.apparatus.layout import Layout
+from chainfountain.sim.apparatus.parts import Clock, RollerUnit
 from chainfountain.sim.apparatus.tuning import (
     CATCH_LOST,
     CATCH_STOP,
@@ -31,10 +34,15 @@ class FoldCollapsed(RunEnded):
 
 
 class FoldWatch:
-    """The fold's collapse check and messages (a mixin of
-    :class:`~chainfountain.sim.apparatus.Apparatus`)."""
+    """The fold's collapse check and messages."""
 
-    def _init_watch_state(self) -> None:
+    def __init__(self, layout: Layout, upper: RollerUnit, fold: FoldPart, clock: Clock) -> None:
+        self.layout = layout
+        self.cfg = layout.cfg
+        self.upper = upper
+        self.lower = fold.lower
+        self.fold = fold
+        self.clock = clock
         self._back_t = 0.0
         """How long (s) the folding roller has been rolling backwards without a break."""
         self._held_t = 0.0
@@ -45,18 +53,24 @@ class FoldWatch:
         speed swing the collapse message reports."""
         self._swing_next = 0.0
 
-    def _check_fold(self, dt: float) -> None:
+    @property
+    def speed(self) -> float:
+        """Chain speed: twice the pick-up roller speed."""
+        return 2.0 * abs(self.upper.speed)
+
+    def check(self, dt: float) -> None:
         """Raise :class:`FoldCollapsed` once the folding roller has rolled backwards for
         :data:`~.tuning.COLLAPSE_TIME` (a chain that keeps running into a stopped fold only piles
         up; nothing after that is the apparatus any more)."""
         v_R = self.lower.speed
-        if self.gripped and (self._mouth_t is not None and self._t - self._mouth_t >= CATCH_STOP
-                             or self.speed > RUNAWAY * self.cfg.speed):
+        mouth_t = self.fold.mouth_t
+        if self.layout.gripped and (mouth_t is not None and self.clock.t - mouth_t >= CATCH_STOP
+                                    or self.speed > RUNAWAY * self.cfg.speed):
             raise FoldCollapsed(**self._gripped_collapse(v_R))
         if v_R >= 0.0:
             self._back_t = 0.0
-            if self._t >= self._swing_next:  # the hold is sampled, not read every step
-                self._swing_next = self._t + SWING_EVERY
+            if self.clock.t >= self._swing_next:  # the hold is sampled, not read every step
+                self._swing_next = self.clock.t + SWING_EVERY
                 v = self.speed
                 if v > 0.0 and abs(v_R / v - 0.5) <= HELD:
                     self._held_t += SWING_EVERY
@@ -65,10 +79,10 @@ class FoldWatch:
         self._back_t += dt
         if self._back_t < COLLAPSE_TIME:
             return
-        if self.gripped:
+        if self.layout.gripped:
             raise FoldCollapsed(**self._gripped_collapse(v_R))
-        clamped = self.h < FOLD_DT_MIN and not self.cfg.fold_clearance
-        t = self._t
+        clamped = self.layout.h < FOLD_DT_MIN and not self.cfg.fold_clearance
+        t = self.clock.t
         if self._held_t >= LATE_COLLAPSE and not clamped:
             cure = ("this contact fold holds only close to the speed it was built for"
                     if self.cfg.swing_damper else
@@ -78,10 +92,10 @@ class FoldWatch:
                 plain=f"At {t:.1f} s the folding roller lost the chain after holding it "
                 f"{self._held_t:.0f} s: the chain's speed swung until the fold failed; {cure}")
         push = self.lower.force
-        lam, v = self.sim_cfg.chain.linear_density, self.speed
+        lam, v = self.layout.sim_cfg.chain.linear_density, self.speed
         pushed = (f"a push of {push / (lam * v * v):.2f} lambda*v^2" if push
                   else "no lower cart (Tbar_lc = 0)")
-        head = (f"t = {self._t:.2f} s: the folding roller rolls backwards (v_R = {v_R:.2f} "
+        head = (f"t = {self.clock.t:.2f} s: the folding roller rolls backwards (v_R = {v_R:.2f} "
                 f"m/s, steady is about +{0.5 * v:.2f}) with {pushed}: the put-down has failed "
                 "and the chain piles up in the lower guide. ")
         if clamped:
@@ -89,7 +103,8 @@ class FoldWatch:
                 plain=f"At {t:.1f} s the fold locked: at a time step below "
                 f"{FOLD_DT_MIN * 1e3:g} ms the folding roller jams against its table; set "
                 "the pymunk step (solver.dt / solver.substeps) back to 0.5 ms",
-                message=head + f"the pymunk step solver.dt / solver.substeps = {self.h:g} s is "
+                message=head + "the pymunk step solver.dt / solver.substeps = "
+                f"{self.layout.h:g} s is "
                 f"below {FOLD_DT_MIN:g} s, where the folding roller locks between the lower "
                 "plate's grooves and the table (with apparatus.fold_clearance = 0 the fold only "
                 "holds at a pymunk step of 0.35-0.5 ms; docs/apparatus.md): set "
@@ -111,7 +126,7 @@ class FoldWatch:
         the chain stopped arriving as it should. Either the fountain fell past the end
         guide's catch (every measured case, docs/apparatus.md) or the carts took the
         chain far from the speed the level was built for."""
-        t, v0 = self._t, float(self.cfg.speed)
+        t, v0 = self.clock.t, float(self.cfg.speed)
         held = sorted(self._held_v)  # the speed in the last 5 s it held the chain
         v = held[len(held) // 2] if held else self.speed
         ran = f"the chain ran at {v:.2f} m/s, built for {v0:g} m/s"
@@ -134,7 +149,7 @@ class FoldWatch:
                     "chain away: a lighter lower cart (or a heavier upper one) holds it")
         else:
             head = (f"t = {t:.2f} s: no link has entered the end guide through its mouth since "
-                    f"t = {self._mouth_t:.2f} s. ")
+                    f"t = {self.fold.mouth_t:.2f} s. ")
         return {"plain": f"At {t:.1f} s the fold stopped: {cure}",
                 "message": head + cure[0].upper() + cure[1:] + "." + self._catch_note()}
 
@@ -147,15 +162,15 @@ class FoldWatch:
         catch is lost 1.0-1.3 s before the folding roller rolls back in
         ``apparatus_special`` (starts 2.97-3.06 m/s, the channel's walls; 1.13 s with the
         joint guide from 3.0 m/s), 0.47 s before in ``apparatus_limit``."""
-        if (not self.fold_guided or self._mouth_t is None
-                or self._t - self._mouth_t < CATCH_LOST):
+        if (not self.layout.fold_guided or self.fold.mouth_t is None
+                or self.clock.t - self.fold.mouth_t < CATCH_LOST):
             return ""
-        dr = self._mouth_dr
+        dr = self.fold.mouth_dr
         where, shape = ("outside", "narrowed") if dr > 0 else ("inside", "widened")
         return (f" The end guide's catch had been lost before that: the chain last entered "
-                f"the guide through its mouth at t = {self._mouth_t:.2f} s, "
+                f"the guide through its mouth at t = {self.fold.mouth_t:.2f} s, "
                 f"{100.0 * abs(dr):.1f} cm {where} the first turn's radius (the catch takes "
-                f"links within {100.0 * self.fold_capture[0]:.0f} cm); the fountain had {shape} "
+                f"links within {100.0 * self.fold.capture[0]:.0f} cm); the fountain had {shape} "
                 "and after that the chain fell into the turn from the side.")
 
     def _late_collapse_message(self, v_R: float) -> str:
@@ -165,11 +180,12 @@ class FoldWatch:
         The push read at this moment (the chain has run away) says nothing about the
         balance, so the message gives the speed the fold held and its swing instead."""
         hv = self._held_v
-        lam = self.sim_cfg.chain.linear_density
+        lam = self.layout.sim_cfg.chain.linear_density
         v_held = sum(hv) / len(hv) if hv else self.speed
         swing = 0.5 * (max(hv) - min(hv)) if hv else math.nan
         push = self.lower.force / (lam * v_held * v_held)
-        return (f"t = {self._t:.2f} s: the folding roller lost the chain (v_R = {v_R:.2f} m/s) "
+        return (f"t = {self.clock.t:.2f} s: the folding roller lost the chain "
+                f"(v_R = {v_R:.2f} m/s) "
                 f"after holding it at v/2 for {self._held_t:.1f} s in all. In its last "
                 f"{len(hv) * SWING_EVERY:.0f} s of holding, the chain speed was "
                 f"{v_held:.2f} m/s swinging by +-{swing:.2f} m/s (lower cart push "

@@ -1,5 +1,5 @@
 """The end guide that follows the fountain's landing ('fold' with ``apparatus.end_follow``
-> 0; a mixin of :class:`~chainfountain.sim.apparatus.Apparatus`).
+> 0).
 
 The paper's carts and offsets choose the fountain, and with it where the fountain lands:
 about 2 cm per gram of the upper cart in ``apparatus_fold_gripped``. A fixed end guide
@@ -9,7 +9,7 @@ on a horizontal slide: they move at ``-end_follow * dr``, ``dr`` being the offse
 the first turn's radius of the links it catches (> 0 outside, i.e. landed short),
 averaged over :data:`FOLLOW_TAU`, at most :data:`FOLLOW_SPEED` and
 :data:`FOLLOW_TRAVEL` from where the level put them. The slide is a kinematic pymunk
-body (:attr:`~FollowingEnd.end_carrier`) that carries the moving elements' joints, so
+body (:attr:`FollowingEnd.end_carrier`) that carries the moving elements' joints, so
 pymunk moves them in every step; the bookkeeping sets its velocity and keeps the
 elements' coordinates in step with it. The heights do not change, so neither do the
 paper's laws (``xi3*H`` is the same); only the fountain's span is free, as it is in the
@@ -25,14 +25,21 @@ from __future__ import annotations
 import pymunk
 
 from chainfountain.sim import fastbody
+from chainfountain.sim.apparatus.ends import EndPart
+from chainfountain.sim.apparatus.fold import FoldPart
+from chainfountain.sim.apparatus.layout import Layout
 from chainfountain.sim.apparatus.tuning import FOLLOW_SPEED, FOLLOW_TAU, FOLLOW_TRAVEL
 
 
 class FollowingEnd:
-    """The following end guide (a mixin of :class:`~chainfountain.sim.apparatus.Apparatus`)."""
+    """The following end guide: the slide that carries the fold's end guide, and where
+    the fountain lands."""
 
-    def _init_follow_state(self) -> None:
-        self.end_follow = float(self.cfg.end_follow) if self.fold_guided else 0.0
+    def __init__(self, space: pymunk.Space, layout: Layout, end: EndPart,
+                 fold: FoldPart | None) -> None:
+        self.end = end
+        self.fold = fold
+        self.end_follow = layout.end_follow
         """Rate (1/s) at which the end guide follows the landing; 0: it stays put."""
         self.end_shift = 0.0
         """How far (m, along x) the end guide has moved from where the level put it."""
@@ -43,10 +50,10 @@ class FollowingEnd:
         self.end_carrier: pymunk.Body | None = None
         """The kinematic slide carrying the end guide's turn, rise and second turn (their
         joints are anchored on it); ``None`` when the end guide stays put."""
-        if self.end_follow:
+        if self.end_follow and fold is not None:
             self.end_carrier = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
-            self.space.add(self.end_carrier)
-            for el in self.guide[:-1]:  # the lower plate's grooves run along it: fixed
+            space.add(self.end_carrier)
+            for el in fold.guide[:-1]:  # the lower plate's grooves run along it: fixed
                 el.carrier = self.end_carrier
 
     @property
@@ -56,54 +63,46 @@ class FollowingEnd:
         between catches; 0 before any link was caught."""
         return self._follow_dr
 
-    def _track_landing(self) -> None:
+    def track_landing(self) -> None:
         """Update :attr:`landing_offset` (every bookkeeping step)."""
-        t, prev = self._mouth_t, self._follow_seen
+        if self.fold is None:
+            return
+        t, prev = self.fold.mouth_t, self._follow_seen
         if t is not None and t != prev:  # a link has been caught since: average by time
             w = 1.0 if prev is None else min(1.0, (t - prev) / FOLLOW_TAU)
             self._follow_seen = t
-            self._follow_dr += (self._mouth_dr - self._follow_dr) * w
+            self._follow_dr += (self.fold.mouth_dr - self._follow_dr) * w
 
-    def _follow_landing(self, dt: float) -> None:
+    def follow_landing(self, dt: float) -> None:
         """Set the slide's velocity toward where the fountain lands, for the next
         bookkeeping step of ``dt`` (every bookkeeping step)."""
+        if self.end_carrier is None:
+            return
         u = max(-FOLLOW_SPEED, min(FOLLOW_SPEED, -self.end_follow * self._follow_dr))
         dx = max(-FOLLOW_TRAVEL - self.end_shift, min(FOLLOW_TRAVEL - self.end_shift, u * dt))
         self.end_carrier.velocity = (dx / dt, 0.0)
 
-    def _sync_end_guide(self) -> None:
+    def sync_end_guide(self) -> None:
         """Bring the end guide's coordinates to where the slide has carried it (first in
         every bookkeeping step)."""
+        if self.end_carrier is None:
+            return
         dx = fastbody.pos(self.end_carrier).x - self.end_shift
         if dx:
             self._shift_end_guide(dx)
 
     def _shift_end_guide(self, dx: float) -> None:
-        """Move the coordinates of the end guide's turn, rise and second turn, the lower
-        plate's start and the guide's centre and end by ``dx`` along x (their joints ride
-        on :attr:`end_carrier`; the drawn walls follow when read,
-        :meth:`sync_end_walls`)."""
-        els = self.guide
-        for el in els[:-1]:
-            el.a = (el.a[0] + dx, el.a[1])
-            el.b = (el.b[0] + dx, el.b[1])
-        last = els[-1]  # the lower plate: only its start moves (its grooves are along it)
-        last.a = (last.a[0] + dx, last.a[1])
-        cx, cy = self.guide_centre
-        self.guide_centre = (cx + dx, cy)
-        self.x_plate_lo_start += dx
-        self.end = (self.end[0] + dx, self.end[1])
-        if self.channel_lo is not None:
-            self.channel_lo[:, 0] += dx
-        if self.plate_lo is not None:
-            a, b = self.plate_lo.a, self.plate_lo.b
-            self.plate_lo.unsafe_set_endpoints((a.x + dx, a.y), b)
+        """Move the end guide's coordinates by ``dx`` along x (their joints ride on
+        :attr:`end_carrier`; the drawn walls follow when read, :meth:`sync_end_walls`)."""
+        if self.fold is not None:
+            self.fold.shift_guide(dx)
+        self.end.shift(dx)
         self.end_shift += dx
 
     def sync_end_walls(self) -> None:
         """Put the end channel's drawn walls (out of the space) where the guide is now."""
         dx = self.end_shift - self._walls_shift
         if dx:
-            for s in self.end_walls:
+            for s in self.end.end_walls:
                 s.unsafe_set_endpoints((s.a.x + dx, s.a.y), (s.b.x + dx, s.b.y))
             self._walls_shift = self.end_shift

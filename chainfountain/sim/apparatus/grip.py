@@ -38,7 +38,9 @@ from collections import deque
 
 import pymunk
 
-from chainfountain.sim.chain import Link
+from chainfountain.sim.apparatus.fold import FoldPart
+from chainfountain.sim.apparatus.layout import Layout
+from chainfountain.sim.chain import Chain, Link
 
 GRIP_TOL = 5e-4
 """A strand link is gripped once its back joint is this near the rim (m), if it has not
@@ -51,12 +53,17 @@ rim (the start: which links are welded)."""
 
 
 class GrippedFold:
-    """The gripped folding roller (a mixin of
-    :class:`~chainfountain.sim.apparatus.Apparatus`): chain links ``1 .. n_welded`` are
-    welded to the roller (bottom to top), link 0 is the landing link (its front pinned to
-    the table)."""
+    """The gripped folding roller's welds: chain links ``1 .. n_welded`` are welded to
+    the roller (bottom to top), link 0 is the landing link (its front pinned to the
+    table)."""
 
-    def _init_grip_state(self) -> None:
+    def __init__(self, space: pymunk.Space, chain: Chain, layout: Layout,
+                 fold: FoldPart) -> None:
+        self.space = space
+        self.chain = chain
+        self.layout = layout
+        self.fold = fold
+        """The fold whose roller grips (its lower plate strand arrives at the roller)."""
         self._welds: deque[tuple[Link, pymunk.PivotJoint, pymunk.GearJoint]] = deque()
         """Welded links, bottom (``chain.links[1]``) to top, with their pivot and gear."""
         self._table_pin: pymunk.PivotJoint | None = None
@@ -81,17 +88,18 @@ class GrippedFold:
 
     # ------------------------------------------------------------------ geometry
     def _ends(self, link: Link) -> tuple[pymunk.Vec2d, pymunk.Vec2d]:
-        h = 0.5 * self.L
+        h = 0.5 * self.layout.L
         b = link.body
         return b.local_to_world((h, 0.0)), b.local_to_world((-h, 0.0))
 
     # ------------------------------------------------------------------ start
-    def _init_grip(self) -> None:
+    def take_in(self) -> int:
         """Weld the links laid round the roller's front, pin the landing link's front to
-        the table and take the chain laid behind it out of the space."""
+        the table and take the chain laid behind it out of the space; returns how many
+        links left."""
         chain, links = self.chain, self.chain.links
-        c = self.lower.roller.position
-        R = self.R_lo
+        c = self.fold.lower.roller.position
+        R = self.layout.R_lo
 
         def on_wrap(p: pymunk.Vec2d) -> bool:
             return abs((p - c).length - R) < ON_WRAP and p.x >= c.x - 1e-9
@@ -102,7 +110,6 @@ class GrippedFold:
         popped = wrap[0] - 1  # the chain laid behind the landing link leaves
         for _ in range(popped):
             chain.pop_front()
-        self.absorbed += popped
         if links[0].shape is not None and links[0].shape.space is not None:
             self.space.remove(links[0].shape)
         self._pin_front(links[0])
@@ -110,14 +117,15 @@ class GrippedFold:
             self._weld(links[k])
             if k > 1:
                 chain.unjoin(k - 1)
+        return popped
 
     # ------------------------------------------------------------------ stepping
     def _weld(self, link: Link, angle: float | None = None) -> None:
         """Weld ``link`` to the folding roller: a pivot at its front joint and a gear
         holding its angle (its own, or ``angle``, reached in :data:`CATCH_TIME`)."""
-        roller = self.lower.roller
-        bias = self.sim_cfg.solver.joint_error_bias
-        h = 0.5 * self.L
+        roller = self.fold.lower.roller
+        bias = self.layout.sim_cfg.solver.joint_error_bias
+        h = 0.5 * self.layout.L
         if link.shape is not None and link.shape.space is not None:
             self.space.remove(link.shape)  # held by joints: nothing to touch
         pf = link.body.local_to_world((h, 0.0))
@@ -135,17 +143,17 @@ class GrippedFold:
 
     def _pin_front(self, link: Link) -> None:
         """Pin ``link``'s front joint to the table where it is."""
-        p = link.body.local_to_world((0.5 * self.L, 0.0))
+        p = link.body.local_to_world((0.5 * self.layout.L, 0.0))
         pin = pymunk.PivotJoint(self.space.static_body, link.body, p)
-        pin.error_bias = self.sim_cfg.solver.joint_error_bias
+        pin.error_bias = self.layout.sim_cfg.solver.joint_error_bias
         self.space.add(pin)
         self._table_pin = pin
 
-    def _land_gripped(self) -> int:
+    def land(self) -> int:
         """Land every welded link whose front joint has passed under the roller's centre
         (keeping at least one welded); returns how many links left the space."""
         chain = self.chain
-        cx = self.lower.x
+        cx = self.fold.lower.x
         if self._table_pin is None:  # from rest: the head lands first
             self._land_head(cx)
             return 0
@@ -164,7 +172,6 @@ class GrippedFold:
                                      link.body.velocity_at_world_point(front).length)
             self._pin_front(link)
             chain.join(0)  # its back to the lowest welded link's front
-        self.absorbed += popped
         return popped
 
     def _land_head(self, cx: float) -> None:
@@ -183,14 +190,14 @@ class GrippedFold:
         self._pin_front(link)
         self.chain.join(0)
 
-    def _grip_arriving(self) -> None:
+    def grip_arriving(self) -> None:
         """Weld the strand's last link once its back joint has passed over the roller's
         centre or come within :data:`GRIP_TOL` of the rim, caught onto the rim chord."""
         chain, links = self.chain, self.chain.links
-        c = self.lower.roller.position
-        R = self.R_lo
-        d_ang = 2.0 * math.asin(self.L / (2.0 * R))
-        plate = self._gq[-1]
+        c = self.fold.lower.roller.position
+        R = self.layout.R_lo
+        d_ang = 2.0 * math.asin(self.layout.L / (2.0 * R))
+        plate = self.fold.held[-1]
         first = 1 if self._table_pin is not None else 0  # 0: the head is threaded
         while True:
             k = first + len(self._welds)
@@ -210,7 +217,7 @@ class GrippedFold:
                 chain.unjoin(k - 1)
             self.gripped_links += 1
 
-    def _shift_pin(self, dx: float) -> None:
+    def shift_pin(self, dx: float) -> None:
         """Treadmill: the table pin moves back with the laid chain by ``dx`` (m)."""
         pin = self._table_pin
         if pin is not None:

@@ -28,7 +28,7 @@ def keep_on_arcs(guide: list[GuideElement],
                  queues: list[deque[tuple[Link, pymunk.Constraint]]], close: float) -> None:
     """Joint guides: for each link held on an arc of ``guide``, close its slide joint's
     limits in toward ``R -+ PLAY`` by ``close`` (m per step: the apparatus's
-    :attr:`~chainfountain.sim.apparatus.Apparatus.fold_close_rate` times the step; a
+    :meth:`~chainfountain.sim.apparatus.Tuning.close_rate` times the step; a
     link captured off the radius), then put it back onto the nearest limit if it has
     left them and take away its velocity across it.
 

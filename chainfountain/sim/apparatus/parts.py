@@ -1,6 +1,6 @@
 """Bodies and static shapes the apparatus is built from: a roller on its cart-pushed
 carriage (:class:`RollerUnit`), static segments (tables, plates, the floor) and the
-channels' wall polylines."""
+channels' wall polylines; and the run's :class:`Clock` the parts read."""
 
 from __future__ import annotations
 
@@ -27,6 +27,15 @@ DRIVE_REACH = 1.0e3
 DRIVE_STIFFNESS = 1.0e-6
 """Stiffness (N/m) of a drive spring: so soft that its force changes by 1e-6 N per metre
 the carriage rolls (a cart's force is 0.04-0.3 N), i.e. a constant force."""
+
+
+@dataclass(eq=False)
+class Clock:
+    """The apparatus's time (s): advanced by the bookkeeping
+    (:meth:`~chainfountain.sim.apparatus.Apparatus.after_step`), read by the parts that
+    time what they watch."""
+
+    t: float = 0.0
 
 
 @dataclass(eq=False)

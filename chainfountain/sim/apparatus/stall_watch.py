@@ -5,6 +5,8 @@ falling chain pulls it on stops, as a real one would. The run then ends with
 from __future__ import annotations
 
 from chainfountain.errors import RunEnded
+from chainfountain.sim.apparatus.parts import Clock, RollerUnit
+from chainfountain.sim.config import ApparatusConfig
 
 STALL_FRACTION = 0.3
 """The chain counts as stopping below this fraction of the level's start speed."""
@@ -20,14 +22,24 @@ class ChainStalled(RunEnded):
 
 
 class StallWatch:
-    """The stall check (a mixin of :class:`~chainfountain.sim.apparatus.Apparatus`)."""
+    """The stall check."""
 
-    def _init_stall_state(self) -> None:
+    def __init__(self, cfg: ApparatusConfig, upper: RollerUnit, lower: RollerUnit | None,
+                 clock: Clock) -> None:
+        self.cfg = cfg
+        self.upper = upper
+        self.lower = lower
+        self.clock = clock
         self._slow_t = 0.0
         """How long (s) the chain has run below :data:`STALL_FRACTION` of its start speed."""
         self._stall_clock = 0.0
 
-    def _check_stall(self, dt: float) -> None:
+    @property
+    def speed(self) -> float:
+        """Chain speed: twice the pick-up roller speed."""
+        return 2.0 * abs(self.upper.speed)
+
+    def check(self, dt: float) -> None:
         """Raise :class:`ChainStalled` after :data:`STALL_TIME` below
         :data:`STALL_FRACTION` of the start speed (read every :data:`STALL_EVERY` s)."""
         self._stall_clock += dt
@@ -47,6 +59,6 @@ class StallWatch:
                                                           ("lower", self.lower))
                  if unit is not None and unit.cart is not None]
         held = ", ".join(f"{name} cart {1000 * m:.3g} g" for name, m in carts) or "the machine"
-        return (f"t = {self._t:.2f} s: the chain has stopped: {held} holds it back harder "
+        return (f"t = {self.clock.t:.2f} s: the chain has stopped: {held} holds it back harder "
                 "than the falling chain pulls it on; make the upper cart lighter "
                 "(carts[0].mass)")

@@ -5,13 +5,14 @@ nothing falls. The starter is that hand, a motor in the upper joint guide: it ru
 links held there along the guide, from rest up to ``apparatus.speed`` over
 :data:`RAMP` s, and holds that speed until the chain has landed and ``apparatus.starter``
 seconds after. Then it lets go, and the carts and the fall alone drive the chain, which
-settles at the speed the machine selects (a mixin of
-:class:`~chainfountain.sim.apparatus.Apparatus`).
+settles at the speed the machine selects. A study's own start subclasses
+:class:`Starter` and passes the class to :class:`~chainfountain.sim.apparatus.Apparatus`
+(``research/hanging_start.py``).
 
 'fold' (the gripped folding roller, :mod:`.grip`) has no floor to land on: the chain's
 head must be threaded through the end guide and round the folding roller. Its head waits
 :data:`~.core.HEAD_BACK` inside the upper guide; the starter runs it up within
-:data:`THREAD_RAMP` to :attr:`StarterPart.launch_speed`, at which a free head flies onto
+:data:`THREAD_RAMP` to :attr:`Starter.launch_speed`, at which a free head flies onto
 the predicted fountain end (faster, it would fly past the end guide: a free end carries no
 tension, so it does not follow the fountain's curve). Once the end guide has caught the
 head, the starter runs the chain up to ``apparatus.speed`` within :data:`CATCH_RAMP` (below
@@ -30,6 +31,12 @@ import math
 
 from chainfountain.errors import RunEnded
 from chainfountain.sim import fastbody
+from chainfountain.sim.apparatus.ends import EndPart
+from chainfountain.sim.apparatus.fold import FoldPart
+from chainfountain.sim.apparatus.follow import FollowingEnd
+from chainfountain.sim.apparatus.layout import Layout
+from chainfountain.sim.apparatus.parts import Clock, RollerUnit
+from chainfountain.sim.apparatus.upper_guide import UpperJointGuide
 
 RAMP = 0.5
 """Time (s) over which the starter runs the chain up from rest to ``apparatus.speed``."""
@@ -41,7 +48,7 @@ CATCH_RAMP = 0.2
 ``apparatus.speed`` once the end guide has caught the head."""
 HOME = 0.01
 """'fold': the starter lets go early once the fountain lands within this (m) of the end
-guide's first turn (:meth:`StarterPart._landed_home`). It first lands long (the launch
+guide's first turn (:meth:`Starter._landed_home`). It first lands long (the launch
 stores more chain than the machine's fountain holds), and while both ends are driven two
 drives set to one speed differ a little, so its length drifts; at about the machine's own
 length a driven fountain falls (measured at a quarter of a millisecond: 44 links in
@@ -85,38 +92,52 @@ def run_along(guide: list, queues: list, v: float) -> None:
 
 class StarterFailed(RunEnded):
     """The starter could not run the chain up to the floor (raised by
-    :meth:`StarterPart._check_starter`)."""
+    :meth:`Starter.check`)."""
 
 
-class StarterPart:
-    """The starter motor (a mixin of :class:`~chainfountain.sim.apparatus.Apparatus`)."""
+class Starter:
+    """The starter motor: it drives the links in the upper joint guide (and in 'fold'
+    the end guide and the folding roller) while :attr:`starting`, then lets go."""
 
-    def _init_starter_state(self) -> None:
-        self.starting = self.from_rest
+    def __init__(self, layout: Layout, clock: Clock, upper: RollerUnit,
+                 upper_guide: UpperJointGuide | None, end: EndPart, fold: FoldPart | None,
+                 follow: FollowingEnd) -> None:
+        self.layout = layout
+        self.cfg = layout.cfg
+        self.clock = clock
+        self.upper = upper
+        self.upper_guide = upper_guide
+        self.end = end
+        self.fold = fold
+        """The fold whose end guide and roller the starter drives ('fold' only)."""
+        self.lower = fold.lower if fold is not None else None
+        self.follow = follow
+        self.starting = layout.from_rest
         """True while the starter drives the chain."""
         self.fading = False
-        """'fold': True while the starter's hold fades after it let go (:meth:`_fade_starter`)."""
+        """'fold': True while the starter's hold fades after it let go (:meth:`fade`)."""
         self._caught_t: float | None = None
         """'fold': when the end guide caught the head (s)."""
         self._laid_t = math.inf
         """When the first link was laid on the floor or the lower table (s)."""
         self._hand_over: float | None = None
         """When the starter lets go (s): set once the first link reaches the floor, and
-        to the moment it does let go (:meth:`_fade_starter` counts from it)."""
+        to the moment it does let go (:meth:`fade` counts from it)."""
 
     @property
-    def starter_speed(self) -> float:
+    def speed(self) -> float:
         """The speed (m/s) the starter runs the chain at now. 'fold': first the speed
         :attr:`launch_speed` at which the free head flies onto the end guide's mouth,
         reached within :data:`THREAD_RAMP`, and once the end guide has caught the head
         ``apparatus.speed``, reached within :data:`CATCH_RAMP`."""
         v = float(self.cfg.speed)
-        if not self.fold_guided:
-            return v * min(1.0, self._t / RAMP)
+        t = self.clock.t
+        if not self.layout.fold_guided:
+            return v * min(1.0, t / RAMP)
         v1 = self.launch_speed
         if self._caught_t is None:
-            return v1 * min(1.0, self._t / THREAD_RAMP)
-        return v1 + (v - v1) * min(1.0, (self._t - self._caught_t) / CATCH_RAMP)
+            return v1 * min(1.0, t / THREAD_RAMP)
+        return v1 + (v - v1) * min(1.0, (t - self._caught_t) / CATCH_RAMP)
 
     @property
     def head_caught_at(self) -> float:
@@ -129,20 +150,31 @@ class StarterPart:
         at ``launch_angle`` flies onto the predicted fountain end ``(x_E, -H)``:
         ``v^2 = g x_E^2 / (2 cos^2(alpha0) (x_E tan(alpha0) + H))`` (a projectile; the
         chain behind a free head pulls on it little)."""
-        xe, a = self.end[0] - self.end_shift, self.alpha0
-        return math.sqrt(self.g * xe * xe
-                         / (2.0 * math.cos(a) ** 2 * (xe * math.tan(a) + self.H)))
+        lay = self.layout
+        xe, a = self.end.end[0] - self.follow.end_shift, lay.alpha0
+        return math.sqrt(lay.g * xe * xe
+                         / (2.0 * math.cos(a) ** 2 * (xe * math.tan(a) + lay.H)))
 
-    def _drive_starter(self) -> None:
-        """Set the links held in the upper guide moving along it at :attr:`starter_speed`
-        (before each step; the solver passes the pull on): along a straight's line, on a
-        bend along its tangent. (The last straight alone holds one link when the rise
+    def before_step(self) -> None:
+        """Before each pymunk step: drive while starting, fade once let go."""
+        if self.starting:
+            self.drive()
+        elif self.fading:
+            self.fade()
+
+    def drive(self) -> None:
+        """Set the links held in the upper guide moving along it at :attr:`speed` (before
+        each step; the solver passes the pull on): along a straight's line, on a bend
+        along its tangent. (The last straight alone holds one link when the rise
         ``xi2*H`` is short, too little to pull the chain.)"""
-        if self.fold_guided and self._caught_t is None and self._mouth_t is not None:
-            self._caught_t = self._t  # the end guide has caught the head
-        v = self.starter_speed
-        run_along(self.up_guide, self._uq, v)
-        if self.fold_guided:  # 'fold': the head threads through the end guide
+        fold = self.fold
+        if (self.layout.fold_guided and fold is not None and self._caught_t is None
+                and fold.mouth_t is not None):
+            self._caught_t = self.clock.t  # the end guide has caught the head
+        v = self.speed
+        if self.upper_guide is not None:
+            run_along(self.upper_guide.elements, self.upper_guide.held, v)
+        if self.layout.fold_guided:  # 'fold': the head threads through the end guide
             self._drive_fold(v)
 
     def _drive_fold(self, v: float) -> None:
@@ -150,23 +182,26 @@ class StarterPart:
         ``v``, and the folding roller rolls at ``v/2`` on its table (its top at ``v``), so
         that the fountain's head, caught at the mouth, is carried to the roller and round
         it onto the table."""
-        run_along(self.guide, self._gq, v)
-        lo = self.lower
+        fold = self.fold
+        assert fold is not None
+        run_along(fold.guide, fold.held, v)
+        lo = fold.lower
         u = 0.5 * v
         lo.carriage.velocity = (u, 0.0)
         lo.roller.velocity = (u, 0.0)
-        lo.roller.angular_velocity = -u / self.R_lo
+        lo.roller.angular_velocity = -u / self.layout.R_lo
 
-    def _fade_starter(self) -> None:
+    def fade(self) -> None:
         """'fold', for :data:`FADE` s after the starter lets go (before each pymunk step):
         bring each roller carriage's speed toward half ``apparatus.speed`` at a rate that
         falls from :data:`FADE_RATE` to 0, so that the carts and the brake take the
         machine over gradually."""
-        t = self._t - self._hand_over
+        assert self._hand_over is not None and self.lower is not None
+        t = self.clock.t - self._hand_over
         if t >= FADE:
             self.fading = False
             return
-        k = 1.0 - math.exp(-FADE_RATE * (1.0 - t / FADE) * self.h)
+        k = 1.0 - math.exp(-FADE_RATE * (1.0 - t / FADE) * self.layout.h)
         u_s = 0.5 * float(self.cfg.speed)
         for body in (self.upper.carriage, self.lower.carriage):
             u, w = body.velocity
@@ -177,35 +212,38 @@ class StarterPart:
         has come to land within :data:`HOME` of the end guide's first turn, at least
         :data:`SETTLE` after the first link was laid: the starter then lets go at once
         (a driven fountain shorter than that falls)."""
-        return (self.fold_guided and self._t >= self._laid_t + SETTLE
-                and self.landing_offset > -HOME)
+        return (self.layout.fold_guided and self.clock.t >= self._laid_t + SETTLE
+                and self.follow.landing_offset > -HOME)
 
-    def _check_starter(self) -> None:
+    def check(self, absorbed: int, chain_speed: float) -> None:
         """Let go :attr:`~chainfountain.sim.config.ApparatusConfig.starter` seconds after
-        the first link has reached the floor (or the lower table); end the run with one
-        sentence if the chain has not landed within :data:`LAND_WITHIN` s (the starter
-        could not run it up, or could not thread it)."""
-        if self._hand_over is None and self.absorbed > 0:
-            self._hand_over = self._t + float(self.cfg.starter)
-            self._laid_t = self._t
-        if self._hand_over is not None and (self._t >= self._hand_over or self._landed_home()):
-            self._hand_over = min(self._hand_over, self._t)  # sooner if it landed home
+        the first link has reached the floor (or the lower table; ``absorbed`` links have
+        left the chain there); end the run with one sentence if the chain has not landed
+        within :data:`LAND_WITHIN` s (the starter could not run it up, or could not thread
+        it; the chain runs at ``chain_speed``)."""
+        t = self.clock.t
+        fold_guided = self.layout.fold_guided
+        if self._hand_over is None and absorbed > 0:
+            self._hand_over = t + float(self.cfg.starter)
+            self._laid_t = t
+        if self._hand_over is not None and (t >= self._hand_over or self._landed_home()):
+            self._hand_over = min(self._hand_over, t)  # sooner if it landed home
             self.starting = False
-            self.fading = self.fold_guided
-        elif self._hand_over is None and self._t > LAND_WITHIN and self.fold_guided:
+            self.fading = fold_guided
+        elif self._hand_over is None and t > LAND_WITHIN and fold_guided:
             where = ("the end guide has not caught its head" if self._caught_t is None
                      else "its head has not reached the lower table")
             raise StarterFailed(
-                f"t = {self._t:.2f} s: the starter could not thread the chain through the "
+                f"t = {t:.2f} s: the starter could not thread the chain through the "
                 f"machine ({where} within {LAND_WITHIN:g} s): the carts hold it harder than "
                 "the starter pulls, or the fountain misses the end guide; make the upper "
                 "cart lighter (carts[0].mass), or start it laid along its path "
                 "(initial.mode = 'catenary')",
-                plain=f"At {self._t:.1f} s the starter had not threaded the chain through "
+                plain=f"At {t:.1f} s the starter had not threaded the chain through "
                 "the machine; press R to try again, or make the upper cart lighter")
-        elif self._hand_over is None and self._t > LAND_WITHIN:
+        elif self._hand_over is None and t > LAND_WITHIN:
             raise StarterFailed(
-                f"t = {self._t:.2f} s: the starter could not run the chain up (it moves at "
-                f"{self.speed:.2g} m/s and has not reached the floor): the carts hold it "
+                f"t = {t:.2f} s: the starter could not run the chain up (it moves at "
+                f"{chain_speed:.2g} m/s and has not reached the floor): the carts hold it "
                 "harder than the starter pulls; make the upper cart lighter (carts[0].mass) "
                 "or lift the chain less (a smaller apparatus.xi2)")

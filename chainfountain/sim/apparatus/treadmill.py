@@ -16,6 +16,12 @@ import math
 import pymunk
 
 from chainfountain.sim import fastbody
+from chainfountain.sim.apparatus.fold import FoldPart
+from chainfountain.sim.apparatus.grip import GrippedFold
+from chainfountain.sim.apparatus.grooves import PlateGrooves
+from chainfountain.sim.apparatus.layout import Layout
+from chainfountain.sim.apparatus.parts import RollerUnit
+from chainfountain.sim.chain import Chain
 
 MAX_INSERTS = 8
 """Most links the upper treadmill puts in per bookkeeping step (1-mm links at 3 m/s with
@@ -23,9 +29,21 @@ the bookkeeping every 1 ms need 2: the roller rolls 1.5 mm a step)."""
 
 
 class Treadmills:
-    """The plate treadmills (a mixin of :class:`~chainfountain.sim.apparatus.Apparatus`)."""
+    """The plate treadmills, and how far each roller has rolled."""
 
-    def _init_treadmill_state(self) -> None:
+    def __init__(self, space: pymunk.Space, chain: Chain, layout: Layout, upper: RollerUnit,
+                 grooves: PlateGrooves, fold: FoldPart | None,
+                 grip: GrippedFold | None) -> None:
+        self.space = space
+        self.chain = chain
+        self.layout = layout
+        self.upper = upper
+        self.lower = fold.lower if fold is not None else None
+        self.grooves = grooves
+        self.fold = fold
+        self.grip = grip
+        self.start_x = (upper.x, self.lower.x if self.lower is not None else 0.0)
+        """The rollers' start x (m; 0 for a missing folding roller)."""
         self.moved_back = 0
         """Treadmill: links added to the upper plate strand."""
         self.shifted = 0.0
@@ -51,7 +69,7 @@ class Treadmills:
             p = get_p(h)
             set_p(h, (p.x - dx, p.y))
 
-    def _treadmill_upper(self) -> None:
+    def treadmill_upper(self) -> int:
         """Keep the upper plate strand from shrinking: once the pick-up roller has moved
         half a link length past its start, insert a link into the middle of the grooved
         strand and move everything upstream of it (strand, wrap, resting chain, roller
@@ -61,16 +79,19 @@ class Treadmills:
         frictionless and all its links move at the chain speed, so the new link (the
         mean velocity of its neighbours, laid exactly into the gap) changes nothing but
         the strand's length; the pick-up (roller on the resting chain) is moved rigidly
-        and is untouched."""
+        and is untouched. Returns how many links went in."""
+        n = 0
         for _ in range(MAX_INSERTS):
             if not self._insert_upper():
-                return
+                break
+            n += 1
+        return n
 
     def _insert_upper(self) -> bool:
-        """One link into the upper strand (:meth:`_treadmill_upper`); whether it went in."""
+        """One link into the upper strand (:meth:`treadmill_upper`); whether it went in."""
         up = self.upper
-        L = self.L
-        g = self._grooves
+        L = self.layout.L
+        g = self.grooves.held
         if up.x - self.start_x[0] < 0.5 * L or len(g) < 4:
             return False
         chain = self.chain
@@ -98,15 +119,14 @@ class Treadmills:
         for lk in (a_link, new):
             if lk.up_joint is not None:
                 fastbody.set_pivot_impulse(lk.up_joint, j)
-        g.insert(m + 1, (new, self._groove_joint(new.body)))
-        self._g_next += 1
-        self.added += 1
+        g.insert(m + 1, (new, self.grooves.groove_joint(new.body)))
+        self.grooves.next_index += 1
         self.moved_back += 1
         return True
 
-    def _treadmill_lower(self) -> None:
+    def treadmill_lower(self) -> None:
         """'fold': keep the lower plate strand from growing, the mirror of
-        :meth:`_treadmill_upper`. Once the folding roller has moved one link length past
+        :meth:`treadmill_upper`. Once the folding roller has moved one link length past
         its start, take two neighbouring links out of the middle of the grooved strand
         and move everything downstream of them (strand, wrap, laid chain, roller and
         carriage) back by the gap, so the roller stays within about a link of its start.
@@ -118,9 +138,11 @@ class Treadmills:
         and the ends meet. Of the pairs near the middle, the one whose ends meet best in
         ``y`` is cut. The strand is straight, horizontal, frictionless and moves as one,
         so the cut changes only its length."""
-        lo = self.lower
-        L = self.L
-        q = self._gq[-1]
+        lo, fold = self.lower, self.fold
+        if lo is None or fold is None:
+            return
+        L = self.layout.L
+        q = fold.held[-1]
         if lo.x - self.start_x[1] < L or len(q) < 10:
             return
         chain = self.chain
@@ -143,8 +165,8 @@ class Treadmills:
         c = links[i + 1]
         j = fastbody.pivot_impulse(c.up_joint) if c.up_joint else (0.0, 0.0)
         self._shift_back([lk.body for lk in links[:i]] + [lo.roller, lo.carriage], dx)
-        if self.gripped:
-            self._shift_pin(dx)
+        if self.grip is not None:
+            self.grip.shift_pin(dx)
         self.shifted_lo += dx
         for k in (m + 1, m):
             self.space.remove(q[k][1])
@@ -153,7 +175,6 @@ class Treadmills:
         chain.remove(i)
         if links[i - 1].up_joint is not None:
             fastbody.set_pivot_impulse(links[i - 1].up_joint, j)
-        self._cap_next -= 2
-        self._fly_next -= 2
-        self._g_next -= 2
+        fold.reindex(2)
+        self.grooves.next_index -= 2
         self.cut += 2

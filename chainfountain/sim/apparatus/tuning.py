@@ -1,16 +1,15 @@
 """The apparatus model's numeric choices: sizes, bands, rates and times that are not in
 the paper, each with the reason for its value (``docs/apparatus.md`` has the runs).
 
-Constants only; the code that uses them is in the part's module. Two of them are read
-through :class:`~chainfountain.sim.apparatus.Apparatus` class attributes so that a
-study can vary them (:attr:`~chainfountain.sim.apparatus.Apparatus.fold_capture`,
-:attr:`~chainfountain.sim.apparatus.Apparatus.fold_close_rate`;
-``research/swing_study.py``).
+The code that uses them is in the part's module. What a study may vary is a
+:class:`Tuning`, passed to :class:`~chainfountain.sim.apparatus.Apparatus` (its defaults
+are the shipped model's).
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 WALL_R = 0.002
 """Radius of channel wall segments (m)."""
@@ -58,7 +57,7 @@ FOLLOW_TRAVEL = 0.30
 """Farthest a following end guide moves from where the level puts it (m, either way)."""
 TAIL_KEEP = 30
 """'open': links kept in the lower plate grooves; the tail beyond is lumped into the
-end link (:meth:`~.open_tail.OpenTail._lump_tail`)."""
+end link (:meth:`~.open_tail.OpenTail.lump_tail`)."""
 LO_START = 0.15
 """'fold': start distance (m) of the folding roller from the end channel's exit."""
 COLLAPSE_TIME = 0.05
@@ -113,3 +112,33 @@ so the free fountain starts at ``(0, 0)`` as with the channel's walls. Measured
 at 0.5, -1.6 % at 0.6, -6.0 % at 1 (the walls: +1.7 %)."""
 CLEAR = 0.0008
 """Clearance between a link capsule and each channel wall (m)."""
+
+
+@dataclass(frozen=True)
+class Tuning:
+    """The apparatus model's choices a study may vary (``Apparatus(..., tuning=...)``);
+    the defaults are the shipped model's."""
+
+    fold_capture: tuple[float, float] | None = None
+    """'fold' joint guide: capture band (m) and angular margin (rad) of the first turn;
+    ``None``: :data:`FOLD_CAPTURE`, or :data:`FOLLOW_CAPTURE` with a following end guide."""
+    fold_close_rate: float | None = None
+    """Joint guides: speed (m/s) at which the limits of a link captured off a turn's
+    radius close in; ``None``: :data:`FOLD_CLOSE_RATE`, or :data:`FOLLOW_CLOSE_RATE`
+    with a following end guide."""
+    lay_at_rest: bool = False
+    """Lay the chain at rest along its path even where the level lays it moving (a
+    study's start, ``research/hanging_start.py``)."""
+
+    def capture(self, following: bool) -> tuple[float, float]:
+        """The first turn's capture band and margin, with or without a following end
+        guide."""
+        if self.fold_capture is not None:
+            return self.fold_capture
+        return FOLLOW_CAPTURE if following else FOLD_CAPTURE
+
+    def close_rate(self, following: bool) -> float:
+        """The joint guides' close rate (m/s), with or without a following end guide."""
+        if self.fold_close_rate is not None:
+            return self.fold_close_rate
+        return FOLLOW_CLOSE_RATE if following else FOLD_CLOSE_RATE

@@ -10,36 +10,42 @@ import numpy as np
 import pymunk
 
 from chainfountain.sim.apparatus.joints import hold, keep_on_arcs
+from chainfountain.sim.apparatus.layout import Layout
 from chainfountain.sim.apparatus.tuning import UP_RELEASE
-from chainfountain.sim.chain import Link
+from chainfountain.sim.apparatus.upper import UpperPart
+from chainfountain.sim.chain import Chain, Link
 from chainfountain.sim.fastbody import pos
+from chainfountain.sim.guide import GuideElement
 
 
 class UpperJointGuide:
-    """Links held in the upper joint guide (a mixin of
-    :class:`~chainfountain.sim.apparatus.Apparatus`)."""
+    """Links held in the upper joint guide's elements (:attr:`UpperPart.up_guide
+    <.upper.UpperPart.up_guide>`)."""
 
-    def _init_upper_guide_state(self) -> None:
-        self._uq: list[deque[tuple[Link, pymunk.Constraint]]] = [
-            deque() for _ in self.up_guide]
-        """Upper joint guide: links held by each element (most downstream first)."""
+    def __init__(self, space: pymunk.Space, chain: Chain, layout: Layout, upper: UpperPart,
+                 close_rate: float) -> None:
+        self.space = space
+        self.chain = chain
+        self.layout = layout
+        self.elements: list[GuideElement] = upper.up_guide
+        self.close_rate = close_rate
+        """Speed (m/s) at which the limits of a link captured off a bend's radius close
+        in (:meth:`Tuning.close_rate <.tuning.Tuning.close_rate>`)."""
+        self.held: list[deque[tuple[Link, pymunk.Constraint]]] = [
+            deque() for _ in self.elements]
+        """The links (with their joints) each element holds, most downstream first."""
 
-    @property
-    def upper_held(self) -> list[deque[tuple[Link, pymunk.Constraint]]]:
-        """Upper joint guide: the links (with their joints) each element of
-        :attr:`up_guide` holds, most downstream first. Read only."""
-        return self._uq
-
-    def _init_upper_guide(self) -> None:
+    def take_in(self, first_grooved: Link | None) -> None:
         """Put the links laid along the upper channel (downstream of the plate's grooved
-        strand) into the upper guide's elements."""
+        strand, whose most downstream link is ``first_grooved``) into the guide's
+        elements."""
         links = self.chain.links
-        i_g = self.chain.ids.index(self._grooves[0][0].id) if self._grooves else len(links)
+        i_g = self.chain.ids.index(first_grooved.id) if first_grooved is not None else len(links)
         found: list[tuple[int, int]] = []
         for i in range(i_g - 1, -1, -1):  # upstream to downstream
             p = pos(links[i].body)
             P = np.array([[p.x, p.y]])
-            for k, el in enumerate(self.up_guide):
+            for k, el in enumerate(self.elements):
                 if el.on(P, 0.003)[0] and not el.passed(p.x, p.y):
                     found.append((i, k))
                     break
@@ -47,23 +53,22 @@ class UpperJointGuide:
                 if found:
                     break  # past the exit: the fountain
         for i, k in sorted(found):  # downstream first in each queue
-            self._hold_up(k, links[i])
+            self.hold(k, links[i])
 
-    def _hold_up(self, k: int, link: Link) -> None:
-        """Hold ``link`` in upper guide element ``k`` (out of the collision broadphase)."""
-        hold(self.space, self.up_guide[k], self._uq[k], link,
-             self.sim_cfg.solver.joint_error_bias)
+    def hold(self, k: int, link: Link) -> None:
+        """Hold ``link`` in element ``k`` (out of the collision broadphase)."""
+        hold(self.space, self.elements[k], self.held[k], link,
+             self.layout.sim_cfg.solver.joint_error_bias)
 
-    def _update_upper_guide(self) -> None:
-        """Upper joint guide: move links from element to element as they pass each end
-        (downstream elements first, so a link moves at most one element per step) and
-        release them into flight past the fountain start. A released link stays out of
-        the broadphase in 'fold' (nothing to touch in flight,
-        :meth:`~.fold.FoldPart._update_flight`) and gets its shape back otherwise (the floor
-        variants need it)."""
-        els, qs = self.up_guide, self._uq
+    def update(self) -> None:
+        """Move links from element to element as they pass each end (downstream elements
+        first, so a link moves at most one element per step) and release them into
+        flight past the fountain start. A released link stays out of the broadphase in
+        'fold' (nothing to touch in flight, :meth:`~.fold.FoldPart.update_flight`) and
+        gets its shape back otherwise (the floor variants need it)."""
+        els, qs = self.elements, self.held
         last = len(els) - 1
-        self._release_upper()
+        self.release()
         for k in range(last - 1, -1, -1):
             q, el = qs[k], els[k]
             while q:
@@ -72,23 +77,24 @@ class UpperJointGuide:
                     break
                 link, j = q.popleft()
                 self.space.remove(j)
-                self._hold_up(k + 1, link)
-        keep_on_arcs(els, qs, self.fold_close_rate * self.sim_cfg.solver.dt)
+                self.hold(k + 1, link)
+        keep_on_arcs(els, qs, self.close_rate * self.layout.sim_cfg.solver.dt)
 
-    def _release_upper(self) -> None:
+    def release(self) -> None:
         """Release into flight the links whose front joint has left the upper guide (its
         centre :data:`~.tuning.UP_RELEASE` link lengths short of the start). Run in every
         pymunk step (:meth:`~.core.Apparatus.before_step` with ``substeps > 1``), not only
         with the bookkeeping: the fountain is sensitive to where its links leave the
         guide, so it does not move with the bookkeeping's cadence."""
-        el, q = self.up_guide[-1], self._uq[-1]
-        before = UP_RELEASE * self.L
+        el, q = self.elements[-1], self.held[-1]
+        before = UP_RELEASE * self.layout.L
         space = self.space
+        fold_guided = self.layout.fold_guided
         while q:
             p = pos(q[0][0].body)
             if not el.passed(p.x, p.y, before):
                 break
             link, j = q.popleft()
             space.remove(j)
-            if not self.fold_guided and link.shape is not None and link.shape.space is None:
+            if not fold_guided and link.shape is not None and link.shape.space is None:
                 space.add(link.shape)

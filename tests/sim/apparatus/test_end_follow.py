@@ -95,7 +95,7 @@ def test_the_guide_moves_as_one_piece() -> None:
     walls = [s.a.x for s in app.end_walls]
     end0, shift0 = app.end[0], app.end_shift
     carrier.position = (carrier.position.x + 0.05, carrier.position.y)
-    app._sync_end_guide()
+    app.sync_end_guide()
     assert el0.a[0] == pytest.approx(c0[0] + 0.05) and el0.a[1] == c0[1]
     assert plate.a[0] == pytest.approx(p0[0] + 0.05) and plate.b == app.guide[-1].b
     assert anchors() == pytest.approx([x + 0.05 for x in held])
