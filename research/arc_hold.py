@@ -45,7 +45,7 @@ ORIG_KEEP = joints.keep_on_arcs
 def close_only(els, qs, close: float) -> None:
     """``keep_on_arcs`` without the projection: only close captured links' limits."""
     for el, q in zip(els, qs, strict=True):
-        if el.kind != "arc":
+        if el.form != "arc":
             continue
         lo, hi = el.R - guide.PLAY, el.R + guide.PLAY
         for _, j in q:

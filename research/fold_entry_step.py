@@ -79,7 +79,7 @@ def apply_patches(patches: dict) -> None:
 
         def joint(self, space, body, error_bias):
             j = orig(self, space, body, error_bias)
-            if self.kind == "line":
+            if self.form == "line":
                 j.error_bias = lb
             return j
         guide.GuideElement.joint = joint

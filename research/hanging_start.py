@@ -27,7 +27,6 @@ import argparse
 import functools
 import math
 from typing import Any
-from unittest import mock
 
 import numpy as np
 from scipy.optimize import brentq
@@ -35,7 +34,7 @@ from scipy.optimize import brentq
 from chainfountain.errors import RunEnded
 from chainfountain.level import io
 from chainfountain.level.library import shipped_dir
-from chainfountain.sim import Simulation, world
+from chainfountain.sim import Simulation
 from chainfountain.sim.apparatus import Apparatus, Layout, Starter, Tuning, starter
 from chainfountain.sim.config import SimConfig
 from chainfountain.study.changes import laid_on_path, with_changes
@@ -153,13 +152,10 @@ class Start:
 
 def simulation(cfg: SimConfig, start: Start, tuning: Tuning) -> Simulation:
     """A simulation of ``cfg`` whose apparatus is built with ``start``'s path and starter
-    and with ``tuning``. (:class:`~chainfountain.sim.Simulation` builds its apparatus
-    itself and takes no apparatus arguments yet, so its module's ``Apparatus`` is this
-    apparatus's builder while it does.)"""
+    and with ``tuning`` (the simulation's ``builders``)."""
     build = functools.partial(Apparatus, tuning=tuning, starter=start.starter(),
                               fountain_path=start.fountain_path)
-    with mock.patch.object(world, "Apparatus", build):
-        return Simulation(cfg)
+    return Simulation(cfg, builders={"apparatus": build})
 
 
 def main() -> None:

@@ -197,7 +197,7 @@ class EnergyBudget:
         links = app.chain.links
         kind: dict[int, tuple[str, np.ndarray]] = {}  # arc: centre; line, plate: normal
         for el, q in zip(app.up_guide, app.upper_held, strict=True):
-            if el.kind == "arc":
+            if el.form == "arc":
                 c = np.array(el.a, dtype=float)
                 for lk, _ in q:
                     kind[id(lk.body)] = ("arc", c)

@@ -214,7 +214,7 @@ class GuideElement:
     (links held by a :class:`pymunk.SlideJoint` to its centre) or a straight line (a
     :class:`pymunk.GrooveJoint`). The chain moves along it from ``start`` to ``end``."""
 
-    kind: str
+    form: str
     """'arc' or 'line'."""
     a: tuple[float, float]
     """Arc: centre; line: start point."""
@@ -238,7 +238,7 @@ class GuideElement:
     def passed(self, x: float, y: float, before: float = 0.0) -> bool:
         """Has a link centre at ``(x, y)`` gone past the element's end (a line's: past
         ``before`` m short of it)?"""
-        if self.kind == "arc":
+        if self.form == "arc":
             th = math.atan2(y - self.a[1], x - self.a[0])
             return th > self.th1 if self.ccw else th < self.th1
         (ax, ay), (bx, by) = self.a, self.b
@@ -250,7 +250,7 @@ class GuideElement:
 
     def on(self, P: np.ndarray, tol: float) -> np.ndarray:
         """Which of the points ``P`` (n, 2) lie on the element within ``tol`` (m)."""
-        if self.kind == "arc":
+        if self.form == "arc":
             d = np.hypot(P[:, 0] - self.a[0], P[:, 1] - self.a[1])
             th = np.arctan2(P[:, 1] - self.a[1], P[:, 0] - self.a[0])
             lo, hi = min(self.th0, self.th1), max(self.th0, self.th1)
@@ -280,7 +280,7 @@ class GuideElement:
             base = self.carrier
             o = fastbody.pos(base)
             ox, oy = o.x, o.y
-        if self.kind == "arc":
+        if self.form == "arc":
             p = fastbody.pos(body)
             d = math.hypot(p.x - self.a[0], p.y - self.a[1])
             j: pymunk.Constraint = ArcJoint(

@@ -10,7 +10,8 @@ from __future__ import annotations
 
 import copy
 import math
-from typing import Protocol
+from collections.abc import Callable, Mapping
+from typing import Any, Protocol
 
 import numpy as np
 import pymunk
@@ -81,7 +82,12 @@ class Simulation:
         Simulated time (s) and number of physics steps since the last build.
     """
 
-    def __init__(self, config: SimConfig) -> None:
+    def __init__(self, config: SimConfig, *,
+                 builders: Mapping[str, Callable[..., Any]] | None = None) -> None:
+        """``builders``: a study's own builders of a kind's parts by name, used instead of
+        the kind's (``{"apparatus": functools.partial(Apparatus, tuning=...)}``), here and
+        in every :meth:`reset`."""
+        self.builders: dict[str, Callable[..., Any]] = dict(builders or {})
         self.kind = kind_of(config)
         """The level's :class:`~chainfountain.sim.kinds.base.Kind` (it builds the chain and
         its ends)."""

@@ -18,7 +18,7 @@ from __future__ import annotations
 import math
 from collections import deque
 from collections.abc import Callable
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pymunk
@@ -45,7 +45,7 @@ from chainfountain.sim.fastbody import pos
 from chainfountain.sim.guide import GuideElement, resample
 
 if TYPE_CHECKING:
-    from chainfountain.theory import Fountain
+    pass
 
 HEAD_BACK = 0.1
 """'fold' from rest: how far (m) inside the upper guide the chain's head waits, so that
@@ -62,6 +62,25 @@ class TableUsedUp(RunEnded):
     """The pick-up roller has reached the upper channel: the run has outgrown the
     upper table (raised by :meth:`Apparatus.after_step`; the app pauses on it, the
     CLI writes what was simulated and says so)."""
+
+
+class _Part:
+    """An attribute of one of the apparatus's parts read through the apparatus, read only
+    (``app.y_up`` is ``app.layout.y_up``): the names the rest of the code reads."""
+
+    def __init__(self, part: str) -> None:
+        self.part = part
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.name = name
+
+    def __get__(self, obj: Any, owner: type | None = None) -> Any:
+        if obj is None:
+            return self
+        return getattr(getattr(obj, self.part), self.name)
+
+    def __set__(self, obj: Any, value: Any) -> None:
+        raise AttributeError(f"{self.name} is {self.part}.{self.name}'s, read only")
 
 
 class Apparatus:
@@ -473,126 +492,38 @@ class Apparatus:
         """The apparatus's time (s), advanced by the bookkeeping."""
         return self.clock.t
 
-    @property
-    def H(self) -> float:
-        return self.layout.H
-
-    @property
-    def L(self) -> float:
-        return self.layout.L
-
-    @property
-    def rho(self) -> float:
-        return self.layout.rho
-
-    @property
-    def r(self) -> float:
-        return self.layout.r
-
-    @property
-    def R_lo(self) -> float:
-        return self.layout.R_lo
-
-    @property
-    def g(self) -> float:
-        return self.layout.g
-
-    @property
-    def h(self) -> float:
-        return self.layout.h
-
-    @property
-    def alpha0(self) -> float:
-        return self.layout.alpha0
-
-    @property
-    def alphaE(self) -> float:
-        return self.layout.alphaE
-
-    @property
-    def launch_u(self) -> tuple[float, float]:
-        return self.layout.launch_u
-
-    @property
-    def variant(self) -> str:
-        return self.layout.variant
-
-    @property
-    def gripped(self) -> bool:
-        return self.layout.gripped
-
-    @property
-    def floor_depth(self) -> float:
-        return self.layout.floor_depth
-
-    @property
-    def fountain(self) -> Fountain:
-        return self.layout.fountain
-
-    @property
-    def vertex_pred(self) -> tuple[float, float]:
-        return self.layout.vertex_pred
-
-    @property
-    def y_up(self) -> float:
-        return self.layout.y_up
-
-    @property
-    def y_table_up(self) -> float:
-        return self.layout.y_table_up
-
-    @property
-    def channel_up(self) -> np.ndarray:
-        return self.layout.channel_up
-
-    @property
-    def x_plate_up_end(self) -> float:
-        return self.layout.x_plate_up_end
-
-    @property
-    def treadmill(self) -> bool:
-        return self.layout.treadmill
-
-    @property
-    def plate_mode(self) -> str:
-        return self.layout.plate_mode
-
-    @property
-    def upper_guided(self) -> bool:
-        return self.layout.upper_guided
-
-    @property
-    def end_mode(self) -> str:
-        return self.layout.end_mode
-
-    @property
-    def guided(self) -> bool:
-        return self.layout.guided
-
-    @property
-    def fold_guided(self) -> bool:
-        return self.layout.fold_guided
-
-    @property
-    def end_follow(self) -> float:
-        return self.layout.end_follow
+    H = _Part("layout")
+    L = _Part("layout")
+    rho = _Part("layout")
+    r = _Part("layout")
+    R_lo = _Part("layout")
+    g = _Part("layout")
+    h = _Part("layout")
+    alpha0 = _Part("layout")
+    alphaE = _Part("layout")
+    launch_u = _Part("layout")
+    variant = _Part("layout")
+    gripped = _Part("layout")
+    floor_depth = _Part("layout")
+    fountain = _Part("layout")
+    vertex_pred = _Part("layout")
+    y_up = _Part("layout")
+    y_table_up = _Part("layout")
+    channel_up = _Part("layout")
+    x_plate_up_end = _Part("layout")
+    treadmill = _Part("layout")
+    plate_mode = _Part("layout")
+    upper_guided = _Part("layout")
+    end_mode = _Part("layout")
+    guided = _Part("layout")
+    fold_guided = _Part("layout")
+    end_follow = _Part("layout")
 
     # upper part
-    @property
-    def upper(self) -> RollerUnit:
-        return self.upper_part.upper
-
-    @property
-    def table_up(self) -> pymunk.Segment:
-        return self.upper_part.table_up
-
-    @property
-    def plate_up(self) -> pymunk.Segment:
-        return self.upper_part.plate_up
-
-    @property
-    def up_guide(self) -> list[GuideElement]:
-        return self.upper_part.up_guide
+    upper = _Part("upper_part")
+    table_up = _Part("upper_part")
+    plate_up = _Part("upper_part")
+    up_guide = _Part("upper_part")
 
     @property
     def upper_held(self) -> list[deque[tuple[Link, pymunk.Constraint]]]:
@@ -606,34 +537,15 @@ class Apparatus:
         most downstream first (the newest, at the pick-up roller, last). Read only."""
         return self.grooves.held
 
-    @property
-    def strand_speed(self) -> float:
-        return self.grooves.strand_speed
+    strand_speed = _Part("grooves")
 
     # end
-    @property
-    def end(self) -> tuple[float, float]:
-        return self.end_part.end
-
-    @property
-    def floor(self) -> pymunk.Segment | None:
-        return self.end_part.floor
-
-    @property
-    def floor_span(self) -> tuple[float, float]:
-        return self.end_part.floor_span
-
-    @property
-    def channel_lo(self) -> np.ndarray | None:
-        return self.end_part.channel_lo
-
-    @property
-    def end_walls(self) -> list[pymunk.Segment]:
-        return self.end_part.end_walls
-
-    @property
-    def y_lo(self) -> float:
-        return self.end_part.y_lo
+    end = _Part("end_part")
+    floor = _Part("end_part")
+    floor_span = _Part("end_part")
+    channel_lo = _Part("end_part")
+    end_walls = _Part("end_part")
+    y_lo = _Part("end_part")
 
     @property
     def guide_centre(self) -> tuple[float, float]:
@@ -745,17 +657,9 @@ class Apparatus:
         return self.grip.landing_speed if self.grip is not None else 0.0
 
     # following end guide
-    @property
-    def end_shift(self) -> float:
-        return self.follow.end_shift
-
-    @property
-    def end_carrier(self) -> pymunk.Body | None:
-        return self.follow.end_carrier
-
-    @property
-    def landing_offset(self) -> float:
-        return self.follow.landing_offset
+    end_shift = _Part("follow")
+    end_carrier = _Part("follow")
+    landing_offset = _Part("follow")
 
     def sync_end_guide(self) -> None:
         """:meth:`.follow.FollowingEnd.sync_end_guide`."""
@@ -766,50 +670,26 @@ class Apparatus:
         self.follow.sync_end_walls()
 
     # treadmills
-    @property
-    def start_x(self) -> tuple[float, float]:
-        return self.treadmills.start_x
-
-    @property
-    def moved_back(self) -> int:
-        return self.treadmills.moved_back
-
-    @property
-    def shifted(self) -> float:
-        return self.treadmills.shifted
-
-    @property
-    def cut(self) -> int:
-        return self.treadmills.cut
-
-    @property
-    def shifted_lo(self) -> float:
-        return self.treadmills.shifted_lo
+    start_x = _Part("treadmills")
+    moved_back = _Part("treadmills")
+    shifted = _Part("treadmills")
+    cut = _Part("treadmills")
+    shifted_lo = _Part("treadmills")
 
     def travel(self, i: int) -> float:
         """:meth:`.treadmill.Treadmills.travel`."""
         return self.treadmills.travel(i)
 
     # starter
-    @property
-    def starting(self) -> bool:
-        return self.starter.starting
-
-    @property
-    def fading(self) -> bool:
-        return self.starter.fading
+    starting = _Part("starter")
+    fading = _Part("starter")
 
     @property
     def starter_speed(self) -> float:
         return self.starter.speed
 
-    @property
-    def launch_speed(self) -> float:
-        return self.starter.launch_speed
-
-    @property
-    def head_caught_at(self) -> float:
-        return self.starter.head_caught_at
+    launch_speed = _Part("starter")
+    head_caught_at = _Part("starter")
 
     def stall_message(self) -> str:
         return self.stall_watch.stall_message()

@@ -44,7 +44,7 @@ def keep_on_arcs(guide: list[GuideElement],
     get_p, set_p = fastbody.get_position, fastbody.set_position
     get_v, set_v = fastbody.get_velocity, fastbody.set_velocity
     for el, q in zip(guide, queues, strict=True):
-        if el.kind != "arc":
+        if el.form != "arc":
             continue
         cx, cy = el.a
         lo, hi = el.R - PLAY, el.R + PLAY

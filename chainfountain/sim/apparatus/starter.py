@@ -73,7 +73,7 @@ def run_along(guide: list, queues: list, v: float) -> None:
     link: it reads and writes through :mod:`~chainfountain.sim.fastbody`.)"""
     get_p, set_v, handle = fastbody.get_position, fastbody.set_velocity, fastbody.handle
     for el, q in zip(guide, queues, strict=True):
-        if el.kind == "line":
+        if el.form == "line":
             (ax, ay), (bx, by) = el.a, el.b
             ln = math.hypot(bx - ax, by - ay)
             vel = (v * (bx - ax) / ln, v * (by - ay) / ln)

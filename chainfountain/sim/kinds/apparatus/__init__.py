@@ -21,7 +21,8 @@ def build(sim: Any) -> None:
     cfg = sim.config
     sim.chain = Chain(sim.space, cfg.chain, cfg.solver, shapes=True,
                       wave_damping=sim.wave_damping_at(cfg.apparatus.speed))
-    sim.apparatus = sim.ends = Apparatus(sim.space, sim.chain, cfg)
+    make = sim.builders.get("apparatus", Apparatus)  # a study's own (research/hanging_start.py)
+    sim.apparatus = sim.ends = make(sim.space, sim.chain, cfg)
     if cfg.initial.seed:  # a chaotic machine: a seed picks another of its runs
         nudge_bodies(sim.space, cfg.initial.seed)
 
