@@ -184,20 +184,23 @@ class Stepper:
         self.level = new
 
     # ------------------------------------------------------------------ a scene's
+    def _scene(self) -> SceneBody:
+        if not isinstance(self.body, SceneBody):
+            raise TypeError(f"{self.level.meta.name} is not a scene")
+        return self.body
+
     @property
     def shape_at(self) -> set[int]:
         """A scene's step numbers after which the chain's shape is kept."""
-        return self.body.shape_at  # type: ignore[union-attr]
+        return self._scene().shape_at
 
     @shape_at.setter
     def shape_at(self, steps: set[int]) -> None:
-        self.body.shape_at = steps  # type: ignore[union-attr]
+        self._scene().shape_at = steps
 
     def scene_run(self) -> SceneRun:
         """A scene's run as a :class:`SceneRun`."""
-        body = self.body
-        if not isinstance(body, SceneBody):
-            raise TypeError(f"{self.level.meta.name} is not a scene")
+        body = self._scene()
         return SceneRun(sim=body.sim, log=body.log, start=body.start, shapes=body.shapes,
                         interval=body.every * body.sim.dt, wall=self.wall, ended=self.ended)
 
