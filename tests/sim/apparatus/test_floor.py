@@ -87,7 +87,7 @@ def _guide_offsets(app) -> list[float]:
     for el, q in zip(app.up_guide, app.upper_held, strict=True):
         for lk, _ in q:
             p = lk.body.position
-            if el.kind == "arc":
+            if el.form == "arc":
                 out.append(abs(math.hypot(p.x - el.a[0], p.y - el.a[1]) - el.R))
             else:
                 (ax, ay), (bx, by) = el.a, el.b

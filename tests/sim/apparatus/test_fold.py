@@ -58,7 +58,7 @@ def test_fold_builds_a_joint_guide(run) -> None:
     sim, rep, _, _ = run
     app = sim.apparatus
     assert app.variant == "fold" and app.fold_guided and app.lower is not None
-    assert [e.kind for e in app.guide] == ["arc", "line", "arc", "line"]
+    assert [e.form for e in app.guide] == ["arc", "line", "arc", "line"]
     assert rep["fold"]["released_links"] > 40  # chain laid back to rest
 
 
