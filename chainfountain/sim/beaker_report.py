@@ -18,7 +18,7 @@ from chainfountain.sim.beaker import Beaker
 from chainfountain.theory import Fountain
 from chainfountain.theory.mould import alpha_from_rise, alpha_from_speed, bw_rise
 
-STEP_ERROR = ("not estimated in a run: python research/beaker_refinement.py --level LEVEL "
+STEP_ERROR = ("not estimated in a run: python -m research.beaker_refinement --level LEVEL "
               "refines the step and the iterations; the shipped beaker at its 250-us step "
               "runs about 6 % slow with its top about 19 % low against a zero step "
               "(first order in the step; docs/beaker.md)")

@@ -4,7 +4,7 @@ moving mass grows while the machine selects
 ``v^2 = 2 g (H (1 - xi2) + d) - 2 F_uc/lambda`` and the plate's reaction grows at
 ``lambda g v`` (Fig. "pulley_experiment_equiv_ground", right).
 
-Measured (``python research/ideal_open.py``, from the stub until the table is empty): the
+Measured (``python -m research.ideal_open``, from the stub until the table is empty): the
 speed 0.18 % below the laws' (0.15 % at half the step), the reaction's rate within 0.07 %
 of ``lambda g v`` in every 2-s window; from the fountain (the runs here) the speed stays
 within 0.05 % of the laws' for 12 s; and a 5 % push decays

@@ -123,7 +123,7 @@ FOLD_CART_BAND = ((-0.5 * _GRAM_AT_30, 1.5 * _GRAM_AT_30), (-1.0 * _GRAM_AT_30, 
 the balance the level was built with and the machine keep running: ``(lo, hi)`` in N of
 cart force ``m*g*sin(beta)`` for each. Measured, not from a law (the paper's loss-free
 machine has a single balance; this model's fold holds within a few grams of its own):
-``python research/live_tuning.py LEVEL 'carts[i].mass' VALUES --starts 3 --after 40``,
+``python -m research.live_tuning LEVEL 'carts[i].mass' VALUES --starts 3 --after 40``,
 each value set at 10, 10.7 and 11.4 s (three phases of the landing swing), then 40 s.
 ``apparatus_special`` (17.5 / 58 g): upper 16.5-19 g and lower 57-59.5 g held 3 of 3,
 lower 56 g 2 of 3, lower 55 and 60 g none. ``apparatus_fold`` (17.5 / 41 g): upper
@@ -153,7 +153,7 @@ BRAKED_CART_BAND = ((-2.0 * _GRAM_AT_30, _GRAM_AT_30), (-2.0 * _GRAM_AT_30, 5.0 
 the fountain still land in the end guide: ``(lo, hi)`` in N of cart force. The brake holds
 the speed; the catch sets the band (docs/apparatus.md, "A brake that selects the speed").
 Measured on a copy of ``apparatus_fold_gripped`` (19 / 311 g) with ``end_follow = 0``,
-laid on its path (``python research/live_tuning.py COPY 'carts[i].mass' VALUES --laid --at 5
+laid on its path (``python -m research.live_tuning COPY 'carts[i].mass' VALUES --laid --at 5
 --after 30``, one start each): upper 17-20 g and lower 308-316 g held 30 s; upper 21 g and
 lower 306 g lost the catch at 12.8 and 14.1 s."""
 BRAKED_PUSH_BAND = (-2.0 * _GRAM_AT_30, 5.0 * _GRAM_AT_30)

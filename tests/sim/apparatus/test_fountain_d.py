@@ -20,7 +20,7 @@ Measured (1.5-s runs, window 0.25-1.5 s, this file): see ``docs/apparatus.md``,
 "Fountain D at k = k_max and the limit case" and "Fountain D at k = 0.377". Fountain
 D is near-critical (``k/q = 0.017-0.019``): its vertex breathes by tens of per cent
 over a 3-4 s cycle, and a change of the start in its last bits changes how. Over 8
-starts nudged by 1e-12 (``python research/apparatus_ensemble.py fountain_d``):
+starts nudged by 1e-12 (``python -m research.apparatus_ensemble fountain_d``):
 
 - k = 0.377: ``Tbar_E`` 0.119-0.133 against ``k*d`` 0.124, the speed 5.085-5.101 m/s
   (fountain D's 5.101), both asserted below on one run; ``Tbar_0 - Tbar_E - k*H``
