@@ -56,14 +56,18 @@ def gui_theme(scale: float) -> dict:
     return theme
 
 
-def tooltip(spec: FieldSpec) -> str:
-    """A field's tooltip: its path, what it is, what is allowed and how a change acts."""
+def tooltip(spec: FieldSpec, expert: bool = True) -> str:
+    """A field's tooltip: what it is, what is allowed and how a change acts; the expert
+    view's starts with the field's path and gives the level file's units too."""
     how = "applies live" if spec.live else "restarts the scene"
     span = ""
     if spec.narrowed:
         lo, hi = spec.slider_lo, spec.slider_hi
         span = (f" The slider spans {lo:.4g}-{hi:.4g}{spec.shown_unit}, where this machine "
                 "keeps running; a value typed beyond runs as a real machine would.")
+    if not expert:
+        allowed = spec.allowed().split("; in the level file", 1)[0]
+        return html.escape(f"{spec.doc}. Allowed: {allowed}. Changing it {how}.{span}")
     return html.escape(f"{spec.path}: {spec.doc}. Allowed: {spec.allowed()}. Changing it "
                        f"{how}.{span}")
 
@@ -125,7 +129,7 @@ def build_rows(ui, box: UIScrollingContainer, width: int, specs: list[FieldSpec]
         label = UILabel(pygame.Rect(px(6), y, width - px(12), px(22)), "", ui, container=box,
                         object_id="#field_label")
         fit_label(label, row_label(spec, expert))
-        label.set_tooltip(tooltip(spec), wrap_width=TOOLTIP_WIDTH)
+        label.set_tooltip(tooltip(spec, expert), wrap_width=TOOLTIP_WIDTH)
         sw = width - entry_w - px(20)
         slider = UIHorizontalSlider(pygame.Rect(px(6), y + px(23), sw, px(26)), 0,
                                     (0.0, float(max(1, spec.positions))), ui, container=box,
@@ -133,7 +137,7 @@ def build_rows(ui, box: UIScrollingContainer, width: int, specs: list[FieldSpec]
         entry = UITextEntryLine(pygame.Rect(px(10) + sw, y + px(22), entry_w, px(28)), ui,
                                 container=box)
         entry.set_allowed_characters(list("0123456789.-+eE"))
-        entry.set_tooltip(tooltip(spec), wrap_width=TOOLTIP_WIDTH)
+        entry.set_tooltip(tooltip(spec, expert), wrap_width=TOOLTIP_WIDTH)
         rows.append(ControlRow(spec, label, slider, entry))
         y += px(ROW_H)
     box.set_scrollable_area_dimensions((width - px(4), y + px(6)))

@@ -419,7 +419,8 @@ class App(InputMixin, DrawMixin):
                 row.spec = spans.narrowed(level, spec_for(level.sim, row.spec.path),
                                           self.session.origin)
                 for el in (row.label, row.entry):
-                    el.set_tooltip(tooltip(row.spec), wrap_width=panel.TOOLTIP_WIDTH)
+                    el.set_tooltip(tooltip(row.spec, self.expert),
+                                   wrap_width=panel.TOOLTIP_WIDTH)
                 row.slider.value_range = (0.0, float(max(1, row.spec.positions)))
             self._show_value(row)
         if res.ok and not res.live:
