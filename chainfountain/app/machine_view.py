@@ -38,6 +38,7 @@ from chainfountain.app.palette import (
     TRACK,
 )
 from chainfountain.app.text import font, px, text
+from chainfountain.sim import placement
 from chainfountain.sim.guide import end_channel, upper_channel
 
 IDEAL_ROLLER = 0.03
@@ -327,9 +328,9 @@ class MachineView:
     # ------------------------------------------------------------------ kinds
     def _beaker(self, surf: pygame.Surface, cam: Camera, sim, out: Drawn, expert: bool
                 ) -> None:
-        outline, plate = sim.vessel_geometry()
+        outline, plate = placement.vessel(sim)
         b = sim.beaker
-        self.floor(surf, cam, sim.floor_geometry()[0],
+        self.floor(surf, cam, placement.floor(sim)[0],
                    "floor: takes the chain away" if not expert else "absorbing floor", out)
         (x0, _), (x1, _) = plate
         bottom = float(outline[1, 1])
@@ -356,10 +357,10 @@ class MachineView:
     def _motor(self, surf: pygame.Surface, cam: Camera, sim, out: Drawn, expert: bool
                ) -> None:
         """A motor-fed level: the guide the chain leaves and the motor that drives it."""
-        fy, _, _, mode = sim.floor_geometry()
+        fy, _, _, mode = placement.floor(sim)
         self.floor(surf, cam, fy, "floor: takes the chain away" if mode == "absorbing"
                    else "", out, absorbing=mode == "absorbing")
-        (ox, oy), (ux, uy) = sim.guide_geometry()
+        (ox, oy), (ux, uy) = placement.launch(sim)
         length = max(0.2, sim.config.feed.guide_links * sim.chain.L * 1.5)
         line = np.array([[ox - length * ux, oy - length * uy], [ox, oy]])
         half = 2.5 * sim.config.chain.link_radius + 3.0 / cam.scale
@@ -387,7 +388,7 @@ class MachineView:
         app = sim.apparatus
         a = sim.config.apparatus
         H = app.H
-        fy, _, _, mode = sim.floor_geometry()
+        fy, _, _, mode = placement.floor(sim)
         if mode == "absorbing":
             self.floor(surf, cam, fy, "floor: takes the chain away", out)
         elif mode == "solid":
@@ -535,7 +536,7 @@ class MachineView:
               expert: bool) -> None:
         """The open arrangement with ideal rollers: the turn and the plate the landed chain
         slides away on, the chain on them marked as far as it has slid."""
-        geom = sim.slide_geometry()
+        geom = placement.slide(sim)
         if geom is None:
             return
         path, slid = geom
@@ -667,7 +668,7 @@ def machine_bounds(sim, scale: float | None = None) -> list[tuple[float, float]]
                 pts += [(x + d * (u.radius + reach), y + high), (x - d * u.radius, y)]
         pts.append(tuple(sim.apparatus.end))
     elif sim.beaker is not None:
-        outline = sim.vessel_geometry()[0]
+        outline = placement.vessel(sim)[0]
         pts += [(float(outline[:, 0].min()) - 0.15, float(outline[:, 1].min()) - 0.05)]
     elif sim.piston is not None:  # an ideal machine: drawn as its parts
         parts = ideal_parts(sim)

@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from chainfountain.sim import placement
 from chainfountain.sim.apparatus.laws import braked_fold_speed, floor_speeds
 from chainfountain.sim.machine_rules import keeps_any_speed
 from chainfountain.sim.measure import steady_time
@@ -122,7 +123,7 @@ def compute_readout(sim: Simulation, recorder: Recorder, history: History) -> Re
     t = hist["t"]
     avg_span = 0.25
     ox, oy = 0.0, 0.0  # the launch point: the origin, or a beaker's pick-up
-    landed = sim.ends.absorbed > 0 or sim.floor_geometry()[3] != "absorbing"
+    landed = sim.ends.absorbed > 0 or placement.floor(sim)[3] != "absorbing"
     if len(t) >= 3 and sim.n_free >= 8 and landed:
         sel = t >= t[-1] - avg_span
         v = _mean(hist["speed"][sel])

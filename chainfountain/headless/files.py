@@ -15,6 +15,7 @@ import numpy as np
 from chainfountain import atomic
 from chainfountain.errors import OutputError
 from chainfountain.headless.report import RunSummary
+from chainfountain.sim import placement
 from chainfountain.sim.recorder import Recorder
 from chainfountain.sim.world import Simulation
 from chainfountain.theory.apparatus import plate_reaction
@@ -149,7 +150,7 @@ def write_snapshot(path: Path, sim: Simulation, summary: RunSummary, title: str)
     if vx is not None and vy is not None:
         ax.plot(vx, vy, "o", mfc="none", color="#1f77b4", ms=9, mew=1.5,
                 label="measured vertex (window mean)")
-    fy, fx0, fx1, mode = sim.floor_geometry()
+    fy, fx0, fx1, mode = placement.floor(sim)
     app = sim.apparatus
     if mode != "none":
         ax.plot([fx0, fx1], [fy, fy], color="#8c564b", lw=3, label=f"{mode} floor")
@@ -158,7 +159,7 @@ def write_snapshot(path: Path, sim: Simulation, summary: RunSummary, title: str)
         ax.plot([ex - 0.3, ex + 0.3], [-app.H, -app.H], ":", color="#7f7f7f", lw=1.5,
                 label=f"fountain end height (Tbar_E read here; floor {app.floor_depth:.3g} m "
                 "lower)")
-    vessel = sim.vessel_geometry()
+    vessel = placement.vessel(sim)
     if vessel is not None:
         outline, plate = vessel
         ax.plot(outline[:, 0], outline[:, 1], color="#17becf", lw=2.5, label="pot")
@@ -166,7 +167,7 @@ def write_snapshot(path: Path, sim: Simulation, summary: RunSummary, title: str)
                 label="plate under the pile (rises as it is drawn off)")
         _beaker_curve(ax, summary.sections.get("beaker") or {}, sim.g)
     elif app is None:
-        (gx, gy), (ux, uy) = sim.guide_geometry()
+        (gx, gy), (ux, uy) = placement.launch(sim)
         ax.plot([gx - 0.15 * ux, gx], [gy - 0.15 * uy, gy], color="#2ca02c", lw=4,
                 label="feed guide")
     ax.set_aspect("equal")

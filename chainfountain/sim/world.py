@@ -388,10 +388,6 @@ class Simulation:
         """Front and back end of every link, each ``(n, 2)``, chain order."""
         return link_ends(self.reader.read(), self.chain.L)
 
-    def guide_geometry(self) -> tuple[tuple[float, float], tuple[float, float]]:
-        """Launch point and unit launch direction."""
-        return (0.0, 0.0), self.ends.u
-
     @property
     def drop(self) -> float:
         """The fountain's drop ``H`` (m): ``apparatus.drop`` or ``feed.drop`` by level kind."""
@@ -400,78 +396,6 @@ class Simulation:
         if self.beaker is not None:
             return float(self.config.beaker.drop)
         return float(self.config.feed.drop)
-
-    def floor_geometry(self) -> tuple[float, float, float, str]:
-        """``(y, x0, x1, mode)`` of the floor; for an absorbing floor x0/x1 span the scene.
-
-        Apparatus: the floor of the ``floor`` variant, else the fountain end height
-        with mode ``"none"``."""
-        app = self.apparatus
-        if app is not None:
-            if app.end_mode == "absorbing":
-                return app.floor_y, app.floor_span[0], app.floor_span[1], "absorbing"
-            if app.floor is not None:
-                a, b = app.floor.a, app.floor.b
-                return -app.H, float(a.x), float(b.x), "solid"
-            return -app.H, app.end[0] - 0.1, app.end[0] + 0.1, "none"
-        if self.beaker is not None:
-            x0 = self.beaker.x_in[0] - 0.1
-            return self.beaker.floor_y, x0, 0.5 + 0.5 * self.drop, "absorbing"
-        f = self.config.feed
-        if self.floor is not None:
-            return self.floor.y, self.floor.x0, self.floor.x1, "solid"
-        span = 0.5 * f.floor_width
-        return -f.drop, -span, span, "absorbing"
-
-    def slide_geometry(self) -> tuple[np.ndarray, float] | None:
-        """The open arrangement with ideal rollers (``feed.drive = "ideal_open"``): the
-        landed chain's path through the turn and along the plate (``(n, 2)``, m) and the
-        length that has slid onto it (m); ``None`` for any other level. The path starts
-        at the chain's end once it has landed, else where the paper's fountain lands."""
-        tail = self.slide_away
-        if tail is None:
-            return None
-        y = self.ends.floor_y
-        if self.ends.absorbed > 0 and self.chain.links:
-            x = float(self.chain.links[0].body.position.x)
-        elif self.reference is not None:
-            x = float(self.reference.landing_x)
-        else:
-            return None
-        return tail.path(x, y), tail.slid
-
-    def guide_geometry_segments(self) -> list[tuple[tuple[float, float], tuple[float, float]]]:
-        """Static walls, plates, tables and floor of an apparatus as segments ``((x0, y0),
-        (x1, y1))`` (empty for a feed level)."""
-        app = self.apparatus
-        if app is None:
-            return []
-        app.sync_plates()
-        app.sync_end_walls()
-        shapes = list(app.walls) + [app.plate_up, app.table_up]
-        for extra in (app.plate_lo, getattr(app, "table_lo", None), app.floor):
-            if extra is not None:
-                shapes.append(extra)
-        return [((float(sh.a.x), float(sh.a.y)), (float(sh.b.x), float(sh.b.y)))
-                for sh in shapes]
-
-    def vessel_geometry(self) -> tuple[np.ndarray, np.ndarray] | None:
-        """A beaker level's pot, as the polyline of its walls' inner faces (left rim, bottom,
-        right rim), and the plate under the pile as a segment ``(2, 2)``; ``None`` for
-        other kinds."""
-        b = self.beaker
-        if b is None:
-            return None
-        return b.pot_outline(), b.plate_segment()
-
-    def roller_geometry(self) -> list[tuple[float, float, float, float]]:
-        """``(x, y, radius, angle)`` of every roller (apparatus: pick-up, then folding)."""
-        app = self.apparatus
-        if app is not None:
-            return [(u.roller.position.x, u.roller.position.y, u.radius, u.roller.angle)
-                    for u in (app.upper, app.lower) if u is not None]
-        return [(r.body.position.x, r.body.position.y, r.cfg.radius, r.body.angle)
-                for r in self.rollers]
 
     def kinetic_energy(self) -> float:
         """Kinetic energy of the free links (J)."""

@@ -21,6 +21,7 @@ from chainfountain.app.machine_view import MachineView, ideal_parts  # noqa: E40
 from chainfountain.app.session import Session  # noqa: E402
 from chainfountain.app.window import App  # noqa: E402
 from chainfountain.level import io  # noqa: E402
+from chainfountain.sim import placement
 from chainfountain.sim.world import Simulation  # noqa: E402
 from tests import shipped
 
@@ -225,7 +226,7 @@ def test_the_beakers_pile_is_drawn_as_chain(tmp_path, monkeypatch) -> None:
     surf = pygame.Surface((800, 800))
     cam = Camera(pygame.Rect(0, 0, 800, 800), scale=900.0, cx=-0.1, cy=-0.1)
     MachineView().draw(surf, cam, sim)
-    outline, plate = sim.vessel_geometry()
+    outline, plate = placement.vessel(sim)
     (x0, y0), (x1, _) = cam.point(*plate[0]), cam.point(*plate[1])
     bottom = cam.point(0.0, float(outline[1, 1]))[1]
     arr = pygame.surfarray.array3d(surf)[x0 + 4:x1 - 4, y0 + 4:bottom - 4].astype(int)

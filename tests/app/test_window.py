@@ -18,6 +18,7 @@ from chainfountain.app.scene_view import scene_bounds  # noqa: E402
 from chainfountain.app.session import Session, paused_message  # noqa: E402
 from chainfountain.app.window import App  # noqa: E402
 from chainfountain.level import io  # noqa: E402
+from chainfountain.sim import placement
 from chainfountain.sim.config import SimConfig  # noqa: E402
 
 
@@ -367,7 +368,7 @@ def test_ideal_open_plots_the_plate_reaction_and_draws_the_chain_sliding_away(le
         _assert_reaction_plot(app)
         key(app, pygame.K_e)
         assert any(row.spec.path == "feed.turn_drop" for row in app.rows)
-        path, slid = app.session.sim.slide_geometry()
+        path, slid = placement.slide(app.session.sim)
         app.draw()
         x0, y_plate = app.camera.point(float(path[-2, 0]) + 0.02, float(path[-1, 1]))
         row = pygame.surfarray.array3d(app.screen)[x0:x0 + 40, y_plate - 5:y_plate + 6]

@@ -21,7 +21,7 @@ import pytest
 
 from chainfountain.level import io
 from chainfountain.level.io import LevelError
-from chainfountain.sim import Recorder, Simulation
+from chainfountain.sim import Recorder, Simulation, placement
 from chainfountain.sim.slide_away_report import report
 from chainfountain.theory.apparatus import ideal_open_speed
 from tests import shipped
@@ -70,7 +70,7 @@ def test_the_plate_reaction_grows_at_lambda_g_v_while_the_speed_holds() -> None:
         assert link.body.mass == pytest.approx(sim.chain.mass + share)
     assert o["moving_mass_kg"] == pytest.approx(tail.mass, rel=0.01)
     # the picture of the parts the laws stand for: from the chain's end down the turn
-    path, slid = sim.slide_geometry()
+    path, slid = placement.slide(sim)
     assert path[0, 0] == pytest.approx(sim.chain.links[0].body.position.x)
     assert path[0, 1] == pytest.approx(sim.feed.floor_y)
     assert path[-1, 1] == pytest.approx(sim.feed.floor_y - f.turn_drop)

@@ -15,6 +15,7 @@ from chainfountain.sim import (
     RollerConfig,
     SimConfig,
     Simulation,
+    placement,
 )
 from chainfountain.sim import config as cfgmod
 from chainfountain.sim.measure import fit_catenary, steady_time, vertex_of
@@ -125,9 +126,9 @@ def test_views_and_building_blocks() -> None:
     sim = Simulation(cfg)
     sim.advance(0.2)
     assert sim.chain.shapes
-    y, x0, x1, mode = sim.floor_geometry()
+    y, x0, x1, mode = placement.floor(sim)
     assert mode == "solid" and y == -cfg.feed.drop and x0 < x1
-    (rx, ry, rr, _), = sim.roller_geometry()
+    (rx, ry, rr, _), = placement.rollers(sim)
     assert (rx, ry, rr) == (1.0, -0.3, 0.05)
     cart = sim.carts[0]
     assert len(cart.shape.get_vertices()) == 4 and cart.track_start != cart.track_end

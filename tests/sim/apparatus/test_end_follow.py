@@ -27,7 +27,7 @@ import pytest
 from chainfountain.errors import RunEnded
 from chainfountain.level import io
 from chainfountain.level.model import LevelError
-from chainfountain.sim import Simulation
+from chainfountain.sim import Simulation, placement
 from chainfountain.study.changes import laid_on_path, with_changes
 from tests import shipped
 
@@ -91,7 +91,7 @@ def test_the_guide_moves_as_one_piece() -> None:
 
     held = anchors()
     assert held == pytest.approx([c0[0]] * len(held), abs=1e-12)  # on the turn's centre
-    sim.guide_geometry_segments()  # the drawn walls where the guide is now
+    placement.walls(sim)  # the drawn walls where the guide is now
     walls = [s.a.x for s in app.end_walls]
     end0, shift0 = app.end[0], app.end_shift
     carrier.position = (carrier.position.x + 0.05, carrier.position.y)
@@ -99,7 +99,7 @@ def test_the_guide_moves_as_one_piece() -> None:
     assert el0.a[0] == pytest.approx(c0[0] + 0.05) and el0.a[1] == c0[1]
     assert plate.a[0] == pytest.approx(p0[0] + 0.05) and plate.b == app.guide[-1].b
     assert anchors() == pytest.approx([x + 0.05 for x in held])
-    sim.guide_geometry_segments()  # the drawn walls follow when read
+    placement.walls(sim)  # the drawn walls follow when read
     assert [s.a.x for s in app.end_walls] == pytest.approx([x + 0.05 for x in walls])
     assert app.end[0] == pytest.approx(end0 + 0.05)
     assert app.end_shift == pytest.approx(shift0 + 0.05)

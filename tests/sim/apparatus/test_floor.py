@@ -36,7 +36,7 @@ import pytest
 
 from chainfountain.headless import run_level
 from chainfountain.level import io
-from chainfountain.sim import Recorder, Simulation
+from chainfountain.sim import Recorder, Simulation, placement
 from chainfountain.sim.apparatus_report import report
 from chainfountain.sim.budget import EnergyBudget, rig_law_speed
 from chainfountain.sim.guide import PLAY
@@ -234,8 +234,8 @@ def test_live_cart_mass_and_views() -> None:
     sim = Simulation(load_on_path(LEVEL).sim)
     sim.set_param("carts[0].mass", 0.01)
     assert sim.apparatus.upper.force == pytest.approx(0.01 * 9.81 * math.sin(math.radians(30)))
-    assert len(sim.roller_geometry()) == 1 and sim.guide_geometry_segments()
-    assert sim.floor_geometry()[3] == "absorbing" and sim.apparatus.upper.cart is not None
+    assert len(placement.rollers(sim)) == 1 and placement.walls(sim)
+    assert placement.floor(sim)[3] == "absorbing" and sim.apparatus.upper.cart is not None
     with pytest.raises(KeyError):
         sim.set_param("carts[1].mass", 0.01)
 
@@ -245,7 +245,7 @@ def test_solid_end_builds_a_floor() -> None:
     cfg = load_on_path(LEVEL).sim
     cfg.apparatus.end = "solid"
     sim = Simulation(cfg)
-    assert sim.apparatus.floor is not None and sim.floor_geometry()[3] == "solid"
+    assert sim.apparatus.floor is not None and placement.floor(sim)[3] == "solid"
 
 
 def test_upper_channel_is_a_joint_guide_without_shapes(run) -> None:
