@@ -55,29 +55,29 @@ def test_watchdog_never_trips_on_a_healthy_run(quick_level):
     assert sim.time == pytest.approx(1.0)
 
 
-def _diverging_level(tmp_path: Path) -> Path:
+def _diverging_level():
     """apparatus_floor, started laid along its path, with a bending spring of
     0.25 N*m/rad between its 2-cm links: pymunk applies the spring explicitly, which is
-    unstable at the 0.5 ms step for links this light, so the run diverges before the
-    machine can do anything else (measured: at 0.040-0.058 s from four nudged starts,
-    after the first 10-ms sample; at 0.1 N*m/rad it does not diverge, at 1 N*m/rad it does before
-    any sample)."""
-    text = shipped.path("apparatus_floor").read_text()
-    text = text.replace('mode = "stub"', 'mode = "catenary"').replace("starter = 3.0\n", "")
-    text = text.replace("bending_stiffness = 0.0", "bending_stiffness = 0.25")
-    assert "bending_stiffness = 0.25" in text and 'mode = "catenary"' in text
-    p = tmp_path / "diverging.toml"
-    p.write_text(text)
-    return p
+    unstable at the 0.5 ms step for links this light (omega*h = 2.7), so the run
+    diverges before the machine can do anything else (measured: at 0.040-0.058 s from
+    four nudged starts). The level check refuses such a spring
+    (:data:`chainfountain.level.checks.SPRING_STABILITY`), so the level is changed after
+    it was read, as a study's own code could."""
+    lvl = shipped.level("apparatus_floor")
+    sim = lvl.sim
+    sim.initial.mode = "catenary"
+    sim.apparatus.starter = 0.0
+    sim.chain.bending_stiffness = 0.25
+    with pytest.raises(io.LevelError, match="chain.bending_stiffness"):
+        io.check_consistency(lvl, "diverging")  # what a level file gets instead
+    return lvl
 
 
-def test_a_diverging_run_exits_3_with_complete_outputs(tmp_path):
+def test_a_diverging_run_ends_with_status_3_and_complete_outputs(tmp_path):
     out = tmp_path / "out"
-    r = _cli("run", str(_diverging_level(tmp_path)), "--duration", "2", "--out", str(out),
-             "--quiet")
-    assert r.returncode == 3, r.stderr
-    assert "Traceback" not in r.stderr and "diverged" in r.stdout
-    s = json.loads((out / "summary.json").read_text())
+    path = run_level(_diverging_level(), out, 2.0, progress=False)
+    s = json.loads(path.read_text())
+    assert exit_status(s) == 3 and "diverged" in headless.describe_outputs(path)
     ended = s["ended_early"]
     assert ended["cause"] == "diverged" and ended["t_s"] < 1.0
     assert all((out / f).exists() for f in s["outputs"])
