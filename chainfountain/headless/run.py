@@ -22,7 +22,7 @@ from chainfountain.headless.stepping import Ending, _signals_deferred
 from chainfountain.headless.summary import _attempt, _f, summarize
 from chainfountain.level.io import Level
 from chainfountain.sim.kinds import kind_of
-from chainfountain.sim.kinds.base import (  # noqa: F401 - the durations, as before
+from chainfountain.sim.kinds.base import (  # noqa: F401 - the kinds' durations, re-exported
     DEFAULT_DURATION,
     FORMING_DURATION,
     MACHINE_FORMING_DURATION,

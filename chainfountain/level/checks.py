@@ -98,10 +98,7 @@ def _check_accuracy_scope(sim: SimConfig, where: str) -> None:
     landing on an absorbing floor, without blocks in the scene or self-collision)."""
     if sim.solver.accuracy == 0.0:
         return
-    kind = kind_of(sim)
-    why = kind.accuracy_refusal(sim)
-    if why == "its kind":
-        why = f"kind = {sim.kind!r}"
+    why = kind_of(sim).accuracy_refusal(sim)
     if why is not None:
         _fail(where, "solver.accuracy",
               f"{sim.solver.accuracy!r} with {why}: the error model covers motor-fed fountains "

@@ -59,7 +59,7 @@ class Kind:
     live: Mapping[str, Setter] = field(default_factory=dict)
     """The kind's own live fields (``"carts[].mass"`` for every list item) and their
     setters; the fields every fountain shares are :data:`chainfountain.sim.live.COMMON`."""
-    accuracy_refusal: Callable[[SimConfig], str | None] = lambda cfg: "its kind"
+    accuracy_refusal: Callable[[SimConfig], str | None] = lambda cfg: f"kind = {cfg.kind!r}"
     """Why ``solver.accuracy`` cannot choose this level's settings (``None``: it can)."""
     style: Callable[[SimConfig], str] = lambda cfg: ""
     """The finer style of the kind a level has (a feed's drive, an apparatus's variant),

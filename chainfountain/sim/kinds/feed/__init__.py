@@ -69,7 +69,8 @@ def reach(cfg: SimConfig) -> tuple[float, float]:
     return float(cfg.feed.speed), cfg.feed.drop + cfg.feed.chain_length
 
 
-def _speed(sim: Any, index: int | None, v: float) -> None:
+def speed_setter(sim: Any, index: int | None, v: float) -> None:
+    """``feed.speed`` live: the feed (or the ideal machine's piston) to ``v``."""
     sim.set_feed_speed(v)
 
 
@@ -92,7 +93,7 @@ def accuracy_refusal(cfg: SimConfig) -> str | None:
 KIND = Kind(
     config=FeedConfig, name="feed", table="feed", title="a motor-fed fountain", check=check,
     default_duration=default_duration, reach=reach, build=build,
-    live={"feed.speed": _speed, "feed.end_tension": _end_tension},
+    live={"feed.speed": speed_setter, "feed.end_tension": _end_tension},
     accuracy_refusal=accuracy_refusal, style=lambda cfg: "motor",
     sections=("error_bars", "error_model"), predicted=True,
 )

@@ -12,7 +12,7 @@ from typing import Any
 from chainfountain.sim.config import FeedConfig, SimConfig
 from chainfountain.sim.kinds.base import DEFAULT_DURATION, MACHINE_FORMING_DURATION, Kind
 from chainfountain.sim.kinds.fed import check_fed
-from chainfountain.sim.kinds.feed import feed_for, lay_chain, reach
+from chainfountain.sim.kinds.feed import feed_for, lay_chain, reach, speed_setter
 from chainfountain.sim.kinds.ideal.checks import check_drive
 from chainfountain.sim.machine_rules import MACHINE_FIELDS
 from chainfountain.sim.piston import Piston
@@ -45,10 +45,6 @@ def default_duration(cfg: SimConfig) -> float:
     return MACHINE_FORMING_DURATION if cfg.initial.mode == "stub" else DEFAULT_DURATION
 
 
-def _speed(sim: Any, index: int | None, v: float) -> None:
-    sim.set_feed_speed(v)
-
-
 def _machine(sim: Any, index: int | None, v: float) -> None:
     sim.machine_changed()
 
@@ -56,7 +52,7 @@ def _machine(sim: Any, index: int | None, v: float) -> None:
 KIND = Kind(
     config=FeedConfig, name="ideal", table="feed", title="an ideal machine", check=check,
     default_duration=default_duration, reach=reach, build=build,
-    live={"feed.speed": _speed, **{path: _machine for path in MACHINE_FIELDS}},
+    live={"feed.speed": speed_setter, **{path: _machine for path in MACHINE_FIELDS}},
     accuracy_refusal=lambda cfg: f"feed.drive = {cfg.feed.drive!r}",
     style=lambda cfg: cfg.feed.drive,
     sections=("machine", "open", "error_bars", "error_model"), predicted=True,
