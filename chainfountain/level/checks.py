@@ -8,6 +8,7 @@ here are those of every level. No check changes the level: the settings
 from __future__ import annotations
 
 import dataclasses
+import math
 
 from chainfountain.fields import iter_numeric_fields
 from chainfountain.level.model import Level, _fail
@@ -37,12 +38,13 @@ def check_consistency(level: Level, where: str) -> None:
 
 def _check_joint_spring(sim: SimConfig, where: str) -> None:
     """``chain.bending_stiffness`` below the explicit spring's stability limit
-    (:data:`chainfountain.sim.joints.SPRING_STABILITY`) at the level's link and step; the
-    damper has none (:mod:`chainfountain.sim.joints`)."""
+    (:data:`chainfountain.sim.joints.SPRING_STABILITY`) at the level's link and step, and
+    ``chain.bending_damping`` within the damper's (:func:`_check_joint_damper`)."""
+    h = sim.solver.dt / sim.solver.substeps
+    _check_joint_damper(sim, where, h)
     c = sim.chain.bending_stiffness
     if c <= 0.0:
         return
-    h = sim.solver.dt / sim.solver.substeps
     c_max = joints.stiffness_limit(sim.chain, h)
     if c < c_max:
         return
@@ -53,6 +55,21 @@ def _check_joint_spring(sim: SimConfig, where: str) -> None:
           f"and the spring diverges beyond {joints.SPRING_STABILITY:g}; allowed: less than "
           f"{c_max:.3g} N*m/rad here (or a smaller solver.dt, more solver.substeps or longer "
           "links)")
+
+
+def _check_joint_damper(sim: SimConfig, where: str, h: float) -> None:
+    """``chain.bending_damping`` within the step the damper is the damper at
+    (:data:`chainfountain.sim.joints.DAMPER_X`)."""
+    d = sim.chain.bending_damping
+    if d <= 0.0 or joints.damper_x(sim.chain, h) <= joints.DAMPER_X:
+        return
+    x = joints.damper_x(sim.chain, h)
+    need = math.ceil(sim.solver.substeps * x / joints.DAMPER_X - 1e-12)
+    _fail(where, "chain.bending_damping",
+          f"{d!r} N*m*s/rad takes 1 - exp(-{x:.3g}) of a joint's relative spin each "
+          f"{h:g} s pymunk step with {sim.chain.link_length:g} m links, and so damps less "
+          f"than it says; allowed: at most {joints.damping_limit(sim.chain, h):.3g} N*m*s/rad "
+          f"here (or solver.substeps >= {need})")
 
 
 def _check_controls(level: Level, where: str) -> None:

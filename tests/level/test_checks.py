@@ -55,3 +55,17 @@ def test_the_limit_is_where_the_spring_diverges(level):
     assert math.isclose(2.0 * math.sqrt(c_max * 12.0 / (cfg.chain.linear_density
                                                          * cfg.chain.link_length**3))
                         * cfg.solver.dt / cfg.solver.substeps, joints.SPRING_STABILITY)
+
+
+def test_a_damper_beyond_its_step_is_refused_in_one_line(level):
+    lvl = level("wide_low")
+    with pytest.raises(LevelError) as err:
+        with_changes(lvl, {"solver.accuracy": 0.0, "chain.bending_damping": 1e-3},
+                     where="wide_low")
+    msg = str(err.value)
+    assert "chain.bending_damping" in msg and "solver.substeps >= 50" in msg
+    assert "\\n" not in msg.strip()
+    ok = with_changes(lvl, {"solver.accuracy": 0.0, "chain.bending_damping": 1e-3,
+                            "solver.substeps": 50}, where="wide_low")
+    h = ok.sim.solver.dt / ok.sim.solver.substeps
+    assert joints.damper_x(ok.sim.chain, h) <= joints.DAMPER_X
