@@ -70,13 +70,14 @@ def _tension_end(s: Summary) -> float:
 
 def _joints(level: Level, v: float) -> dict[str, float | None]:
     """A stiff chain's joints, physical and scaled at speed ``v``
-    (:func:`~chainfountain.theory.stiff.scaled_stiffness`, ``delta = d L/(lambda v)``)."""
-    from chainfountain.theory.stiff import scaled_stiffness
+    (:func:`~chainfountain.theory.stiff.scaled_stiffness`, :func:`~chainfountain.theory.
+    stiff.scaled_damping`)."""
+    from chainfountain.theory.stiff import scaled_damping, scaled_stiffness
 
     ch = level.sim.chain
     c, d, L, lam = ch.bending_stiffness, ch.bending_damping, ch.link_length, ch.linear_density
     return {"c": finite(c), "d": finite(d), "e": finite(scaled_stiffness(c, L, lam, v)),
-            "delta": finite(d * L / (lam * v))}
+            "delta": finite(scaled_damping(d, L, lam, v))}
 
 
 def _beside(cat: LaunchReference, s: Summary) -> dict[str, Any]:

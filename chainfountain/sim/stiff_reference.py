@@ -26,12 +26,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from chainfountain.sim.reference import LaunchReference
-from chainfountain.theory.stiff import (
-    NoSteadyFountain,
-    StiffFountain,
-    scaled_stiffness,
-    stiff_fountain,
-)
+from chainfountain.theory.stiff import NoSteadyFountain, StiffFountain, stiff_fountain_of
 
 if TYPE_CHECKING:
     from chainfountain.sim.config import SimConfig
@@ -103,8 +98,9 @@ class StiffReference:
 
     @property
     def delta(self) -> float:
-        """Scaled damping ``d L/(lambda v)`` (m^3; 0 where the solution has no damper)."""
-        return float(getattr(self.fountain, "delta", 0.0))
+        """Scaled damping ``d L/(lambda v)`` (m^3; 0 where the damper is too faint to
+        show and the solution leaves it out)."""
+        return float(self.fountain.delta)
 
     # ------------------------------------------------------------------ figures
     @property
@@ -177,9 +173,9 @@ class StiffReference:
 
     def tension_bar(self, y: ArrayLike) -> Array:
         """Scaled tension at launch-frame height ``y`` on the falling side (vertex to
-        floor). The rising side's differs by the bending term ``e (kappa^2 - kappa_v^2)/2``
-        (``Tbar' = -e kappa' kappa + k sin(alpha)``); :meth:`tension_profile` reads the
-        tension where the chain is."""
+        floor). The rising side's differs by the bending term (``Tbar' = -(e kappa' +
+        delta kappa'') kappa + k sin(alpha)``); :meth:`tension_profile` reads the tension
+        where the chain is."""
         f = self.fountain
         i = int(np.argmax(f.y))
         yy, tb = f.y[i:][::-1], f.T_bar[i:][::-1]  # increasing height
@@ -217,6 +213,11 @@ def joints(c: float, d: float) -> str:
     return f"c = {c:.4g} N*m/rad, d = {d:.4g} N*m*s/rad"
 
 
+def headline(note: str) -> str:
+    """A :attr:`Prediction.note` without the solver's message (for the window)."""
+    return note.split(" (", 1)[0]
+
+
 @dataclass(frozen=True)
 class Prediction:
     """What a fed level is compared with: :attr:`reference` (``None`` where no theory
@@ -240,8 +241,9 @@ class Prediction:
 
 def stiff_applies(config: SimConfig) -> bool:
     """Whether a level's chain is compared with the stiff theory: a motor-fed fountain
-    (:attr:`~chainfountain.sim.kinds.base.Kind.stiff_theory`) whose joints have a spring or a damper (physical ``c`` or ``d``;
-    the numerical ``solver.wave_damping`` is not the chain's)."""
+    (:attr:`~chainfountain.sim.kinds.base.Kind.stiff_theory`) whose joints have a spring
+    or a damper (physical ``c`` or ``d``; the numerical ``solver.wave_damping`` is not the
+    chain's)."""
     from chainfountain.sim.kinds import kind_of
 
     ch = config.chain
@@ -251,21 +253,11 @@ def stiff_applies(config: SimConfig) -> bool:
 
 def solve(c: float, d: float, L: float, lam: float, v: float, alpha0: float, H: float,
           TE_bar: float, g: float, guess: StiffFountain | None = None) -> StiffFountain | None:
-    """The steady stiff fountain of joints ``c``, ``d`` (the one call of the theory);
-    ``None`` where neither spring nor damper matters (the catenary holds);
-    :class:`~chainfountain.theory.stiff.NoSteadyFountain` where none is found.
-
-    The damper is not in this theory yet: only ``e`` (:func:`~chainfountain.theory.stiff.
-    scaled_stiffness`) enters."""
-    e = scaled_stiffness(c, L, lam, v)
-    if not e > 0.0:
-        return None
-    try:
-        return stiff_fountain(v, alpha0, H, TE_bar, e, g, guess=guess)
-    except NoSteadyFountain:
-        if guess is None:
-            raise
-        return stiff_fountain(v, alpha0, H, TE_bar, e, g)
+    """The steady stiff fountain of joints ``c``, ``d`` (the one call of the theory,
+    :func:`~chainfountain.theory.stiff.stiff_fountain_of`); ``None`` where neither spring
+    nor damper matters (the catenary holds);
+    :class:`~chainfountain.theory.stiff.NoSteadyFountain` where none is found."""
+    return stiff_fountain_of(c, d, L, lam, v, alpha0, H, TE_bar, g, guess=guess)
 
 
 def predict(config: SimConfig, catenary: LaunchReference | None,

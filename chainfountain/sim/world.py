@@ -31,7 +31,13 @@ from chainfountain.sim.measure import ChainReader, ChainState, link_ends, polyli
 from chainfountain.sim.piston import Piston
 from chainfountain.sim.reference import LaunchReference
 from chainfountain.sim.slide_away import SlideAway
-from chainfountain.sim.stiff_reference import Prediction, Reference, StiffReference, predict
+from chainfountain.sim.stiff_reference import (
+    Prediction,
+    Reference,
+    StiffReference,
+    predict,
+    stiff_applies,
+)
 from chainfountain.sim.watchdog import CHECK_INTERVAL, Limits, Watchdog
 
 FOLLOW_TOLERANCE = 1e-3
@@ -90,10 +96,12 @@ class Simulation:
     """
 
     def __init__(self, config: SimConfig, *,
-                 builders: Mapping[str, Callable[..., Any]] | None = None) -> None:
+                 builders: Mapping[str, Callable[..., Any]] | None = None,
+                 defer_theory: bool = False) -> None:
         """``builders``: a study's own builders of a kind's parts by name, used instead of
         the kind's (``{"apparatus": functools.partial(Apparatus, tuning=...)}``), here and
-        in every :meth:`reset`."""
+        in every :meth:`reset`. ``defer_theory``: see :attr:`defer_theory` (the build too
+        leaves a stiff chain's theory to :meth:`refresh_theory`)."""
         self.builders: dict[str, Callable[..., Any]] = dict(builders or {})
         self.kind = kind_of(config)
         """The level's :class:`~chainfountain.sim.kinds.base.Kind` (it builds the chain and
@@ -107,12 +115,16 @@ class Simulation:
         self.probe: Probe | None = None
         """Optional measurement called around each physics step (read only), e.g.
         :class:`chainfountain.sim.budget.EnergyBudget`."""
-        self.defer_theory = False
-        """When true, a live change of the joints only marks the stiff theory stale
-        (:attr:`theory_stale`) and :meth:`refresh_theory` solves it (the window throttles
-        the solves while a slider moves); else it is solved at once."""
+        self.defer_theory = defer_theory
+        """When true, a build or a live change of the joints or the speed only marks a
+        stiff chain's theory stale (:attr:`theory_stale`) and :meth:`refresh_theory` (or
+        the window, in the background) solves it: a solve takes 0.05-0.5 s, and up to
+        tens of seconds where there is no steady fountain; else it is solved at once."""
         self.theory_version = 0
         """Counts the references taken (the window redraws the theory when it moves)."""
+        self.theory_changes = 0
+        """Counts the changes that made the theory stale (a solve elsewhere is taken only
+        when none came after it started)."""
         self._build()
 
     # ------------------------------------------------------------------ building
@@ -285,6 +297,21 @@ class Simulation:
         if self.feed is not None:
             self.feed.set_reference(pred.catenary)
 
+    def theory_at(self, v: float) -> None:
+        """The theory at a new speed ``v``: the catenary (the feed's) at once, a stiff
+        chain's theory too unless :attr:`defer_theory` (then :meth:`refresh_theory`)."""
+        if not (self.defer_theory and stiff_applies(self.config)):
+            self.set_theory(self.predict_at(v))
+            return
+        try:
+            self.catenary = LaunchReference.of_level(self.config, v)
+        except ValueError:
+            self.catenary = None
+        if self.feed is not None:
+            self.feed.set_reference(self.catenary)
+        self.theory_stale = True
+        self.theory_changes += 1
+
     def joints_changed(self) -> None:
         """The joints' spring or damper changed live: the stiff theory is solved again
         (at once, or by :meth:`refresh_theory` when :attr:`defer_theory`)."""
@@ -292,15 +319,22 @@ class Simulation:
             return
         if self.defer_theory:
             self.theory_stale = True
+            self.theory_changes += 1
         else:
             self.refresh_theory()
+
+    def theory_problem(self) -> tuple[SimConfig, LaunchReference | None,
+                                      StiffReference | None]:
+        """What :meth:`refresh_theory` solves, to solve elsewhere (another thread) with
+        :func:`~chainfountain.sim.stiff_reference.predict`: a copy of the configuration,
+        the catenary and the present stiff fountain (the guess)."""
+        guess = self.reference if isinstance(self.reference, StiffReference) else None
+        return copy.deepcopy(self.config), self.catenary, guess
 
     def refresh_theory(self) -> None:
         """Solve the theory for the present joints at the catenary's speed, continued from
         the present stiff fountain."""
-        cat = self.catenary
-        guess = self.reference if isinstance(self.reference, StiffReference) else None
-        self.set_theory(predict(self.config, cat, guess))
+        self.set_theory(predict(*self.theory_problem()))
 
     def follow_speed(self, v: float) -> None:
         """Keep the reference on the loss-free full machine's present speed ``v`` (it keeps
@@ -323,7 +357,7 @@ class Simulation:
         else:
             self.feed.set_speed(v)
         self.watchdog.limits = self._limits()
-        self.set_theory(self.predict_at(v))
+        self.theory_at(v)
         self.chain.wave_damping = self.wave_damping_at(v)
         self.chain.set_bending()  # refits every damper to the new speed
 

@@ -33,7 +33,7 @@ def lay_chain(sim: Any) -> None:
     sim.rollers = [Roller.add(sim.space, r) for r in cfg.rollers]
     sim.carts = [Cart.add(sim.space, c, error_bias=cfg.solver.joint_error_bias)
                  for c in cfg.carts]
-    sim.set_theory(sim.predict_at(cfg.feed.speed))
+    sim.theory_at(cfg.feed.speed)
 
 
 def feed_for(sim: Any, end_pull: Any = None) -> Feed:
