@@ -57,6 +57,9 @@ class Readout:
     """What the window calls the theory: ``"paper"`` or ``"stiff-chain theory"``."""
     joints: str = ""
     """A stiff chain's joints (``c = ..., d = ...``), else ''."""
+    theory_note: str = ""
+    """Why a stiff chain has no theory curve ("no steady stiff fountain at c = ..., d =
+    ..."), else ''."""
     tension_theory_y: np.ndarray = field(default_factory=lambda: np.zeros(0))
     """A stiff chain's theory tension profile: heights along the curve (launch frame)..."""
     tension_theory: np.ndarray = field(default_factory=lambda: np.zeros(0))
@@ -187,7 +190,7 @@ def compute_readout(sim: Simulation, recorder: Recorder, history: History) -> Re
             r.note = "no fountain predicted for this feed"
     if sim.reference_note and sim.beaker is None:
         f = None  # a stiff chain without a steady fountain: no theory, and it says why
-        r.note = headline(sim.reference_note)
+        r.note = r.theory_note = headline(sim.reference_note)
     stiff = sim.reference if isinstance(sim.reference, StiffReference) else None
     if stiff is not None:
         f = None

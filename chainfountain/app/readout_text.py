@@ -35,6 +35,8 @@ def plain_rows(ro: Readout, lam: float) -> list[Row]:
     if math.isfinite(ro.paper_h):
         who = "the paper" if ro.theory == "catenary" else f"the {ro.theory_label}"
         rows.append(Row(f"   {who} predicts {ro.paper_h:.2f} m", "dim"))
+    elif ro.theory_note:
+        rows.append(Row(f"   {ro.theory_note}", "warn"))
     rows.append(Row(f"lands  {_num(ro.l, '.2f')} m away, {_num(ro.H, '.2f')} m down",
                     "text", "l, H"))
     if ro.origin != "launch":

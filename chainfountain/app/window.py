@@ -46,6 +46,7 @@ from chainfountain.app.tools import Ruler, Stopwatch
 from chainfountain.level import library
 from chainfountain.level.io import Level, LevelError
 from chainfountain.sim.kinds import kind_of
+from chainfountain.sim.stiff_reference import stiff_applies
 
 FRAMEBUFFER_HINT = "SDL_FRAMEBUFFER_ACCELERATION"
 """SDL's hint for how a window's pixels reach the screen; the window sets it to "0" unless
@@ -250,6 +251,9 @@ class App(InputMixin, DrawMixin):
                        theory="stiff" if stiff else "catenary",
                        theory_label=s.sim.reference.label if stiff else "paper",
                        joints="c = 9.99 N*m/rad, d = 9.99 N*m*s/rad",
+                       theory_note="" if s.sim.catenary is None or not stiff_applies(
+                           s.sim.config) else "no steady stiff fountain at c = 9.99 "
+                       "N*m/rad, d = 9.99 N*m*s/rad",
                        origin="pick-up" if s.sim.beaker is not None else "launch")
         rows = readout_rows(full, s.sim.config.chain.linear_density, self.expert)
         f = readout_font(self.expert)

@@ -77,3 +77,25 @@ def test_slider_moves_in_a_drag_start_one_solve_at_a_time(app):
         app.run_frame()
     frames_until(app, lambda: not s.sim.theory_stale and s._solving is None)
     assert s.sim.reference.c == pytest.approx(s.value("chain.bending_stiffness"))
+
+
+def test_the_readout_says_when_there_is_no_steady_stiff_fountain(tmp_path, monkeypatch):
+    from chainfountain.sim import stiff_reference
+    from chainfountain.theory.stiff import NoSteadyFountain
+
+    def none(*args, **kw):
+        raise NoSteadyFountain("no steady stiff fountain found: test")
+
+    monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
+    monkeypatch.setattr(stiff_reference, "stiff_fountain_of", none)
+    s = Session(shipped.level("stiff_chain"))
+    assert s.readout().note == "solving the stiff-chain theory for these joints ..."
+    assert s.refresh_theory(wait=True)
+    ro = s.readout()
+    assert s.sim.reference is None and ro.curve is None and np.isnan(ro.paper_h)
+    assert ro.note == ("no steady stiff fountain at c = 0.015 N*m/rad, "
+                       "d = 0.0006 N*m*s/rad")
+    from chainfountain.app.readout_text import plain_rows
+
+    assert any(r.text.strip() == ro.note and r.colour == "warn"
+               for r in plain_rows(ro, 0.05))
