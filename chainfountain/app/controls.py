@@ -109,6 +109,7 @@ STUDENT_LABELS: dict[str, str] = {
     "feed.turn_drop": "drop onto the plate",
     "chain.friction": "chain's friction",
     "chain.bending_stiffness": "chain's stiffness",
+    "chain.bending_damping": "chain's damping",
     "chain.bend_limit": "chain's largest bend",
     "chain.link_length": "link length",
 }

@@ -442,7 +442,10 @@ class DrawMixin:
         ys = ro.tension_y
         if len(ys):
             series.append(plots.Series(ys, ro.tension_bar, pal.CHAIN, "measured", points=True))
-        if math.isfinite(ro.q) and math.isfinite(ro.h):
+        if len(ro.tension_theory):
+            series.append(plots.Series(ro.tension_theory_y, ro.tension_theory, pal.THEORY,
+                                       ro.theory_label))
+        elif math.isfinite(ro.q) and math.isfinite(ro.h):
             top = ro.vertex[1] if ro.vertex is not None else ro.h
             lo = min(float(ys.min()) if len(ys) else top - ro.H - ro.h, top - ro.H - ro.h)
             hi = max(float(ys.max()) if len(ys) else top, top)

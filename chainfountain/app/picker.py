@@ -65,6 +65,8 @@ def predicted_curve(sim) -> np.ndarray | None:
     ref = sim.reference
     if ref is None:
         return None
+    if ref.theory == "stiff":
+        return ref.curve(80)
     f = Fountain.from_launch(v=ref.v, alpha0=ref.alpha0, H=ref.H, TE_bar=ref.TE_bar, g=ref.g)
     sx, sy = f.start
     xs, ys = f.curve(80)

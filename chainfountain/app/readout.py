@@ -13,6 +13,7 @@ from chainfountain.sim.apparatus.laws import braked_fold_speed, floor_speeds
 from chainfountain.sim.machine_rules import keeps_any_speed
 from chainfountain.sim.measure import steady_time
 from chainfountain.sim.recorder import Recorder
+from chainfountain.sim.stiff_reference import StiffReference, headline
 from chainfountain.sim.world import Simulation
 
 HISTORY_SECONDS = 120.0
@@ -46,8 +47,23 @@ class Readout:
     """Theory vertex, launch frame."""
     measured_vertex: tuple[float, float] | None = None
     paper_h: float = math.nan
-    """The paper's vertex height for the level's settings (a fed fountain's launch speed
+    """The theory's vertex height for the level's settings (a fed fountain's launch speed
     and angle, or the speed an ideal machine's laws select); nan where they fix none."""
+    theory: str = "catenary"
+    """Which theory the curve, ``paper_h`` and the theory tensions are: ``"catenary"``
+    (the paper's, through the measured ends once measured) or ``"stiff"`` (the steady
+    stiff fountain of the chain's joints, :mod:`chainfountain.sim.stiff_reference`)."""
+    theory_label: str = "paper"
+    """What the window calls the theory: ``"paper"`` or ``"stiff-chain theory"``."""
+    joints: str = ""
+    """A stiff chain's joints (``c = ..., d = ...``), else ''."""
+    theory_note: str = ""
+    """Why a stiff chain has no theory curve ("no steady stiff fountain at c = ..., d =
+    ..."), else ''."""
+    tension_theory_y: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    """A stiff chain's theory tension profile: heights along the curve (launch frame)..."""
+    tension_theory: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    """... and the scaled tensions there (empty: the catenary's ``1 - k/q + k*y``)."""
     origin: str = "launch"
     """What the heights and the launch pull are measured from: the launch point, or a
     beaker's pick-up ('pick-up'; its readout has no end pulls: the pile and the floor are
@@ -141,7 +157,9 @@ def compute_readout(sim: Simulation, recorder: Recorder, history: History) -> Re
             ox, oy = sim.beaker.pickup
             h, lx, H = h - oy, lx - ox, H + oy
             v = sim.beaker.speed
-        if not v * v > g * H:
+        if isinstance(sim.reference, StiffReference) or sim.reference_note:
+            r.v, r.h, r.l = v, h, lx  # a stiff chain: compared with its own theory below
+        elif not v * v > g * H:
             # no fountain can reach the floor (k*H >= 1): nothing to compare, and tensions
             # scaled by lambda*v^2 of a chain this slow mean nothing to a reader
             moves = ("the floor takes the chain at" if sim.beaker is not None  # its speed
@@ -170,6 +188,13 @@ def compute_readout(sim: Simulation, recorder: Recorder, history: History) -> Re
                 f = None
         if f is None:
             r.note = "no fountain predicted for this feed"
+    if sim.reference_note and sim.beaker is None:
+        f = None  # a stiff chain without a steady fountain: no theory, and it says why
+        r.note = r.theory_note = headline(sim.reference_note)
+    stiff = sim.reference if isinstance(sim.reference, StiffReference) else None
+    if stiff is not None:
+        f = None
+        _stiff_overlay(r, stiff, g)
     if f is not None:
         sx, sy = f.start
         r.v, r.k, r.q, r.h, r.l = f.v, f.k, f.q, f.h, f.l
@@ -200,11 +225,31 @@ def compute_readout(sim: Simulation, recorder: Recorder, history: History) -> Re
     if sim.dragging:
         r.note = "a link is held: tension readings paused"
         r.T0_bar = r.TE_bar = math.nan
+    if sim.theory_stale and sim.reference is None:
+        r.note = "solving the stiff-chain theory for these joints ..."
     r.steady = is_steady(sim, hist)
     r.machine = machine_line(sim)
     if sim.reference is not None:
         r.paper_h = float(sim.reference.h)
     return r
+
+
+def _stiff_overlay(r: Readout, ref: StiffReference, g: float) -> None:
+    """The stiff-chain theory's curve, vertex and tensions in ``r`` (the measured figures
+    stay; before the chain lands, the theory's stand in for them)."""
+    r.theory, r.theory_label = ref.theory, ref.label
+    r.joints = f"c = {ref.c:.3g} N*m/rad, d = {ref.d:.3g} N*m*s/rad"
+    r.curve = ref.curve(160)
+    r.T0_theory, r.TE_theory = ref.T0_bar, ref.TE_bar
+    r.tension_theory_y, r.tension_theory = ref.tension_curve()
+    r.q = math.nan  # a stiff fountain has no catenary parameter
+    if r.measured:
+        if r.measured_vertex is not None and math.isfinite(r.measured_vertex[0]):
+            r.vertex = r.measured_vertex
+        r.k = g / r.v**2 if r.v > 0 else math.nan
+        return
+    r.vertex = ref.vertex
+    r.v, r.k, r.h, r.l = ref.v, ref.k, ref.h, ref.landing_x
 
 
 def machine_line(sim: Simulation) -> str:

@@ -33,7 +33,10 @@ def plain_rows(ro: Readout, lam: float) -> list[Row]:
     top = f"top  {_num(ro.h, '.2f')} m above the {ro.origin}"
     rows.append(Row(top, "text", "h"))
     if math.isfinite(ro.paper_h):
-        rows.append(Row(f"   the paper predicts {ro.paper_h:.2f} m", "dim"))
+        who = "the paper" if ro.theory == "catenary" else f"the {ro.theory_label}"
+        rows.append(Row(f"   {who} predicts {ro.paper_h:.2f} m", "dim"))
+    elif ro.theory_note:
+        rows.append(Row(f"   {ro.theory_note}", "warn"))
     rows.append(Row(f"lands  {_num(ro.l, '.2f')} m away, {_num(ro.H, '.2f')} m down",
                     "text", "l, H"))
     if ro.origin != "launch":
@@ -43,7 +46,8 @@ def plain_rows(ro: Readout, lam: float) -> list[Row]:
             ("pull at the launch", ro.T0_bar, ro.T0_theory, "t0", "Tbar_0"),
             ("pull at the landing", ro.TE_bar, ro.TE_theory, "te", "Tbar_E")):
         newton = bar * flux
-        paper = f"  (paper {theory * flux:.2f})" if math.isfinite(theory * flux) else ""
+        who = "paper" if ro.theory == "catenary" else "theory"
+        paper = f"  ({who} {theory * flux:.2f})" if math.isfinite(theory * flux) else ""
         rows.append(Row(f"{name}  {_num(newton, '.2f')} N{paper}", col, sym))
     return rows
 
@@ -53,7 +57,8 @@ def expert_rows(ro: Readout) -> list[Row]:
     src = "measured" if ro.measured else "predicted"
     f3 = ".3f"
     return [
-        Row(f"{src}; theory: the catenary through the ends", "dim"),
+        Row(f"{src}; theory: the catenary through the ends" if ro.theory == "catenary"
+            else f"{src}; theory: {ro.theory_label}, {ro.joints}", "dim"),
         Row(f"v  {_num(ro.v, f3)} m/s     k = g/v^2  {_num(ro.k)} 1/m"),
         Row(f"q  {_num(ro.q)} 1/m     h  {_num(ro.h, f3)} m"),
         Row(f"l  {_num(ro.l, f3)} m     H  {_num(ro.H, f3)} m"),

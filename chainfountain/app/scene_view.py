@@ -214,7 +214,7 @@ class SceneView:
             py = cam.point(0.0, ro.paper_h)[1]
             pygame.draw.line(surf, THEORY, (vx - half, py), (vx - half + px(18), py),
                              max(2, px(3)))
-            img = text(f, f"paper: {ro.paper_h:.2f} m", True, THEORY)
+            img = text(f, f"{ro.theory_label}: {ro.paper_h:.2f} m", True, THEORY)
             images["paper"] = (img, THEORY)
             size = (img.get_width() + px(8), img.get_height() + px(4))
             reqs.insert(1, Request("paper", size, (vx - half, py), "left"))

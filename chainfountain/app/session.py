@@ -16,6 +16,7 @@ import copy
 import dataclasses
 import math
 import sys
+import threading
 import time
 import tomllib
 import traceback
@@ -40,6 +41,7 @@ from chainfountain.level.io import Level, LevelError
 from chainfountain.sim.config import SimConfig
 from chainfountain.sim.live import plan
 from chainfountain.sim.recorder import Recorder
+from chainfountain.sim.stiff_reference import Prediction, predict
 from chainfountain.sim.world import Simulation
 
 SLOW_FACTORS: tuple[float, ...] = (1.0, 0.5, 0.25)
@@ -47,6 +49,11 @@ SLOW_FACTORS: tuple[float, ...] = (1.0, 0.5, 0.25)
 
 CATCH_UP = 0.25
 """Wall seconds of physics a window may fall behind and still make up in later frames."""
+THEORY_EVERY = 0.3
+"""Wall seconds between the starts of two solves of a stiff chain's theory while its
+joints' slider moves (the first change is solved at once, the last one within this time):
+a solve takes about 0.05-0.5 s (:mod:`chainfountain.sim.stiff_reference`), and where there
+is no steady fountain up to tens of seconds, so it runs in a thread beside the window."""
 APP_SAMPLE_INTERVAL = 0.04
 """The app samples measurements at most this often (s): 25 a second are enough for the
 graphs (redrawn 15 times a second) and the readout (a 0.25-s mean), and each sample costs
@@ -128,6 +135,33 @@ class Applied:
     message: str
 
 
+class _TheoryJob:
+    """A stiff chain's theory solved in a daemon thread (:meth:`Session.refresh_theory`):
+    a closing window never waits for it."""
+
+    def __init__(self, sim: Simulation) -> None:
+        self.sim = sim
+        self.changes = sim.theory_changes
+        self.problem = sim.theory_problem()
+        self.result: Prediction | None = None
+        self.seconds = math.nan
+        self.thread = threading.Thread(target=self._run, name="stiff theory", daemon=True)
+
+    @classmethod
+    def start(cls, sim: Simulation) -> _TheoryJob:
+        job = cls(sim)
+        job.thread.start()
+        return job
+
+    def _run(self) -> None:
+        t0 = time.perf_counter()
+        try:
+            self.result = predict(*self.problem)
+        except Exception:  # noqa: BLE001 - a bug: on the terminal, the old theory stays
+            traceback.print_exc(file=sys.stderr)
+        self.seconds = time.perf_counter() - t0
+
+
 class Session:
     """A level running in the app; all commands of the window go through here."""
 
@@ -161,7 +195,11 @@ class Session:
 
     # ------------------------------------------------------------------ building
     def _build(self) -> None:
-        self.sim = Simulation(self.level.sim)
+        self.sim = Simulation(self.level.sim, defer_theory=True)  # see refresh_theory
+        self._theory_at = -math.inf
+        self._solving: _TheoryJob | None = None
+        self.theory_solve_s: float | None = None
+        """Wall seconds the last solve of a stiff chain's theory took (in its thread)."""
         rc = self.level.sim.recording
         interval = max(rc.sample_interval, APP_SAMPLE_INTERVAL)
         self.recorder = Recorder(self.sim, dataclasses.replace(rc, sample_interval=interval))
@@ -568,10 +606,41 @@ class Session:
                 del ap[:cut]
             self._consumed -= cut
 
+    def refresh_theory(self, wait: bool = False) -> bool:
+        """A stiff chain's theory, solved again in a thread when its joints or speed
+        changed (:attr:`~chainfountain.sim.world.Simulation.theory_stale`), a solve started
+        at most every :data:`THEORY_EVERY` s; a finished solve is taken unless the sim
+        changed again meanwhile. ``wait``: start one now and wait for it (tests).
+        ``True`` when a solve was taken."""
+        sim = self.sim
+        job = self._solving
+        if job is not None:
+            if wait:
+                job.thread.join()
+            if job.thread.is_alive():
+                return False
+            self._solving = None
+            if job.sim is sim and job.changes == sim.theory_changes:
+                if job.result is None:  # it failed (on the terminal): the old theory stays
+                    sim.theory_stale = False
+                    return False
+                sim.set_theory(job.result)
+                self.theory_solve_s = job.seconds
+                return True
+        if not sim.theory_stale or (not wait and self.clock() - self._theory_at
+                                    < THEORY_EVERY):
+            return False
+        self._solving = _TheoryJob.start(sim)
+        self._theory_at = self.clock()
+        return self.refresh_theory(wait=True) if wait else False
+
+
     def readout(self) -> Readout:
-        """Current numbers and theory overlay (recomputed when a new sample arrived)."""
+        """Current numbers and theory overlay (recomputed when a new sample arrived or the
+        theory moved)."""
+        self.refresh_theory()
         key = (id(self.sim), len(self.history.t), self.history.t[-1] if self.history.t else -1,
-               self.sim.dragging)
+               self.sim.dragging, self.sim.theory_version)
         if key == self._readout_key:
             self._readout.t = self.sim.time
             return self._readout

@@ -46,6 +46,7 @@ from chainfountain.app.tools import Ruler, Stopwatch
 from chainfountain.level import library
 from chainfountain.level.io import Level, LevelError
 from chainfountain.sim.kinds import kind_of
+from chainfountain.sim.stiff_reference import stiff_applies
 
 FRAMEBUFFER_HINT = "SDL_FRAMEBUFFER_ACCELERATION"
 """SDL's hint for how a window's pixels reach the screen; the window sets it to "0" unless
@@ -243,9 +244,16 @@ class App(InputMixin, DrawMixin):
         from chainfountain.app.readout_text import readout_rows
 
         s = self.session
+        stiff = getattr(s.sim.reference, "theory", "") == "stiff"
         full = Readout(v=9.99, k=0.999, q=9.99, h=9.99, l=9.99, H=9.99, T0_bar=0.999,
                        TE_bar=0.999, T0_theory=0.999, TE_theory=0.999, measured=True,
                        paper_h=9.99 if s.sim.reference is not None else float("nan"),
+                       theory="stiff" if stiff else "catenary",
+                       theory_label=s.sim.reference.label if stiff else "paper",
+                       joints="c = 9.99 N*m/rad, d = 9.99 N*m*s/rad",
+                       theory_note="" if s.sim.catenary is None or not stiff_applies(
+                           s.sim.config) else "no steady stiff fountain at c = 9.99 "
+                       "N*m/rad, d = 9.99 N*m*s/rad",
                        origin="pick-up" if s.sim.beaker is not None else "launch")
         rows = readout_rows(full, s.sim.config.chain.linear_density, self.expert)
         f = readout_font(self.expert)

@@ -17,6 +17,8 @@ from chainfountain.errors import OutputError
 from chainfountain.headless.report import RunSummary
 from chainfountain.sim import placement
 from chainfountain.sim.recorder import Recorder
+from chainfountain.sim.reference import LaunchReference
+from chainfountain.sim.stiff_reference import StiffReference, joints
 from chainfountain.sim.world import Simulation
 from chainfountain.theory.apparatus import plate_reaction
 
@@ -141,11 +143,21 @@ def write_snapshot(path: Path, sim: Simulation, summary: RunSummary, title: str)
     fig, ax = plt.subplots(figsize=(6.4, 6.4), dpi=100)
     ax.plot(pts[:, 0], pts[:, 1], "-", color="#333333", lw=1.6, label="simulated chain")
     ref = sim.reference
-    if ref is not None:
+    if isinstance(ref, StiffReference):
+        xy = ref.curve(300)
+        ax.plot(xy[:, 0], xy[:, 1], "--", color="#d62728", lw=1.2,
+                label=f"{ref.label} (c = {ref.c:.3g} N*m/rad, d = {ref.d:.3g} N*m*s/rad)")
+        ax.plot(*ref.vertex, "x", color="#d62728", ms=9, mew=2, label="predicted vertex")
+        _catenary_beside(ax, ref.catenary, "the catenary (no joint resistance)")
+    elif ref is not None:
         x = np.linspace(0.0, ref.landing_x, 300)
         ax.plot(x, ref.y_of_x(x), "--", color="#d62728", lw=1.2,
                 label=f"inverted catenary (theory), q = {ref.q:.3g} 1/m")
         ax.plot(*ref.vertex, "x", color="#d62728", ms=9, mew=2, label="predicted vertex")
+    elif sim.catenary is not None and sim.reference_note:
+        ch = sim.config.chain
+        _catenary_beside(ax, sim.catenary, "the catenary: no steady stiff fountain at "
+                         + joints(ch.bending_stiffness, ch.bending_damping))
     vx, vy = summary.fountain.vertex_x, summary.fountain.h
     if vx is not None and vy is not None:
         ax.plot(vx, vy, "o", mfc="none", color="#1f77b4", ms=9, mew=1.5,
@@ -184,6 +196,12 @@ def write_snapshot(path: Path, sim: Simulation, summary: RunSummary, title: str)
         xs = np.concatenate([pts[:, 0], [fx0, fx1]]) if ref is None else pts[:, 0]
         ax.set_xlim(min(xs.min(), -0.2) - 0.1, max(xs.max(), 0.2) + 0.1)
     _save_png(fig, ax, path, title)
+
+
+def _catenary_beside(ax, cat: LaunchReference, label: str) -> None:
+    """The paper's catenary, dotted grey, beside a stiff chain's theory."""
+    x = np.linspace(0.0, cat.landing_x, 300)
+    ax.plot(x, cat.y_of_x(x), ":", color="#7f7f7f", lw=1.2, label=label)
 
 
 def _beaker_curve(ax, bk: dict[str, Any], g: float) -> None:

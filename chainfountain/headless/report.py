@@ -116,11 +116,20 @@ class AbsErrors(_Part):
     tension_rms: float | None
 
 
+THEORY_EXTRAS = ("joints", "catenary", "why_none")
+""":class:`Theory`'s fields written only when they hold something (a stiff chain's)."""
+
+
 @dataclass
 class Theory(_Part):
-    """The section ``theory``: the paper's fountain for this run
-    (:class:`~chainfountain.sim.reference.LaunchReference`) and the window's errors
-    against it."""
+    """The section ``theory``: the theory's fountain for this run and the window's errors
+    against it. ``theory`` says which: ``"catenary"`` (the paper's,
+    :class:`~chainfountain.sim.reference.LaunchReference`) or, for a motor-fed chain with
+    joint springs or dampers, ``"stiff"`` (the steady stiff fountain,
+    :class:`~chainfountain.sim.stiff_reference.StiffReference`; its ``q`` is ``None``),
+    with the joints (``c``, ``d`` and their scaled ``e``, ``delta``) and the catenary's
+    figures and the window's errors against them beside it (``catenary``). Where the stiff
+    chain has no steady fountain the figures are ``None`` and ``why_none`` says so."""
 
     h: float | None
     vertex_x: float | None
@@ -132,12 +141,31 @@ class Theory(_Part):
     TE_bar: float | None
     rel_error: RelErrors
     abs_error: AbsErrors
+    theory: str = "catenary"
+    joints: dict[str, float | None] | None = None
+    """A stiff chain's ``c`` (N*m/rad), ``d`` (N*m*s/rad), ``e`` (m^2), ``delta`` (m^3)."""
+    catenary: dict[str, Any] | None = None
+    """A stiff chain's catenary: ``h``, ``vertex_x``, ``l``, ``q``, ``T0_bar`` and
+    ``rel_error`` (``h``, ``vertex_x``, ``l``) of the window against them."""
+    why_none: str | None = None
+    """Why a stiff chain's figures are ``None``: "no steady stiff fountain at ..."."""
+
+    def to_json(self) -> dict[str, Any]:
+        d = super().to_json()
+        return {k: v for k, v in d.items() if v is not None or k not in THEORY_EXTRAS}
 
     @classmethod
     def from_json(cls, d: dict[str, Any]) -> Theory:
         base = {k: d.get(k) for k in ("h", "vertex_x", "l", "q", "k", "v", "T0_bar", "TE_bar")}
         return cls(**base, rel_error=RelErrors.from_json(d.get("rel_error") or {}),
-                   abs_error=AbsErrors.from_json(d.get("abs_error") or {}))
+                   abs_error=AbsErrors.from_json(d.get("abs_error") or {}),
+                   theory=d.get("theory") or "catenary",
+                   **{k: d.get(k) for k in THEORY_EXTRAS})
+
+    @property
+    def stiff(self) -> bool:
+        """Whether the theory is the stiff chain's."""
+        return self.theory == "stiff"
 
 
 @dataclass

@@ -69,15 +69,40 @@ def beaker_lines(bk: dict[str, Any], s: RunSummary) -> list[str]:
 
 def theory_lines(th: Theory, s: RunSummary) -> list[str]:
     """The vertex height and landing against the paper's (and a selecting machine's
-    speed against its laws')."""
+    speed against its laws'); a stiff chain's against the stiff-chain theory, with the
+    catenary's beside them, or why it has no steady fountain."""
     f = s.fountain
     if f is None or f.h is None or f.l is None:
         return []
+    if th.stiff:
+        return stiff_lines(th, f.h, f.l, f.v)
     err = th.rel_error
     return [f"  vertex height {f.h:.4f} m (theory {th.h:.4f}, {pct(err.h)}), "
             f"landing {f.l:.4f} m (theory {th.l:.4f}, {pct(err.l)}), speed {f.v:.4f} m/s"
             + (f" (the machine's laws select {th.v:.4f}, {pct(err.v)})"
                if s.sections.get("machine") == "selects" and th.v else "")]
+
+
+def stiff_lines(th: Theory, h: float, l: float, v: float | None) -> list[str]:  # noqa: E741
+    """A stiff chain's vertex height and landing against the stiff-chain theory's (or
+    why there is none) and the catenary's."""
+    j = th.joints or {}
+    joints = f"c = {j.get('c') or 0:.4g} N*m/rad, d = {j.get('d') or 0:.4g} N*m*s/rad"
+    cat = th.catenary or {}
+    ce = cat.get("rel_error") or {}
+    speed = "" if v is None else f", speed {v:.4f} m/s"
+    beside = (f"  the catenary (no joint resistance): vertex height {cat.get('h', 0):.4f} m "
+              f"({pct(ce.get('h'))}), landing {cat.get('l', 0):.4f} m ({pct(ce.get('l'))})"
+              if cat.get("h") is not None and cat.get("l") is not None else None)
+    if th.h is None or th.l is None:
+        lines = [f"  vertex height {h:.4f} m, landing {l:.4f} m{speed}: "
+                 f"{th.why_none or f'no steady stiff fountain at {joints}'}"]
+    else:
+        err = th.rel_error
+        lines = [f"  vertex height {h:.4f} m (stiff-chain theory {th.h:.4f}, {pct(err.h)}), "
+                 f"landing {l:.4f} m (stiff-chain theory {th.l:.4f}, {pct(err.l)}){speed}; "
+                 f"joints {joints}"]
+    return lines + ([beside] if beside else [])
 
 
 def error_bars_lines(bars: dict[str, Any], s: RunSummary) -> list[str]:

@@ -24,6 +24,7 @@ from chainfountain.sim.machine_rules import keeps_any_speed
 from chainfountain.sim.measure import Summary
 from chainfountain.sim.recorder import Recorder
 from chainfountain.sim.reference import LaunchReference
+from chainfountain.sim.stiff_reference import Prediction, Reference, StiffReference
 from chainfountain.sim.world import Simulation
 
 _f = finite
@@ -48,12 +49,17 @@ def _attempt(failed: dict[str, str], name: str, fn: Callable[..., Any], *args: A
         return default
 
 
-def _reference(level: Level, sim: Simulation, s: Summary) -> LaunchReference | None:
-    """The paper's fountain the window is compared with: the level's, or for a machine
-    that keeps any speed the one at the window's own speed."""
+def _prediction(level: Level, sim: Simulation, s: Summary) -> Prediction:
+    """The theory the window is compared with: the level's, or for a machine that keeps
+    any speed the one at the window's own speed."""
     if keeps_any_speed(level.sim):
-        return sim.reference_at(s.speed_mean)
-    return sim.reference
+        return sim.predict_at(s.speed_mean)
+    return Prediction(sim.reference, sim.catenary, sim.reference_note)
+
+
+def _reference(level: Level, sim: Simulation, s: Summary) -> Reference | None:
+    """The theory's fountain the window is compared with (:func:`_prediction`)."""
+    return _prediction(level, sim, s).reference
 
 
 def _tension_end(s: Summary) -> float:
@@ -62,22 +68,64 @@ def _tension_end(s: Summary) -> float:
     return float(tb[-1]) if tb is not None and len(tb) else float("nan")
 
 
+def _joints(level: Level, v: float) -> dict[str, float | None]:
+    """A stiff chain's joints, physical and scaled at speed ``v``
+    (:func:`~chainfountain.theory.stiff.scaled_stiffness`, :func:`~chainfountain.theory.
+    stiff.scaled_damping`)."""
+    from chainfountain.theory.stiff import scaled_damping, scaled_stiffness
+
+    ch = level.sim.chain
+    c, d, L, lam = ch.bending_stiffness, ch.bending_damping, ch.link_length, ch.linear_density
+    return {"c": finite(c), "d": finite(d), "e": finite(scaled_stiffness(c, L, lam, v)),
+            "delta": finite(scaled_damping(d, L, lam, v))}
+
+
+def _beside(cat: LaunchReference, s: Summary) -> dict[str, Any]:
+    """The catenary's figures and the window's errors against them, beside a stiff
+    chain's theory."""
+    errs = s.errors(cat)
+    return {"h": finite(cat.h), "vertex_x": finite(cat.x_rise), "l": finite(cat.landing_x),
+            "q": finite(cat.q), "T0_bar": finite(cat.T0_bar),
+            "rel_error": {k: finite(errs[k]) for k in ("h", "vertex_x", "l")}}
+
+
 def theory_section(level: Level, sim: Simulation, rec: Recorder,
                    s: Summary | None) -> Theory | None:
-    """``theory``: the paper's fountain for this run
-    (:class:`~chainfountain.sim.reference.LaunchReference`) and the window's errors
-    against it."""
-    ref = _reference(level, sim, s) if s is not None else None
-    if ref is None:
+    """``theory``: the theory's fountain for this run (the paper's catenary,
+    :class:`~chainfountain.sim.reference.LaunchReference`, or a stiff chain's,
+    :class:`~chainfountain.sim.stiff_reference.StiffReference`, with the catenary
+    beside it) and the window's errors against it; a stiff chain without a steady
+    fountain: why, and the catenary."""
+    if s is None:
         return None
+    pred = _prediction(level, sim, s)
+    ref, cat = pred.reference, pred.catenary
+    if ref is None and (cat is None or not pred.note):
+        return None
+    if ref is None:
+        none = {k: None for k in ("h", "vertex_x", "l", "q", "v")}
+        return Theory(h=None, vertex_x=None, l=None, q=None, k=cat.k, v=cat.v, T0_bar=None,
+                      TE_bar=cat.TE_bar, rel_error=RelErrors(**none),
+                      abs_error=AbsErrors(T0_bar=None, TE_bar=None, tension_rms=None),
+                      theory="stiff", joints=_joints(level, cat.v), catenary=_beside(cat, s),
+                      why_none=pred.note)
     errs = s.errors(ref)
-    return Theory(
-        h=ref.h, vertex_x=ref.x_rise, l=ref.landing_x, q=ref.q, k=ref.k, v=ref.v,
-        T0_bar=ref.T0_bar, TE_bar=ref.TE_bar,
-        rel_error=RelErrors(**{k: finite(errs[k]) for k in ("h", "vertex_x", "l", "q", "v")}),
+    stiff = isinstance(ref, StiffReference)
+    rel = {k: finite(errs[k]) for k in ("h", "vertex_x", "l", "q", "v")}
+    if stiff:
+        rel["q"] = None  # a stiff fountain has no catenary parameter
+    out = Theory(
+        h=ref.h, vertex_x=ref.x_rise, l=ref.landing_x, q=None if stiff else ref.q, k=ref.k,
+        v=ref.v, T0_bar=ref.T0_bar, TE_bar=ref.TE_bar,
+        rel_error=RelErrors(**rel),
         abs_error=AbsErrors(T0_bar=finite(errs["T0_bar"]),
                             TE_bar=finite(_tension_end(s) - ref.TE_bar),
                             tension_rms=finite(s.tension_rms)))
+    if stiff:
+        out.theory = "stiff"
+        out.joints = _joints(level, ref.v)
+        out.catenary = _beside(ref.catenary, s)
+    return out
 
 
 def machine_section(level: Level, sim: Simulation, rec: Recorder,

@@ -305,14 +305,15 @@ class Recorder:
             extras.update(tension_bar=tb, x=xa, y=ya, speed=sp)
             pts = np.column_stack((xa, ya))
             xv0, yv0 = vertex_of(pts)
-            q0 = self.sim.reference.q if self.sim.reference is not None else 1.0
+            cat = getattr(self.sim, "catenary", None)
+            q0 = cat.q if cat is not None else 1.0
             try:
                 _, _, q_fit = fit_catenary(pts, xv0, yv0, q0)
             except (np.linalg.LinAlgError, ValueError, FloatingPointError) as exc:
                 failed["catenary fit"] = f"{type(exc).__name__}: {exc}"
             ref = self.sim.reference
             if ref is not None:
-                resid = tb - ref.tension_bar(ya)
+                resid = tb - ref.tension_profile(xa, ya)
                 tension_rms = float(np.sqrt(np.mean(resid**2)))
                 extras["tension_resid"] = resid
         steady = self.steady_from(window)

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -41,6 +41,11 @@ class LaunchReference:
     h: float
     T0_bar: float
     TE_bar: float = 0.0
+
+    theory: ClassVar[str] = "catenary"
+    """Which theory: ``summary.json``'s ``theory.theory``."""
+    label: ClassVar[str] = "the paper's catenary"
+    """What the outputs call it."""
 
     @classmethod
     def from_launch(cls, v: float, alpha0: float, H: float, g: float = 9.81,
@@ -143,3 +148,17 @@ class LaunchReference:
         y = self.h + (1.0 - np.cosh(self.q * xv)) / self.q
         angle = -np.arctan(np.sinh(self.q * xv))
         return x, y, angle
+
+    def tension_profile(self, x: ArrayLike, y: ArrayLike) -> NDArray[np.float64]:
+        """Scaled tension at chain points ``(x, y)``: :meth:`tension_bar` of ``y`` (the
+        catenary's tension depends on the height alone)."""
+        return self.tension_bar(y)
+
+    def curve(self, n: int = 200) -> NDArray[np.float64]:
+        """``n`` points ``(x, y)`` along the catenary from the launch to the floor."""
+        x, y, _ = self.points_at_arc(np.linspace(0.0, self.arc_length, n))
+        return np.column_stack((x, y))
+
+    def describe(self) -> str:
+        """What the outputs call this theory."""
+        return self.label

@@ -31,6 +31,13 @@ from chainfountain.sim.measure import ChainReader, ChainState, link_ends, polyli
 from chainfountain.sim.piston import Piston
 from chainfountain.sim.reference import LaunchReference
 from chainfountain.sim.slide_away import SlideAway
+from chainfountain.sim.stiff_reference import (
+    Prediction,
+    Reference,
+    StiffReference,
+    predict,
+    stiff_applies,
+)
 from chainfountain.sim.watchdog import CHECK_INTERVAL, Limits, Watchdog
 
 FOLLOW_TOLERANCE = 1e-3
@@ -74,19 +81,27 @@ class Simulation:
     space, chain, feed, floor, rollers, carts:
         The pymunk objects; read them, change them through the methods here.
     reference:
-        The paper's prediction for this feed. ``None`` for an apparatus level, and
-        for a configuration that has no fountain (``Tbar_E + k*H >= 1``), which the level
-        check (:func:`chainfountain.level.io.check_consistency`) refuses: a feed level
-        that passed it always has a reference.
+        The theory this feed is compared with: the paper's catenary
+        (:class:`~chainfountain.sim.reference.LaunchReference`), or for a motor-fed chain
+        with joint springs or dampers the steady stiff fountain
+        (:class:`~chainfountain.sim.stiff_reference.StiffReference`). ``None`` for an
+        apparatus level, for a configuration that has no fountain (``Tbar_E + k*H >= 1``),
+        which the level check (:func:`chainfountain.level.io.check_consistency`) refuses,
+        and for a stiff chain that has no steady fountain (:attr:`reference_note` says so).
+    catenary:
+        The paper's catenary for this feed, whichever theory :attr:`reference` is: the feed
+        aims the floor's pull and spins the released links by it.
     time, steps:
         Simulated time (s) and number of physics steps since the last build.
     """
 
     def __init__(self, config: SimConfig, *,
-                 builders: Mapping[str, Callable[..., Any]] | None = None) -> None:
+                 builders: Mapping[str, Callable[..., Any]] | None = None,
+                 defer_theory: bool = False) -> None:
         """``builders``: a study's own builders of a kind's parts by name, used instead of
         the kind's (``{"apparatus": functools.partial(Apparatus, tuning=...)}``), here and
-        in every :meth:`reset`."""
+        in every :meth:`reset`. ``defer_theory``: see :attr:`defer_theory` (the build too
+        leaves a stiff chain's theory to :meth:`refresh_theory`)."""
         self.builders: dict[str, Callable[..., Any]] = dict(builders or {})
         self.kind = kind_of(config)
         """The level's :class:`~chainfountain.sim.kinds.base.Kind` (it builds the chain and
@@ -100,6 +115,16 @@ class Simulation:
         self.probe: Probe | None = None
         """Optional measurement called around each physics step (read only), e.g.
         :class:`chainfountain.sim.budget.EnergyBudget`."""
+        self.defer_theory = defer_theory
+        """When true, a build or a live change of the joints or the speed only marks a
+        stiff chain's theory stale (:attr:`theory_stale`) and :meth:`refresh_theory` (or
+        the window, in the background) solves it: a solve takes 0.05-0.5 s, and up to
+        tens of seconds where there is no steady fountain; else it is solved at once."""
+        self.theory_version = 0
+        """Counts the references taken (the window redraws the theory when it moves)."""
+        self.theory_changes = 0
+        """Counts the changes that made the theory stale (a solve elsewhere is taken only
+        when none came after it started)."""
         self._build()
 
     # ------------------------------------------------------------------ building
@@ -133,8 +158,16 @@ class Simulation:
         self.floor: Floor | None = None
         self.rollers: list[Roller] = []
         self.carts: list[Cart] = []
-        self.reference: LaunchReference | None = None
-        """The paper's fountain for a fed level (``None`` for an apparatus or a beaker)."""
+        self.reference: Reference | None = None
+        """The theory a fed level is compared with (``None`` for an apparatus or a beaker;
+        see the class docstring)."""
+        self.catenary: LaunchReference | None = None
+        """The paper's catenary for a fed level, whichever theory :attr:`reference` is."""
+        self.reference_note = ""
+        """Why :attr:`reference` is ``None`` for a fed level with a catenary ("no steady
+        stiff fountain at c = ..., d = ..."), or ''."""
+        self.theory_stale = False
+        """The joints changed and the stiff theory waits for :meth:`refresh_theory`."""
         build = self.kind.build
         assert build is not None  # checked in __init__
         build(self)
@@ -236,13 +269,72 @@ class Simulation:
         """
         nudge_bodies(self.space, seed, rel)
 
-    def reference_at(self, v: float) -> LaunchReference | None:
-        """The paper's fountain for this level at chain speed ``v``
-        (:meth:`LaunchReference.of_level`); ``None`` when there is none."""
+    def reference_at(self, v: float) -> Reference | None:
+        """The theory's fountain for this level at chain speed ``v`` (:meth:`predict_at`);
+        ``None`` when there is none."""
+        return self.predict_at(v).reference
+
+    def predict_at(self, v: float) -> Prediction:
+        """What this level at chain speed ``v`` is compared with: the paper's catenary
+        (:meth:`LaunchReference.of_level`), or the stiff fountain for a motor-fed chain
+        with joint resistance (:func:`~chainfountain.sim.stiff_reference.predict`, solved
+        from the present one)."""
         try:
-            return LaunchReference.of_level(self.config, v)
+            cat = LaunchReference.of_level(self.config, v)
         except ValueError:
-            return None
+            cat = None
+        guess = self.reference if isinstance(self.reference, StiffReference) else None
+        return predict(self.config, cat, guess)
+
+    def set_theory(self, pred: Prediction) -> None:
+        """Take ``pred`` as the level's theory (:attr:`reference`, :attr:`catenary`,
+        :attr:`reference_note`); the feed follows the catenary."""
+        self.catenary = pred.catenary
+        self.reference = pred.reference
+        self.reference_note = pred.note
+        self.theory_stale = False
+        self.theory_version += 1
+        if self.feed is not None:
+            self.feed.set_reference(pred.catenary)
+
+    def theory_at(self, v: float) -> None:
+        """The theory at a new speed ``v``: the catenary (the feed's) at once, a stiff
+        chain's theory too unless :attr:`defer_theory` (then :meth:`refresh_theory`)."""
+        if not (self.defer_theory and stiff_applies(self.config)):
+            self.set_theory(self.predict_at(v))
+            return
+        try:
+            self.catenary = LaunchReference.of_level(self.config, v)
+        except ValueError:
+            self.catenary = None
+        if self.feed is not None:
+            self.feed.set_reference(self.catenary)
+        self.theory_stale = True
+        self.theory_changes += 1
+
+    def joints_changed(self) -> None:
+        """The joints' spring or damper changed live: the stiff theory is solved again
+        (at once, or by :meth:`refresh_theory` when :attr:`defer_theory`)."""
+        if self.feed is None:
+            return
+        if self.defer_theory:
+            self.theory_stale = True
+            self.theory_changes += 1
+        else:
+            self.refresh_theory()
+
+    def theory_problem(self) -> tuple[SimConfig, LaunchReference | None,
+                                      StiffReference | None]:
+        """What :meth:`refresh_theory` solves, to solve elsewhere (another thread) with
+        :func:`~chainfountain.sim.stiff_reference.predict`: a copy of the configuration,
+        the catenary and the present stiff fountain (the guess)."""
+        guess = self.reference if isinstance(self.reference, StiffReference) else None
+        return copy.deepcopy(self.config), self.catenary, guess
+
+    def refresh_theory(self) -> None:
+        """Solve the theory for the present joints at the catenary's speed, continued from
+        the present stiff fountain."""
+        self.set_theory(predict(*self.theory_problem()))
 
     def follow_speed(self, v: float) -> None:
         """Keep the reference on the loss-free full machine's present speed ``v`` (it keeps
@@ -250,11 +342,10 @@ class Simulation:
         has moved by :data:`FOLLOW_TOLERANCE` of the reference's speed."""
         if not keeps_any_speed(self.config) or self.feed is None:
             return
-        ref = self.reference
+        ref = self.catenary
         if ref is not None and abs(v - ref.v) <= FOLLOW_TOLERANCE * ref.v:
             return
-        self.reference = self.reference_at(v)
-        self.feed.set_reference(self.reference)
+        self.set_theory(self.predict_at(v))
 
     def set_feed_speed(self, v: float) -> None:
         """Change the feed speed live (m/s); the reference is recomputed. With the ideal
@@ -266,8 +357,7 @@ class Simulation:
         else:
             self.feed.set_speed(v)
         self.watchdog.limits = self._limits()
-        self.reference = self.reference_at(v)
-        self.feed.set_reference(self.reference)
+        self.theory_at(v)
         self.chain.wave_damping = self.wave_damping_at(v)
         self.chain.set_bending()  # refits every damper to the new speed
 
@@ -278,8 +368,7 @@ class Simulation:
         if self.feed is None:
             return
         v = self.piston.chain_speed if self.piston is not None else self.feed.speed
-        self.reference = self.reference_at(v)
-        self.feed.set_reference(self.reference)
+        self.set_theory(self.predict_at(v))
 
     def set_bending(self, stiffness: float | None = None, damping: float | None = None) -> None:
         """Change the joint spring ``c`` (N*m/rad) and/or damper ``d`` (N*m*s/rad) live."""
@@ -415,6 +504,10 @@ class Simulation:
                     f"H={app.H:g} m, xi2={self.config.apparatus.xi2:g}")
         r = self.reference
         pred = "" if r is None else f", predicted h={r.h:.3f} m, l={r.landing_x:.3f} m"
+        if isinstance(r, StiffReference):
+            pred += f" ({r.label})"
+        elif r is None and self.reference_note:
+            pred = f", {self.reference_note}"
         return (f"{self.config.name or 'feed'}: t={self.time:.3f} s, {self.n_free} free links "
                 f"of {self.chain.L * 1e3:.1f} mm, v={self.ends.speed:.2f} m/s, "
                 f"alpha0={math.degrees(self.config.feed.launch_angle):.1f} deg{pred}")

@@ -76,6 +76,10 @@ class Kind:
     its runs are compared with that prediction and can be refined."""
     paper_curve: bool = True
     """Whether the window draws the paper's curve when the level opens."""
+    stiff_theory: bool = False
+    """Whether a chain with joint springs or dampers is compared with the steady stiff
+    fountain (:mod:`chainfountain.sim.stiff_reference`) instead of the paper's catenary
+    (the motor-fed fountain; the machines' laws are the paper's string model's)."""
     study_start: Callable[[SimConfig], dict[str, Any]] = lambda cfg: {}
     """The changes that start a study of the level on its steady state (the apparatus
     laid along its path instead of forming from rest)."""

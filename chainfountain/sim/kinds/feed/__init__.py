@@ -33,7 +33,7 @@ def lay_chain(sim: Any) -> None:
     sim.rollers = [Roller.add(sim.space, r) for r in cfg.rollers]
     sim.carts = [Cart.add(sim.space, c, error_bias=cfg.solver.joint_error_bias)
                  for c in cfg.carts]
-    sim.reference = sim.reference_at(cfg.feed.speed)
+    sim.theory_at(cfg.feed.speed)
 
 
 def feed_for(sim: Any, end_pull: Any = None) -> Feed:
@@ -41,8 +41,8 @@ def feed_for(sim: Any, end_pull: Any = None) -> Feed:
     as a function of the speed, when a machine sets it)."""
     cfg = sim.config
     feed = Feed(sim.chain, cfg.feed, end_pull=end_pull)
-    feed.initialise(cfg.initial, sim.reference)
-    feed.set_reference(sim.reference)
+    feed.initialise(cfg.initial, sim.catenary)
+    feed.set_reference(sim.catenary)
     return feed
 
 
@@ -78,6 +78,18 @@ def _end_tension(sim: Any, index: int | None, v: float) -> None:
     sim.set_feed_speed(sim.config.feed.speed)  # recomputes the reference
 
 
+def _bending_stiffness(sim: Any, index: int | None, v: float) -> None:
+    """``chain.bending_stiffness`` live: the joints' springs, then the stiff theory."""
+    sim.chain.set_bending(stiffness=v)
+    sim.joints_changed()
+
+
+def _bending_damping(sim: Any, index: int | None, v: float) -> None:
+    """``chain.bending_damping`` live: the joints' dampers, then the stiff theory."""
+    sim.chain.set_bending(damping=v)
+    sim.joints_changed()
+
+
 def accuracy_refusal(cfg: SimConfig) -> str | None:
     """``solver.accuracy``'s error model covers a motor-fed fountain on an absorbing floor,
     without blocks in the scene or self-collision."""
@@ -93,7 +105,9 @@ def accuracy_refusal(cfg: SimConfig) -> str | None:
 KIND = Kind(
     config=FeedConfig, name="feed", table="feed", title="a motor-fed fountain", check=check,
     default_duration=default_duration, reach=reach, build=build,
-    live={"feed.speed": speed_setter, "feed.end_tension": _end_tension},
+    live={"feed.speed": speed_setter, "feed.end_tension": _end_tension,
+          "chain.bending_stiffness": _bending_stiffness,
+          "chain.bending_damping": _bending_damping},
     accuracy_refusal=accuracy_refusal, style=lambda cfg: "motor",
-    sections=("error_bars", "error_model"), predicted=True,
+    sections=("error_bars", "error_model"), predicted=True, stiff_theory=True,
 )
