@@ -275,13 +275,16 @@ def model_error(level: Level) -> dict[str, Any]:
     except ValueError as exc:
         out["why_none"] = f"no fountain: {exc}"
         return out
-    why = accuracy.in_domain(ref)
+    if accuracy.is_stiff(sim.chain):
+        out["note"] = ("against the steady stiff-chain theory, for a steady run (an undamped "
+                       "stiff fountain does not settle: docs/stiff_stability.md)")
+    why = accuracy.in_domain(ref, sim.chain)
     if why is not None:
         out["why_none"] = why
         return out
     sv = sim.solver
     est = accuracy.estimate(ref, accuracy.Settings(sim.chain.link_length, sv.dt / sv.substeps,
-                                                   sv.iterations))
+                                                   sv.iterations), sim.chain)
     out["links_in_flight"] = est.links
     out["solver_converged"] = est.converged
     out["iterations_needed"] = accuracy.iterations_needed(est.links, sv.dt / sv.substeps)

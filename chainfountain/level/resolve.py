@@ -34,7 +34,7 @@ def resolve(level: Level, where: str) -> tuple[Level, Estimate | None]:
     f = sim.feed
     ref = LaunchReference.of_feed(f, sim.gravity)
     try:
-        est = accuracy.choose(ref, acc)
+        est = accuracy.choose(ref, acc, sim.chain)
     except accuracy.OutOfReach as exc:
         least = (f"at least {math.ceil(exc.best * 1e4) / 1e4:g}, or 0" if math.isfinite(exc.best)
                  else "0")

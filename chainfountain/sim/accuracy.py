@@ -33,6 +33,18 @@ inverted catenary (section "Inverted Catenary"). Its error at link length ``L``,
 
    The bound given for a figure is ``|e_f| + MARGIN[f] + C_STEP[f]*q*v*dt*Tbar_E/(k/q)``.
 
+3. **Joint resistance** (``chain.bending_stiffness`` c, ``chain.bending_damping`` d): the
+   figures are compared with the steady stiff theory (:mod:`chainfountain.theory.stiff`),
+   and the link term above stays; the margin is :data:`STIFF_MARGIN` instead of
+   ``MARGIN``, 1.25 times the largest miss beyond the link term of 21 steady runs
+   (``research/stiff_runs.py``; ``wide_low`` and a 75-deg, 3.5-m/s launch, c 0.003-0.08,
+   d 1e-5-1e-3, links of 1 and 2 cm, the damper's sub-steps at ``2 d h/I <= 0.3``; the sim
+   sits 0.2-0.7 % below the theory in height). It holds for joints no stiffer than
+   ``e q^2 <=`` :data:`STIFF_EQ2` and ``delta q^3 <=`` :data:`STIFF_DQ3` (stiffness and
+   damping over the vertex's bend, ``e`` and ``delta`` of
+   :func:`chainfountain.theory.stiff.scaled_stiffness` and ``scaled_damping``), and only
+   for a steady run: an undamped stiff fountain does not settle (docs/stiff_stability.md).
+
 The cost model (wall seconds per simulated second, ``(n*(C_LINK + C_ITER*iterations))/dt``)
 is the same grid's timing, two runs side by side on this 2-core machine; read it to +-50 %.
 Near-critical fountains (``k/q`` below :data:`MIN_KQ`, the paper's fountain D) are outside
@@ -69,6 +81,13 @@ MARGIN = {"vertex_y": 0.0028, "vertex_x": 0.0015, "landing_x": 0.0017}
 C_STEP = {"vertex_y": 0.60, "vertex_x": 0.30, "landing_x": 0.25}
 """Bound on the step error per unit ``q*v*dt*Tbar_E/(k/q)``: 1.25 times the smallest
 coefficient that covers every converged run's miss beyond the margin (0.48 / 0.24 / 0.20)."""
+STIFF_MARGIN = {"vertex_y": 0.0082, "vertex_x": 0.0076, "landing_x": 0.0070}
+"""A stiff chain's margin: 1.25 times the largest miss beyond the link term of the 21
+steady stiff runs (0.66 / 0.61 / 0.56 %)."""
+STIFF_EQ2 = 0.018
+"""Largest ``e q^2`` measured (0.017)."""
+STIFF_DQ3 = 1.6e-3
+"""Largest ``delta q^3`` measured (1.57e-3)."""
 MIN_KQ = 0.06
 """Smallest ``k/q`` measured; nearer criticality the model does not apply."""
 MAX_QL = 0.12
@@ -114,13 +133,35 @@ class Estimate:
         return max(self.bounds.values()) if self.converged else math.inf
 
 
-def in_domain(ref: LaunchReference) -> str | None:
-    """Why the model does not apply to ``ref`` (``None`` when it does)."""
+def in_domain(ref: LaunchReference, chain: ChainConfig | None = None) -> str | None:
+    """Why the model does not apply to ``ref`` with ``chain``'s joints (``None`` when it
+    does)."""
     kq = ref.k / ref.q
     if kq < MIN_KQ:
         return (f"the fountain is near-critical (k/q = {kq:.3f} below {MIN_KQ}), where the "
                 "vertex creeps at a rate first order in the step (docs/convergence.md)")
+    if chain is not None and is_stiff(chain):
+        eq2, dq3 = stiff_scales(ref, chain)
+        if eq2 > STIFF_EQ2 or dq3 > STIFF_DQ3:
+            return (f"the joints are stiffer than measured (e q^2 = {eq2:.3g}, delta q^3 = "
+                    f"{dq3:.3g}; measured up to {STIFF_EQ2:g} and {STIFF_DQ3:g}; "
+                    "docs/stiff_chain.md)")
     return None
+
+
+def is_stiff(chain: ChainConfig) -> bool:
+    """Whether the chain's joints have springs or dampers (the stiff theory applies)."""
+    return chain.bending_stiffness > 0.0 or chain.bending_damping > 0.0
+
+
+def stiff_scales(ref: LaunchReference, chain: ChainConfig) -> tuple[float, float]:
+    """``(e q^2, delta q^3)``: the joints' stiffness and damping over the vertex's bend."""
+    from chainfountain.theory.stiff import scaled_damping, scaled_stiffness
+
+    L, lam = chain.link_length, chain.linear_density
+    e = scaled_stiffness(chain.bending_stiffness, L, lam, ref.v)
+    delta = scaled_damping(chain.bending_damping, L, lam, ref.v)
+    return e * ref.q**2, delta * ref.q**3
 
 
 def flight_length(ref: LaunchReference) -> float:
@@ -153,22 +194,24 @@ def iterations_needed(links: int, dt: float) -> int:
     return max(MIN_ITERATIONS, math.ceil(10.0 * (links / reach) ** 2))
 
 
-def estimate(ref: LaunchReference, s: Settings) -> Estimate:
-    """The model's errors, bounds and cost for fountain ``ref`` at settings ``s``."""
+def estimate(ref: LaunchReference, s: Settings, chain: ChainConfig | None = None) -> Estimate:
+    """The model's errors, bounds and cost for fountain ``ref`` at settings ``s`` (with
+    ``chain``'s joints: a stiff chain's margin is :data:`STIFF_MARGIN`)."""
+    margin = STIFF_MARGIN if chain is not None and is_stiff(chain) else MARGIN
     n = links_in_flight(ref, s.link_length)
     conv = s.iterations >= iterations_needed(n, s.dt)
     qL = ref.q * s.link_length
     Lh = s.link_length / ref.h
     step = step_term(ref, s.dt)
     errors = {f: A_L[f] * qL + A_H[f] * Lh for f in FIGURES}
-    bounds = {f: abs(errors[f]) + MARGIN[f] + C_STEP[f] * step for f in FIGURES}
+    bounds = {f: abs(errors[f]) + margin[f] + C_STEP[f] * step for f in FIGURES}
     return Estimate(settings=s, links=n, converged=conv, errors=errors, bounds=bounds,
                     cost=wall_cost(n, s.dt, s.iterations))
 
 
-def candidates(ref: LaunchReference) -> list[Estimate]:
+def candidates(ref: LaunchReference, chain: ChainConfig | None = None) -> list[Estimate]:
     """Every candidate setting in the model's range, each at the fewest iterations that
-    converge."""
+    converge (with ``chain``'s joints, :func:`estimate`)."""
     out = []
     for mm in LINKS_MM:
         L = mm / 1000.0
@@ -180,7 +223,7 @@ def candidates(ref: LaunchReference) -> list[Estimate]:
             it = iterations_needed(n, dt)
             if it > MAX_ITERATIONS:
                 continue
-            out.append(estimate(ref, Settings(L, dt, it)))
+            out.append(estimate(ref, Settings(L, dt, it), chain))
     return out
 
 
@@ -193,15 +236,17 @@ class OutOfReach(ValueError):
         self.best = best
 
 
-def choose(ref: LaunchReference, accuracy: float) -> Estimate:
-    """The cheapest settings whose every bound is at most ``accuracy`` (relative).
+def choose(ref: LaunchReference, accuracy: float,
+           chain: ChainConfig | None = None) -> Estimate:
+    """The cheapest settings whose every bound is at most ``accuracy`` (relative), for a
+    chain with ``chain``'s joints.
 
     Raises :class:`OutOfReach` (with the best reachable bound) when no candidate does, or
     when the fountain is outside the model's domain."""
-    why = in_domain(ref)
+    why = in_domain(ref, chain)
     if why is not None:
         raise OutOfReach(f"the error model does not apply: {why}")
-    cands = candidates(ref)
+    cands = candidates(ref, chain)
     ok = [e for e in cands if e.worst <= accuracy]
     if not ok:
         best = min((e.worst for e in cands), default=math.inf)

@@ -48,10 +48,31 @@ def test_a_refined_stiff_level_is_the_same_chain_and_passes_its_check(level):
 
 def test_the_accuracy_s_links_are_the_same_chain(level):
     """A level's changes are resolved as a file is (``with_changes``): wide_low's 2-cm links
-    with springs of 0.05 N*m/rad, asked for 0.4 %, run on 12-mm links."""
+    with springs of 0.05 N*m/rad, asked for 1 % (a stiff chain's margin is 0.8 %), run on
+    15-mm links."""
     lvl = with_changes(level("wide_low"), {"chain.bending_stiffness": 0.05,
-                                           "solver.accuracy": 0.004}, where="stiff")
+                                           "solver.accuracy": 0.01}, where="stiff")
     ch = lvl.sim.chain
-    assert ch.link_length == pytest.approx(0.012)  # the accuracy chose other links
+    assert ch.link_length == pytest.approx(0.015)  # the accuracy chose other links
     assert ch.bending_stiffness * ch.link_length == pytest.approx(0.05 * 0.02)
     assert joints.omega_h(ch, lvl.sim.solver.dt / lvl.sim.solver.substeps) < 2.0
+
+
+def test_the_error_model_bounds_a_stiff_chain_by_its_measured_margin(level):
+    """Inside the measured stiffness the bounds are the link term plus
+    :data:`~chainfountain.sim.accuracy.STIFF_MARGIN`; stiffer joints are outside it."""
+    from chainfountain.sim import accuracy
+    from chainfountain.sim.reference import LaunchReference
+
+    cfg = level("wide_low").sim
+    ref = LaunchReference.of_feed(cfg.feed, cfg.gravity)
+    s = accuracy.Settings(0.02, 2.5e-4, 10)
+    loose = accuracy.estimate(ref, s, cfg.chain)
+    chain = ChainConfig(link_length=0.02, bending_stiffness=0.04, bending_damping=1e-4)
+    assert accuracy.in_domain(ref, chain) is None
+    stiff = accuracy.estimate(ref, s, chain)
+    for f in accuracy.FIGURES:
+        assert stiff.bounds[f] - loose.bounds[f] == pytest.approx(
+            accuracy.STIFF_MARGIN[f] - accuracy.MARGIN[f])
+    too = ChainConfig(link_length=0.02, bending_stiffness=0.5)
+    assert "stiffer than measured" in accuracy.in_domain(ref, too)
