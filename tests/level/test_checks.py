@@ -26,11 +26,13 @@ def test_a_spring_beyond_the_stability_limit_is_refused_in_one_line(level, name)
     lvl = level(name)
     c = 1.01 * _limit(lvl.sim)
     with pytest.raises(LevelError) as err:
-        with_changes(lvl, {"chain.bending_stiffness": c}, where=name)
+        with_changes(lvl, {"chain.bending_stiffness": c, "solver.accuracy": 0.0}, where=name)
     msg = str(err.value)
     assert "chain.bending_stiffness" in msg and "allowed: less than" in msg
     assert "\n" not in msg
-    with_changes(lvl, {"chain.bending_stiffness": 0.99 * _limit(lvl.sim)}, where=name)
+    # (solver.accuracy off: its error model refuses joints this stiff, another message)
+    with_changes(lvl, {"chain.bending_stiffness": 0.99 * _limit(lvl.sim),
+                       "solver.accuracy": 0.0}, where=name)
 
 
 def _run(cfg, c: float, seconds: float) -> bool:
