@@ -252,35 +252,43 @@ def _catenary(out: dict[str, Any], s: dict[str, Any], v: float) -> dict[str, Any
 
 
 def table(runs: list[dict[str, Any]], v_source: str) -> str:
-    """A markdown table: each case's runs at both refinements, the BVP and the catenary."""
-    cases: dict[tuple, dict[int, dict[str, Any]]] = {}
-    for r in runs:
+    """A markdown table, a row per run: the simulated vertex height and landing, the BVP
+    at that run's ``e`` (and ``delta``), the catenary, the differences, the refinement
+    difference (the ``r = 2`` row against the ``r = 1`` one) and the verdict."""
+    first: dict[tuple, dict[str, Any]] = {}
+    rows = ["| fountain | c | d | r | L | dt | sub | h sim | h BVP | h cat | sim/BVP-1 h | "
+            "l sim | l BVP | l cat | sim/BVP-1 l | r2/r1-1 h, l | verdict |",
+            "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in sorted(runs, key=lambda r: (r["fountain"], r["settings"]["c_base"],
+                                         r["settings"]["d_base"], r["refine"])):
         s = r["settings"]
-        cases.setdefault((r["fountain"], s["c_base"], s["d_base"]), {})[r["refine"]] = r
-    rows = ["| fountain | c | d | h r=1 | h r=2 | h BVP | h cat | l r=1 | l r=2 | l BVP | "
-            "l cat | sim-BVP h, l (r=1) | r2-r1 h, l | steady r=1 / r=2 |",
-            "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
-    for (fountain, c, d), by in cases.items():
-        r1, r2 = by.get(1), by.get(2)
-        ref = r1 or r2
-        if ref is None or ref.get("ended"):
+        key = (r["fountain"], s["c_base"], s["d_base"])
+        head = (f"| {r['fountain']} | {s['c_base']:g} | {s['d_base']:g} | {r['refine']} | "
+                f"{s['L']:g} | {s['dt']:g} | {s['substeps']} |")
+        if r.get("ended"):
+            rows.append(head + f" ended: {r['ended']} |" + " |" * 9)
             continue
-        th = theory(ref, v_source)
-        def fig(r, k):
-            return f"{r[k]:.4f}" if r is not None and not r.get("ended") else "-"
-        def rel(a, b):
-            return f"{100 * (a / b - 1):+.2f}"
+        th = theory(r, v_source)
         bh, bl = th.get("bvp_h"), th.get("bvp_l")
-        simbvp = (f"{rel(r1['vertex_h'], bh)}, {rel(r1['landing_x'], bl)} %"
-                  if r1 and bh and not r1.get("ended") else "-")
-        ref2 = (f"{rel(r2['vertex_h'], r1['vertex_h'])}, {rel(r2['landing_x'], r1['landing_x'])} %"
-                if r1 and r2 and not r1.get("ended") and not r2.get("ended") else "-")
-        st = " / ".join(x["verdict"] if x and not x.get("ended") else "-" for x in (r1, r2))
-        rows.append(f"| {fountain} | {c:g} | {d:g} | {fig(r1, 'vertex_h')} | "
-                    f"{fig(r2, 'vertex_h')} | {bh if bh is None else f'{bh:.4f}'} | "
-                    f"{th['cat_h']:.4f} | {fig(r1, 'landing_x')} | {fig(r2, 'landing_x')} | "
-                    f"{bl if bl is None else f'{bl:.4f}'} | {th['cat_l']:.4f} | {simbvp} | "
-                    f"{ref2} | {st} |")
+
+        def pct(a: float, b: float | None) -> str:
+            return "-" if b is None else f"{100 * (a / b - 1):+.2f} %"
+
+        def num(x: float | None) -> str:
+            return "none" if x is None else f"{x:.4f}"
+
+        ref = ""
+        if r["refine"] == 1:
+            first[key] = r
+        elif key in first:
+            r1 = first[key]
+            ref = (f"{100 * (r['vertex_h'] / r1['vertex_h'] - 1):+.2f}, "
+                   f"{100 * (r['landing_x'] / r1['landing_x'] - 1):+.2f} %")
+        rows.append(head + f" {r['vertex_h']:.4f} +- {r['vertex_h_std']:.4f} | {num(bh)} | "
+                    f"{th['cat_h']:.4f} | {pct(r['vertex_h'], bh)} | "
+                    f"{r['landing_x']:.4f} +- {r['landing_x_std']:.4f} | {num(bl)} | "
+                    f"{th['cat_l']:.4f} | {pct(r['landing_x'], bl)} | {ref} | "
+                    f"{r['verdict']} |")
     return "\n".join(rows)
 
 
