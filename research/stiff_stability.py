@@ -1,0 +1,303 @@
+"""When a fed stiff fountain is steady, over a grid of joint stiffness ``c`` and damping
+``d``, and the mechanism of its unsteadiness measured (issue 62, item 6;
+``docs/stiff_stability.md``).
+
+Each run is a fountain of :mod:`research.stiff_runs` (its base link and step, the
+substeps chosen there for the spring and the damper), started on the catenary and run
+``--duration`` seconds, sampled every ``--sample`` seconds. From the vertex height after
+``--skip`` seconds:
+
+- ``sigma``: the growth rate (1/s) of its oscillation: a least-squares line through
+  ``ln rms`` of the vertex about its linear trend in consecutive 1-s windows;
+- ``period``: the oscillation's dominant period (s), from the spectrum of the last half;
+- ``amp_last``: the last 1-s window's vertex rms over the mean height;
+- the class: ``steady`` (the last ``--window`` seconds' vertex std and half-to-half drift
+  both at most 0.3 % of the height), ``cycling`` (the vertex's peak-to-peak over the
+  last half more than 10 % of its height: large climbs and collapses), ``growing``
+  (``sigma > 0.1 /s``), else ``unsteady``.
+
+The mechanism, over the last ``--window`` seconds, from the chain's shape at each
+sample (the recorder's profiles: joint ``i`` from the guide sits at arc length
+``s = i L``, a fixed place on the curve the chain runs through):
+
+- ``w(s, t)``: the normal displacement of the chain from its mean curve (the window's
+  mean joint positions), at the arc positions ``--at`` (fractions of the flight), and its
+  rms there;
+- ``lags``: the cross-correlation lag of ``w`` between consecutive positions (within
+  half a period), and the speed ``ds/lag`` it gives (positive: downstream, with the
+  chain; negative: upstream);
+- ``spectrum``: the 2-D spectrum of ``w(s, t)`` over the flight: the share of its power
+  in waves running upstream, the dominant frequency and wavenumber, their phase speed,
+  and the phase speed the stiff string's dispersion relation gives at that wavenumber
+  (``(omega - v k)^2 = v^2 k^2 (Tbar + e k^2)``, ``e`` of :func:`chainfountain.theory.
+  stiff.scaled_stiffness`, ``Tbar`` the mean over the flight; the upstream branch);
+- ``guide``: over the first ``--guide-part`` of the flight, the power running downstream
+  over that running upstream at the dominant frequency (near 1: what arrives at the guide
+  is sent back; near 0: absorbed).
+
+Usage::
+
+    python -m research.stiff_stability --out /tmp/stab.json          # the docs' grid
+    python -m research.stiff_stability --fountain steep --c 0.003 0.01 --d 0 1e-5
+
+Cost: 0.15-0.8 s of wall time per simulated second at ``d <= 1e-4`` (1-5 substeps),
+about 7 s per second at ``d = 1e-3`` (50 substeps).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from chainfountain.study.api import start
+from chainfountain.study.changes import with_changes
+from chainfountain.theory.stiff import scaled_stiffness
+from research.stiff_runs import FOUNTAINS, case_level
+
+GRIDS: dict[str, tuple[list[float], list[float]]] = {
+    "wide_low": ([0.01, 0.04, 0.121, 0.25], [0.0, 1e-5, 1e-4, 1e-3]),
+    "steep": ([0.003, 0.01, 0.04], [0.0, 1e-5, 1e-4]),
+}
+"""The default grid per fountain: stiffnesses (N*m/rad) and dampers (N*m*s/rad)."""
+
+
+def _detrended_rms(t: np.ndarray, y: np.ndarray) -> float:
+    p = np.polyfit(t, y, 1)
+    return float(np.sqrt(np.mean((y - np.polyval(p, t)) ** 2)))
+
+
+def vertex_analysis(t: np.ndarray, y: np.ndarray, skip: float, window: float) -> dict:
+    """Growth rate, period, amplitude and class of the vertex height series."""
+    sel = t >= skip
+    t, y = t[sel], y[sel]
+    edges = np.arange(t[0], t[-1] + 1e-9, 1.0)
+    cen, rms = [], []
+    for a, b in zip(edges[:-1], edges[1:], strict=True):
+        m = (t >= a) & (t < b)
+        if m.sum() > 5:
+            cen.append(0.5 * (a + b))
+            rms.append(_detrended_rms(t[m], y[m]))
+    cen, rms = np.array(cen), np.array(rms)
+    ok = rms > 0
+    sigma = float(np.polyfit(cen[ok], np.log(rms[ok]), 1)[0]) if ok.sum() >= 3 else math.nan
+    half = t >= 0.5 * (t[0] + t[-1])
+    yh = y[half] - np.polyval(np.polyfit(t[half], y[half], 1), t[half])
+    dt = float(np.median(np.diff(t)))
+    spec = np.abs(np.fft.rfft(yh * np.hanning(len(yh)))) ** 2
+    freqs = np.fft.rfftfreq(len(yh), dt)
+    k = int(np.argmax(spec[1:]) + 1)
+    period = float(1.0 / freqs[k])
+    last = t >= t[-1] - window
+    mean = float(y[last].mean())
+    mid = 0.5 * (t[last][0] + t[-1])
+    drift = float((y[last & (t >= mid)].mean() - y[last & (t < mid)].mean()) / mean)
+    rel_std = float(y[last].std() / mean)
+    p2p = float((y[half].max() - y[half].min()) / y[half].mean())
+    if abs(drift) <= 3e-3 and rel_std <= 3e-3:
+        cls = "steady"
+    elif p2p > 0.10:
+        cls = "cycling"
+    elif sigma > 0.1:
+        cls = "growing"
+    else:
+        cls = "unsteady"
+    return {"sigma": sigma, "period": period, "amp_last": float(rms[-1] / mean),
+            "rel_std": rel_std, "drift": drift, "p2p_last_half": p2p, "class": cls,
+            "vertex_h": mean, "rms_windows": [[float(a), float(b)] for a, b in zip(cen, rms,
+                                                                                strict=True)]}
+
+
+def normal_displacement(profiles: list, t0: float) -> tuple[np.ndarray, np.ndarray,
+                                                               np.ndarray, np.ndarray]:
+    """``(t, w, xbar, ybar)``: each profile's normal displacement from the mean curve of
+    the profiles from ``t0`` on (joints common to all), and that mean curve."""
+    profs = [p for p in profiles if p.t >= t0 - 1e-12]
+    n = min(len(p.x) for p in profs)
+    X = np.array([p.x[:n] for p in profs])
+    Y = np.array([p.y[:n] for p in profs])
+    xb, yb = X.mean(axis=0), Y.mean(axis=0)
+    tx, ty = np.gradient(xb), np.gradient(yb)
+    norm = np.hypot(tx, ty)
+    nx, ny = -ty / norm, tx / norm
+    w = (X - xb) * nx + (Y - yb) * ny
+    return np.array([p.t for p in profs]), w, xb, yb
+
+
+def _lag(a: np.ndarray, b: np.ndarray, dt: float, max_lag: float) -> float:
+    """The lag (s) by which ``b`` follows ``a`` (positive: ``b`` later), at the largest
+    cross-correlation within ``max_lag``."""
+    a = (a - a.mean()) / (a.std() or 1.0)
+    b = (b - b.mean()) / (b.std() or 1.0)
+    m = max(1, int(round(max_lag / dt)))
+    lags = np.arange(-m, m + 1)
+    cc = [np.mean(a[max(0, -k): len(a) - max(0, k)] * b[max(0, k): len(b) - max(0, -k)])
+          for k in lags]
+    i = int(np.argmax(cc))
+    if 0 < i < len(cc) - 1:  # parabolic refinement
+        y0, y1, y2 = cc[i - 1], cc[i], cc[i + 1]
+        den = y0 - 2 * y1 + y2
+        off = 0.5 * (y0 - y2) / den if den != 0 else 0.0
+    else:
+        off = 0.0
+    return float((lags[i] + off) * dt)
+
+
+def spectrum(w: np.ndarray, dt: float, ds: float) -> dict[str, float]:
+    """The 2-D spectrum of ``w[t, s]``: the share of power upstream, the dominant
+    frequency (Hz), wavenumber (1/m, cycles) and phase speed (m/s, positive downstream).
+    A wave ``cos(2 pi (kappa s - f t))`` runs downstream; numpy's transform puts it at
+    ``(f, kappa)`` of opposite signs."""
+    nt, ns = w.shape
+    win = np.outer(np.hanning(nt), np.hanning(ns))
+    W = np.fft.fft2((w - w.mean(axis=0)) * win)
+    P = np.abs(W) ** 2
+    f = np.fft.fftfreq(nt, dt)[:, None]
+    k = np.fft.fftfreq(ns, ds)[None, :]
+    prod = f * k
+    up = float(P[prod > 0].sum())
+    down = float(P[prod < 0].sum())
+    Pm = np.where((f != 0) & (k != 0), P, 0.0)
+    i, j = np.unravel_index(int(np.argmax(Pm)), P.shape)
+    fd, kd = float(f[i, 0]), float(k[0, j])
+    return {"upstream_share": up / (up + down) if up + down > 0 else math.nan,
+            "f": abs(fd), "kappa": abs(kd), "phase_speed": -fd / kd,
+            "direction": "upstream" if fd * kd > 0 else "downstream"}
+
+
+def guide_ratio(w: np.ndarray, dt: float, ds: float, f0: float) -> float:
+    """Near the guide: downstream-running over upstream-running power within 30 % of
+    ``f0``."""
+    nt, ns = w.shape
+    win = np.outer(np.hanning(nt), np.hanning(ns))
+    P = np.abs(np.fft.fft2((w - w.mean(axis=0)) * win)) ** 2
+    f = np.fft.fftfreq(nt, dt)[:, None]
+    k = np.fft.fftfreq(ns, ds)[None, :]
+    band = (np.abs(np.abs(f) - f0) <= 0.3 * f0) & (k != 0)
+    up = float(P[band & (f * k > 0)].sum())
+    down = float(P[band & (f * k < 0)].sum())
+    return down / up if up > 0 else math.nan
+
+
+def wave_analysis(runner, settings: dict, window: float, at: list[float],
+                  guide_part: float) -> dict[str, Any]:
+    """The mechanism over the last ``window`` seconds (see the module docstring)."""
+    rec = runner.recorder
+    profiles = rec.profiles
+    t_end = profiles[-1].t
+    t, w, xb, yb = normal_displacement(profiles, t_end - window)
+    L = settings["L"]
+    n = w.shape[1]
+    dt = float(np.median(np.diff(t)))
+    idx = [min(n - 1, int(round(a * (n - 1)))) for a in at]
+    rms = [float(w[:, i].std()) for i in idx]
+    # the dominant period of w where it is largest
+    i_big = idx[int(np.argmax(rms))]
+    sp = np.abs(np.fft.rfft(w[:, i_big] - w[:, i_big].mean())) ** 2
+    fr = np.fft.rfftfreq(len(t), dt)
+    f0 = float(fr[int(np.argmax(sp[1:]) + 1)])
+    lags = []
+    for a, b in zip(idx[:-1], idx[1:], strict=True):
+        lag = _lag(w[:, a], w[:, b], dt, 0.5 / f0)
+        ds = (b - a) * L
+        lags.append({"s_from": a * L, "s_to": b * L, "lag": lag,
+                     "speed": ds / lag if lag != 0 else math.inf})
+    spec = spectrum(w, dt, L)
+    # the stiff string's upstream phase speed at the dominant wavenumber
+    nmin = min(len(p.tension_bar) for p in profiles if p.t >= t_end - window - 1e-12)
+    tb = float(np.mean([np.mean(p.tension_bar[:nmin]) for p in profiles
+                        if p.t >= t_end - window - 1e-12]))
+    v = float(np.mean(rec.series("speed_mean")[-int(round(window / dt)):]))
+    e = scaled_stiffness(settings["c"], L, settings["lambda"], v)
+    kk = 2 * math.pi * spec["kappa"]
+    root = math.sqrt(max(0.0, tb + e * kk * kk))
+    spec["phase_speed_theory_upstream"] = v * (1.0 - root)
+    spec["phase_speed_theory_downstream"] = v * (1.0 + root)
+    spec["standing_wavelength"] = (2 * math.pi * math.sqrt(e / (1.0 - tb))
+                                   if e > 0 and tb < 1 else math.nan)
+    spec["Tbar_mean"] = tb
+    spec["v"] = v
+    m = max(4, int(round(guide_part * n)))
+    return {"window": [float(t[0]), float(t[-1])], "arc": n * L,
+            "at_s": [i * L for i in idx], "w_rms": rms, "f0": f0, "lags": lags,
+            "spectrum": spec, "guide_down_over_up": guide_ratio(w[:, :m], dt, L, f0),
+            "floor_down_over_up": guide_ratio(w[:, -m:], dt, L, f0)}
+
+
+def run_one(fountain: str, c: float, d: float, duration: float, sample: float,
+            skip: float, window: float, at: list[float], guide_part: float) -> dict:
+    lvl, settings = case_level(fountain, c, d, 1)
+    lvl = with_changes(lvl, {"recording.sample_interval": sample}, where="stability")
+    runner = start(lvl)
+    t0 = time.perf_counter()
+    ended = runner.advance(duration)
+    out: dict[str, Any] = {"fountain": fountain, "c": c, "d": d, "settings": settings,
+                           "duration": runner.time, "wall_s": time.perf_counter() - t0,
+                           "sample": sample, "start": "catenary",
+                           "ended": None if ended is None else ended.reason}
+    if ended is not None:
+        out["class"] = "diverged"
+        return out
+    rec = runner.recorder
+    out.update(vertex_analysis(rec.series("t"), rec.series("vertex_y"), skip, window))
+    out["waves"] = wave_analysis(runner, settings, window, at, guide_part)
+    return out
+
+
+def _line(r: dict) -> str:
+    head = (f"{r['fountain']:8s} c={r['c']:<6g} d={r['d']:<7g} sub={r['settings']['substeps']}"
+            f" wall={r['wall_s']:.0f}s")
+    if r.get("ended"):
+        return head + f" ENDED {r['ended']}"
+    wv = r["waves"]
+    sp = wv["spectrum"]
+    lags = " ".join(f"{x['speed']:+.1f}" for x in wv["lags"])
+    return (head + f" {r['class']:9s} sigma={r['sigma']:+.2f}/s T={r['period']:.2f}s "
+            f"amp={100 * r['amp_last']:.2f}% p2p={100 * r['p2p_last_half']:.1f}% | "
+            f"f0={wv['f0']:.2f}Hz w_rms(mm)="
+            + ",".join(f"{1e3 * x:.1f}" for x in wv["w_rms"])
+            + f" lag speeds {lags} m/s | up share {sp['upstream_share']:.2f} "
+            f"dom {sp['direction']} f={sp['f']:.2f} "
+            f"lam_w={1 / sp['kappa'] if sp['kappa'] else 0:.3f}m "
+            f"c_ph={sp['phase_speed']:+.2f} (string {sp['phase_speed_theory_upstream']:+.2f}) "
+            f"guide d/u={wv['guide_down_over_up']:.2f} floor d/u={wv['floor_down_over_up']:.2f}")
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(prog="python -m research.stiff_stability",
+                                 description=__doc__.split("\n\n")[0])
+    ap.add_argument("--fountain", choices=sorted(FOUNTAINS), nargs="+",
+                    default=["wide_low", "steep"])
+    ap.add_argument("--c", type=float, nargs="+", help="stiffnesses (default: the grid's)")
+    ap.add_argument("--d", type=float, nargs="+", help="dampers (default: the grid's)")
+    ap.add_argument("--duration", type=float, default=16.0)
+    ap.add_argument("--sample", type=float, default=0.01)
+    ap.add_argument("--skip", type=float, default=2.0)
+    ap.add_argument("--window", type=float, default=4.0)
+    ap.add_argument("--at", type=float, nargs="+", default=[0.1, 0.3, 0.5, 0.7, 0.9])
+    ap.add_argument("--guide-part", type=float, default=0.3)
+    ap.add_argument("--out", type=Path)
+    a = ap.parse_args(argv)
+    runs = []
+    for f in a.fountain:
+        cs = a.c or GRIDS[f][0]
+        ds = a.d if a.d is not None else GRIDS[f][1]
+        for c in cs:
+            for d in ds:
+                r = run_one(f, c, d, a.duration, a.sample, a.skip, a.window, a.at,
+                            a.guide_part)
+                runs.append(r)
+                print(_line(r), flush=True)
+                if a.out is not None:
+                    a.out.write_text(json.dumps(runs, indent=1))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
