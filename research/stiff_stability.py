@@ -29,11 +29,22 @@ sample (the recorder's profiles: joint ``i`` from the guide sits at arc length
 - ``spectrum``: the 2-D spectrum of ``w(s, t)`` over the flight: the share of its power
   in waves running upstream, the dominant frequency and wavenumber, their phase speed,
   and the phase speed the stiff string's dispersion relation gives at that wavenumber
-  (``(omega - v k)^2 = v^2 k^2 (Tbar + e k^2)``, ``e`` of :func:`chainfountain.theory.
-  stiff.scaled_stiffness`, ``Tbar`` the mean over the flight; the upstream branch);
-- ``guide``: over the first ``--guide-part`` of the flight, the power running downstream
-  over that running upstream at the dominant frequency (near 1: what arrives at the guide
-  is sent back; near 0: absorbed).
+  (``(omega - v k)^2 (1 + k^2 L^2/12) = v^2 k^2 (Tbar + e_B k^2)``, ``e_B = c L/(lambda
+  v^2)``, ``Tbar`` the mean over the flight; the upstream branch; its ``omega = 0`` wave
+  is the BVP's standing one, of wavelength ``2 pi sqrt(e/(1 - Tbar))``, and shorter waves
+  run upstream), and ``attenuation``: ``delta (1 - Tbar) S/(2 e^2)``, the decay
+  exponent over the flight ``S`` of the standing-wavelength waves by the damper (the
+  stiff BVP's rate; ``delta`` from ``d`` plus ``solver.wave_damping``'s damper);
+- ``bending``: the same over the bending band (wavelengths 0.5-2 times the standing
+  one), with the string's group speeds there and the measured ``envelope_speed``: the
+  speed at which the band's amplitude travels from 30 % to 70 % of the flight (the
+  group speed, the way energy goes, where one branch carries the band);
+- ``guide``/``floor``: over the first/last ``--guide-part`` of the flight, the bending
+  band's power with downstream phase over that with upstream phase at its dominant
+  frequency.
+
+Each is taken over two windows: ``early`` (``--skip`` to ``--skip + --window``, while the
+oscillation is small) and ``late`` (the last ``--window`` seconds).
 
 Usage::
 
@@ -149,55 +160,97 @@ def _lag(a: np.ndarray, b: np.ndarray, dt: float, max_lag: float) -> float:
     return float((lags[i] + off) * dt)
 
 
-def spectrum(w: np.ndarray, dt: float, ds: float) -> dict[str, float]:
+def spectrum(w: np.ndarray, dt: float, ds: float,
+             band: tuple[float, float] | None = None) -> dict[str, float]:
     """The 2-D spectrum of ``w[t, s]``: the share of power upstream, the dominant
-    frequency (Hz), wavenumber (1/m, cycles) and phase speed (m/s, positive downstream).
-    A wave ``cos(2 pi (kappa s - f t))`` runs downstream; numpy's transform puts it at
-    ``(f, kappa)`` of opposite signs."""
+    frequency (Hz), wavenumber (1/m, cycles) and phase speed (m/s, positive downstream),
+    over all wavenumbers or those in ``band`` (1/m). A wave ``cos(2 pi (kappa s - f t))``
+    runs downstream; numpy's transform puts it at ``(f, kappa)`` of opposite signs."""
     nt, ns = w.shape
     win = np.outer(np.hanning(nt), np.hanning(ns))
     W = np.fft.fft2((w - w.mean(axis=0)) * win)
     P = np.abs(W) ** 2
     f = np.fft.fftfreq(nt, dt)[:, None]
     k = np.fft.fftfreq(ns, ds)[None, :]
+    keep = (f != 0) & (k != 0)
+    if band is not None:
+        keep &= (np.abs(k) >= band[0]) & (np.abs(k) <= band[1])
     prod = f * k
-    up = float(P[prod > 0].sum())
-    down = float(P[prod < 0].sum())
-    Pm = np.where((f != 0) & (k != 0), P, 0.0)
+    up = float(P[keep & (prod > 0)].sum())
+    down = float(P[keep & (prod < 0)].sum())
+    Pm = np.where(keep, P, 0.0)
     i, j = np.unravel_index(int(np.argmax(Pm)), P.shape)
     fd, kd = float(f[i, 0]), float(k[0, j])
     return {"upstream_share": up / (up + down) if up + down > 0 else math.nan,
-            "f": abs(fd), "kappa": abs(kd), "phase_speed": -fd / kd,
+            "f": abs(fd), "kappa": abs(kd), "phase_speed": -fd / kd if kd else math.nan,
             "direction": "upstream" if fd * kd > 0 else "downstream"}
 
 
-def guide_ratio(w: np.ndarray, dt: float, ds: float, f0: float) -> float:
-    """Near the guide: downstream-running over upstream-running power within 30 % of
-    ``f0``."""
+def guide_ratio(w: np.ndarray, dt: float, ds: float, f0: float,
+                band: tuple[float, float] | None = None) -> float:
+    """Downstream-running over upstream-running power within 30 % of ``f0`` (and the
+    wavenumbers of ``band``, 1/m), over the arc ``w`` covers."""
     nt, ns = w.shape
     win = np.outer(np.hanning(nt), np.hanning(ns))
     P = np.abs(np.fft.fft2((w - w.mean(axis=0)) * win)) ** 2
     f = np.fft.fftfreq(nt, dt)[:, None]
     k = np.fft.fftfreq(ns, ds)[None, :]
-    band = (np.abs(np.abs(f) - f0) <= 0.3 * f0) & (k != 0)
-    up = float(P[band & (f * k > 0)].sum())
-    down = float(P[band & (f * k < 0)].sum())
+    sel = (np.abs(np.abs(f) - f0) <= 0.3 * f0) & (k != 0)
+    if band is not None:
+        sel &= (np.abs(k) >= band[0]) & (np.abs(k) <= band[1])
+    up = float(P[sel & (f * k > 0)].sum())
+    down = float(P[sel & (f * k < 0)].sum())
     return down / up if up > 0 else math.nan
 
 
-def wave_analysis(runner, settings: dict, window: float, at: list[float],
+def _string(spec: dict, v: float, tb: float, e_b: float, L: float) -> None:
+    """The stiff string's phase and group speeds at the spectrum's dominant wavenumber,
+    on its slow branch (``omega = v k (1 - R)``, the one whose ``omega = 0`` wave is the
+    BVP's standing wave, running upstream for shorter waves) and its fast one
+    (``v k (1 + R)``), ``R = sqrt((Tbar + e_B k^2)/(1 + k^2 L^2/12))``."""
+    def root(kk: float) -> float:
+        return math.sqrt(max(0.0, (tb + e_b * kk * kk) / (1.0 + kk * kk * L * L / 12.0)))
+
+    kk = 2 * math.pi * spec["kappa"]
+    r = root(kk)
+    spec["phase_speed_theory_upstream"] = v * (1.0 - r)
+    spec["phase_speed_theory_downstream"] = v * (1.0 + r)
+    dk = 1e-4 * max(kk, 1e-6)
+    dr = (root(kk + dk) * (kk + dk) - root(kk - dk) * (kk - dk)) / (2 * dk)
+    spec["group_speed_theory_slow"] = v * (1.0 - dr)
+    spec["group_speed_theory_fast"] = v * (1.0 + dr)
+
+
+def envelope_speed(w: np.ndarray, dt: float, ds: float, f0: float, a: int, b: int,
+                   max_lag: float) -> float:
+    """The speed (m/s, positive downstream) at which the envelope of ``w`` in the
+    frequency band ``f0 +- 30 %`` travels from arc index ``a`` to ``b``: the lag of the
+    largest cross-correlation of the band's amplitude (the group speed where one
+    branch carries the band)."""
+    nt = w.shape[0]
+    fr = np.fft.fftfreq(nt, dt)
+    mask = (fr > 0.7 * f0) & (fr < 1.3 * f0)  # the analytic signal of the band
+
+    def env(x: np.ndarray) -> np.ndarray:
+        X = np.fft.fft(x - x.mean())
+        return np.abs(np.fft.ifft(np.where(mask, 2 * X, 0.0)))
+
+    lag = _lag(env(w[:, a]), env(w[:, b]), dt, max_lag)
+    return (b - a) * ds / lag if lag != 0 else math.inf
+
+
+def wave_analysis(runner, settings: dict, t_from: float, t_to: float, at: list[float],
                   guide_part: float) -> dict[str, Any]:
-    """The mechanism over the last ``window`` seconds (see the module docstring)."""
+    """The mechanism over ``[t_from, t_to]`` (see the module docstring)."""
     rec = runner.recorder
-    profiles = rec.profiles
-    t_end = profiles[-1].t
-    t, w, xb, yb = normal_displacement(profiles, t_end - window)
+    profiles = [p for p in rec.profiles if t_from - 1e-12 <= p.t <= t_to + 1e-12]
+    t, w, xb, yb = normal_displacement(profiles, t_from)
     L = settings["L"]
     n = w.shape[1]
     dt = float(np.median(np.diff(t)))
     idx = [min(n - 1, int(round(a * (n - 1)))) for a in at]
     rms = [float(w[:, i].std()) for i in idx]
-    # the dominant period of w where it is largest
+    # the dominant frequency of w where it is largest
     i_big = idx[int(np.argmax(rms))]
     sp = np.abs(np.fft.rfft(w[:, i_big] - w[:, i_big].mean())) ** 2
     fr = np.fft.rfftfreq(len(t), dt)
@@ -208,26 +261,37 @@ def wave_analysis(runner, settings: dict, window: float, at: list[float],
         ds = (b - a) * L
         lags.append({"s_from": a * L, "s_to": b * L, "lag": lag,
                      "speed": ds / lag if lag != 0 else math.inf})
-    spec = spectrum(w, dt, L)
-    # the stiff string's upstream phase speed at the dominant wavenumber
-    nmin = min(len(p.tension_bar) for p in profiles if p.t >= t_end - window - 1e-12)
-    tb = float(np.mean([np.mean(p.tension_bar[:nmin]) for p in profiles
-                        if p.t >= t_end - window - 1e-12]))
-    v = float(np.mean(rec.series("speed_mean")[-int(round(window / dt)):]))
+    tb = float(np.mean([np.mean(p.tension_bar[:n]) for p in profiles]))
+    ts = rec.series("t")
+    sel = (ts >= t_from - 1e-12) & (ts <= t_to + 1e-12)
+    v = float(np.mean(rec.series("speed_mean")[sel]))
     e = scaled_stiffness(settings["c"], L, settings["lambda"], v)
-    kk = 2 * math.pi * spec["kappa"]
-    root = math.sqrt(max(0.0, tb + e * kk * kk))
-    spec["phase_speed_theory_upstream"] = v * (1.0 - root)
-    spec["phase_speed_theory_downstream"] = v * (1.0 + root)
-    spec["standing_wavelength"] = (2 * math.pi * math.sqrt(e / (1.0 - tb))
-                                   if e > 0 and tb < 1 else math.nan)
-    spec["Tbar_mean"] = tb
-    spec["v"] = v
+    e_b = settings["c"] * L / (settings["lambda"] * v * v)
+    lam_s = 2 * math.pi * math.sqrt(e / (1.0 - tb)) if e > 0 and tb < 1 else math.nan
+    whole = spectrum(w, dt, L)
+    _string(whole, v, tb, e_b, L)
     m = max(4, int(round(guide_part * n)))
-    return {"window": [float(t[0]), float(t[-1])], "arc": n * L,
-            "at_s": [i * L for i in idx], "w_rms": rms, "f0": f0, "lags": lags,
-            "spectrum": spec, "guide_down_over_up": guide_ratio(w[:, :m], dt, L, f0),
-            "floor_down_over_up": guide_ratio(w[:, -m:], dt, L, f0)}
+    out: dict[str, Any] = {
+        "window": [float(t[0]), float(t[-1])], "arc": n * L, "at_s": [i * L for i in idx],
+        "w_rms": rms, "f0": f0, "lags": lags, "spectrum": whole, "Tbar_mean": tb, "v": v,
+        "e": e, "standing_wavelength": lam_s}
+    # the damper's decay of the standing-wavelength waves over the flight (the stiff
+    # BVP's rate delta (1 - Tbar)/(2 e^2)), with the numerical wave damper added
+    delta = (settings["d"] + settings["wave_damper"]) * L / (settings["lambda"] * v)
+    out["attenuation"] = delta * (1.0 - tb) * n * L / (2.0 * e * e) if e > 0 else math.nan
+    if math.isfinite(lam_s):
+        band = (0.5 / lam_s, min(2.0 / lam_s, 0.5 / L))
+        bend = spectrum(w, dt, L, band)
+        _string(bend, v, tb, e_b, L)
+        out["bending"] = bend
+        out["bending_band"] = list(band)
+        fb = bend["f"] or f0
+        i30, i70 = idx[1], idx[3] if len(idx) > 3 else idx[-1]
+        bend["envelope_speed"] = envelope_speed(w, dt, L, fb, i30, i70,
+                                                0.5 * (t[-1] - t[0]))
+        out["guide_down_over_up"] = guide_ratio(w[:, :m], dt, L, fb, band)
+        out["floor_down_over_up"] = guide_ratio(w[:, -m:], dt, L, fb, band)
+    return out
 
 
 def run_one(fountain: str, c: float, d: float, duration: float, sample: float,
@@ -246,7 +310,30 @@ def run_one(fountain: str, c: float, d: float, duration: float, sample: float,
         return out
     rec = runner.recorder
     out.update(vertex_analysis(rec.series("t"), rec.series("vertex_y"), skip, window))
-    out["waves"] = wave_analysis(runner, settings, window, at, guide_part)
+    out["waves_early"] = wave_analysis(runner, settings, skip, skip + window, at,
+                                       guide_part)
+    out["waves_late"] = wave_analysis(runner, settings, runner.time - window, runner.time,
+                                      at, guide_part)
+    return out
+
+
+def _waves_line(wv: dict) -> str:
+    sp = wv["spectrum"]
+    lags = " ".join(f"{x['speed']:+.1f}" for x in wv["lags"])
+    out = (f"[{wv['window'][0]:.0f}-{wv['window'][1]:.0f}s] f0={wv['f0']:.2f}Hz "
+           "w_rms(mm)=" + ",".join(f"{1e3 * x:.2f}" for x in wv["w_rms"])
+           + f" lags {lags} m/s; all: up {sp['upstream_share']:.2f} {sp['direction']} "
+           f"f={sp['f']:.2f} c_ph={sp['phase_speed']:+.2f}; A={wv['attenuation']:.2f}")
+    b = wv.get("bending")
+    if b is not None:
+        out += (f"; bending (lam_s={wv['standing_wavelength']:.3f}m): up "
+                f"{b['upstream_share']:.2f} {b['direction']} f={b['f']:.2f} "
+                f"lam={1 / b['kappa'] if b['kappa'] else 0:.3f} c_ph={b['phase_speed']:+.2f} "
+                f"(string {b['phase_speed_theory_upstream']:+.2f}/"
+                f"{b['phase_speed_theory_downstream']:+.2f}; group "
+                f"{b['group_speed_theory_slow']:+.2f}/{b['group_speed_theory_fast']:+.2f}) "
+                f"envelope {b['envelope_speed']:+.2f} m/s guide d/u="
+                f"{wv['guide_down_over_up']:.2f} floor d/u={wv['floor_down_over_up']:.2f}")
     return out
 
 
@@ -255,18 +342,9 @@ def _line(r: dict) -> str:
             f" wall={r['wall_s']:.0f}s")
     if r.get("ended"):
         return head + f" ENDED {r['ended']}"
-    wv = r["waves"]
-    sp = wv["spectrum"]
-    lags = " ".join(f"{x['speed']:+.1f}" for x in wv["lags"])
     return (head + f" {r['class']:9s} sigma={r['sigma']:+.2f}/s T={r['period']:.2f}s "
-            f"amp={100 * r['amp_last']:.2f}% p2p={100 * r['p2p_last_half']:.1f}% | "
-            f"f0={wv['f0']:.2f}Hz w_rms(mm)="
-            + ",".join(f"{1e3 * x:.1f}" for x in wv["w_rms"])
-            + f" lag speeds {lags} m/s | up share {sp['upstream_share']:.2f} "
-            f"dom {sp['direction']} f={sp['f']:.2f} "
-            f"lam_w={1 / sp['kappa'] if sp['kappa'] else 0:.3f}m "
-            f"c_ph={sp['phase_speed']:+.2f} (string {sp['phase_speed_theory_upstream']:+.2f}) "
-            f"guide d/u={wv['guide_down_over_up']:.2f} floor d/u={wv['floor_down_over_up']:.2f}")
+            f"amp={100 * r['amp_last']:.3f}% p2p={100 * r['p2p_last_half']:.1f}%\n  early "
+            + _waves_line(r["waves_early"]) + "\n  late  " + _waves_line(r["waves_late"]))
 
 
 def main(argv: list[str] | None = None) -> int:
