@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from chainfountain.errors import UserError
+from chainfountain.sim import joints
 from chainfountain.sim.kinds import kind_of
 
 if TYPE_CHECKING:
@@ -142,7 +143,9 @@ class Refinement:
 
 
 def refined_config(cfg: SimConfig, factor: int, level: str = "level") -> SimConfig:
-    """``cfg`` with link length and step divided by ``factor``, started on the catenary
+    """``cfg`` with link length and step divided by ``factor`` (the same chain: joint springs
+    and dampers scaled to keep its bending rigidity, :func:`chainfountain.sim.joints.
+    same_chain`, with the sub-steps their spring needs), started on the catenary
     (:class:`~chainfountain.errors.UserError` when the level is not fed, or the link would
     be shorter than the schema allows)."""
     from chainfountain.fields import allowed_text, in_range
@@ -152,7 +155,7 @@ def refined_config(cfg: SimConfig, factor: int, level: str = "level") -> SimConf
         raise UserError(f"{level}: kind = {cfg.kind!r}; allowed: refinement works on fed "
                         "levels (kind 'feed'), whose fountain the paper predicts from the feed")
     out = copy.deepcopy(cfg)
-    out.chain.link_length = cfg.chain.link_length / factor
+    joints.same_chain(out.chain, cfg.chain.link_length / factor)
     meta = field_meta("chain.link_length")
     if not in_range(out.chain.link_length, meta):
         most = 1
@@ -165,6 +168,7 @@ def refined_config(cfg: SimConfig, factor: int, level: str = "level") -> SimConf
             "this level")
     out.chain.link_radius = min(cfg.chain.link_radius, 0.4 * out.chain.link_length)
     out.solver.dt = cfg.solver.dt / factor
+    out.solver.substeps = joints.substeps_for_spring(out.chain, out.solver)
     out.solver.accuracy = 0.0
     out.initial.mode = "catenary"
     out.feed.starter = 0.0  # on the fountain, a machine needs no starter

@@ -7,13 +7,16 @@ Each ``fig_<name>()`` returns ``(figure, caption)``; nothing is written here
 
 from __future__ import annotations
 
+import math
+from dataclasses import dataclass
+
 import numpy as np
 from matplotlib.colors import LogNorm
 from matplotlib.figure import Figure
 
 from chainfountain.figures._io import plt
 from chainfountain.theory import Fountain, solve_qH
-from chainfountain.theory.belt import PAPER_FOUNTAINS, BeltFountain, belt_fountain
+from chainfountain.theory.stiff import StiffFountain, continued
 
 __all__ = [
     "EXAMPLE",
@@ -21,7 +24,7 @@ __all__ = [
     "fig_force_ranges",
     "fig_schematic_chain_fountain",
     "fig_sol",
-    "paper_belt_fountains",
+    "paper_stiff_fountains",
 ]
 
 EXAMPLE = {"H": 2.0, "xi": 0.14, "kappa": 0.165, "k": 0.377}
@@ -75,69 +78,120 @@ def fig_sol(n: int = 240) -> tuple[Figure, str]:
     return fig, caption
 
 
-def paper_belt_fountains() -> dict[str, BeltFountain]:
-    """Fountains A, B, C, D (k = 0.377) and D' (k = 0.430) of Fig. "schematic_chain_fountain".
+PAPER_E2 = {"A": 2e-4, "B": 4e-4, "C": 8e-4}
+"""The paper's ``e2`` (m^2) of fountains A-C; its ``e1`` (1e-5, 2e-5) multiplies the
+tension and has no origin in a bending moment, so it is not part of the stiff theory."""
 
-    Launch held fixed: start point, angle, tension and curvature of the example
-    catenary (``qH = 44.20`` from ``xi, kappa``; see :mod:`chainfountain.theory.belt`).
-    """
+
+@dataclass(frozen=True)
+class PaperCurve:
+    """One fountain of Fig. "schematic_chain_fountain" from the launch (origin)."""
+
+    label: str
+    s: np.ndarray
+    x: np.ndarray
+    y: np.ndarray
+    alpha: np.ndarray
+    T_bar: np.ndarray
+
+    @property
+    def h(self) -> float:
+        """Vertex height above the launch (m)."""
+        return float(self.y.max())
+
+    @property
+    def l(self) -> float:  # noqa: E743 - the paper's name
+        """Landing, horizontally from the launch (m)."""
+        return float(self.x[-1])
+
+
+PAPER_START_E = 1e-4
+"""The loosest stiffness (m^2) whose steady fountain the example's catenary guess reaches;
+the fountains A-C are continued upwards from it."""
+
+
+def paper_stiff(e2: float) -> StiffFountain | None:
+    """The steady stiff fountain of the paper's example launch at ``e = e2`` (m^2) on the
+    branch continued upwards from :data:`PAPER_START_E` in steps of at most 25 % (a second
+    branch, which solves from the catenary's guess find, exists above 5.3e-4 m^2 and folds
+    there; ``research/stiff_branches.py`` maps both). ``None`` where none is found."""
     base = example_fountain()
-    return {
-        name: belt_fountain(base.q, base.h, base.H, k, eps)
-        for name, (eps, k) in PAPER_FOUNTAINS.items()
-    }
+    n = max(2, math.ceil(math.log(max(e2, PAPER_START_E) / PAPER_START_E) / math.log(1.25)) + 1)
+    path = [float(e) for e in np.geomspace(PAPER_START_E, e2, n)]
+    return continued(base.v, base.alpha0, base.H, base.TE_bar, path)[-1]
+
+
+def paper_stiff_fountains() -> dict[str, PaperCurve]:
+    """Fountains A, B, C (the steady stiff theory at the paper's ``e2``), D (the catenary,
+    ``k = 0.377``) and D' (the same curve at ``k = 0.430``), all launched as the example
+    catenary is (5.10 m/s at 82.0 deg, ``qH = 44.20``) onto the floor 2 m below pulling with
+    ``Tbar_E = 0.123`` (:func:`paper_stiff`)."""
+    base = example_fountain()
+    out: dict[str, PaperCurve] = {}
+    for name, e2 in PAPER_E2.items():
+        f = paper_stiff(e2)
+        if f is None:
+            empty = np.array([np.nan])
+            out[name] = PaperCurve(f"{name}: e2={e2:.0e}, no steady solution found", empty,
+                                   empty, empty, empty, empty)
+            continue
+        out[name] = PaperCurve(f"{name}: e2={e2:.0e}", f.s, f.x, f.y, f.alpha, f.T_bar)
+    for name, k in (("D", base.k), ("D'", 0.430)):
+        x, y = base.curve(600)
+        x0, y0 = base.start
+        s = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(x), np.diff(y)))])
+        alpha = -np.arctan(np.sinh(base.q * x))
+        out[name] = PaperCurve(f"{name}: catenary, k={k:.3f}", s, x - x0, y - y0, alpha,
+                               base.with_k(k).tension_bar(y) if name == "D'" else
+                               base.tension_bar(y))
+    return out
 
 
 _COLORS = {"A": "tab:green", "B": "tab:red", "C": "tab:purple", "D": "tab:blue", "D'": "tab:orange"}
 
 
 def fig_schematic_chain_fountain(
-    fountains: dict[str, BeltFountain] | None = None,
+    fountains: dict[str, PaperCurve] | None = None,
 ) -> tuple[Figure, str]:
-    """Fig. "schematic_chain_fountain": belt fountains A-D, shape, ``Tbar(s)``, ``alpha(s)``."""
-    fs = paper_belt_fountains() if fountains is None else fountains
+    """Fig. "schematic_chain_fountain" recomputed with the steady stiff-chain theory:
+    fountains A-D, shape, ``Tbar(s)``, ``alpha(s)``."""
+    fs = paper_stiff_fountains() if fountains is None else fountains
     fig = plt.figure(figsize=(9.0, 6.4), layout="constrained")
     gs = fig.add_gridspec(2, 2, width_ratios=[1, 1.6])
     ax_shape = fig.add_subplot(gs[:, 0])
     ax_T = fig.add_subplot(gs[0, 1])
     ax_a = fig.add_subplot(gs[1, 1], sharex=ax_T)
     for name, b in fs.items():
-        eps = b.eps
-        if name.startswith("D"):
-            label = f"{name}: e=0, k={b.k:.3f}"
-        else:
-            label = f"{name}: e1={eps.e1:.0e}, e2={eps.e2:.0e}"
         lw = 1.0 if name.startswith("D") else 1.2
         ls = "--" if name == "D'" else "-"
         c = _COLORS.get(name)
-        x0 = b.x[0]
-        ax_shape.plot(b.x - x0, b.y - b.y[0], color=c, lw=lw, ls=ls, label=label)
-        ax_T.plot(b.s, b.T, color=c, lw=lw, ls=ls)
+        ax_shape.plot(b.x, b.y, color=c, lw=lw, ls=ls, label=b.label)
+        ax_T.plot(b.s, b.T_bar, color=c, lw=lw, ls=ls)
         ax_a.plot(b.s, b.alpha, color=c, lw=lw, ls=ls)
-    any_b = next(iter(fs.values()))
-    ax_shape.axhline(-any_b.H, color="0.5", lw=0.8)
+    ax_shape.axhline(-EXAMPLE["H"], color="0.5", lw=0.8)
     ax_shape.set_aspect("equal")
-    ax_shape.set_xlabel("x from start [m]")
-    ax_shape.set_ylabel("y from start [m]")
+    ax_shape.set_xlabel("x from launch [m]")
+    ax_shape.set_ylabel("y from launch [m]")
     fig.legend(fontsize=8, loc="outside lower center", ncols=3)
     ax_shape.set_title("fountain")
     ax_T.axhline(0, color="0.5", lw=0.6)
     ax_T.set_ylabel(r"$\bar T = T/(\lambda v^2)$")
     ax_T.set_title("scaled tension")
     ax_a.set_ylabel(r"$\alpha$ [rad]")
-    ax_a.set_xlabel("arc length s from start [m]")
-    rows = ", ".join(
-        f"{n}: h={b.overshoot:.3f} m, l={b.distance:.3f} m" for n, b in fs.items() if n != "D'"
-    )
+    ax_a.set_xlabel("arc length s from launch [m]")
+    rows = ", ".join(f"{n}: h={b.h:.3f} m, l={b.l:.3f} m" for n, b in fs.items() if n != "D'")
     caption = (
-        "Fig. schematic_chain_fountain: belt approximation with joint resistance "
-        "Qbar = -(e0 + e1*T)*alpha' - (e2 + e3*T)*alpha'' (paper Eq. 2), H = 2 m, "
-        "xi = 0.14, kappa = 0.165 (qH = 44.20), e0 = e3 = 0. Each fountain starts with the "
-        "catenary's start point, angle, curvature and tension (k = 0.377 for A-D, 0.430 "
-        "for D' dashed) and is integrated to the floor y = -H. Overshoot height and landing "
-        f"distance: {rows} (catenary: h = 0.280, l = 0.330). D and D' have the same shape; "
-        "only the tension differs (Tbar_E = 0.123 and ~0). The bending term excites "
-        "stationary waves of wavenumber sqrt((1 - T)/e2) on the falling branch."
+        "Fig. schematic_chain_fountain: the paper's fountains A-D recomputed with the steady "
+        "stiff-chain theory (chainfountain.theory.stiff: bending moment M = e2*lambda*v^2*"
+        "alpha', guide fixing the launch point and direction, floor end free of moment and "
+        "shear and pulled with Tbar_E), H = 2 m, xi = 0.14, kappa = 0.165 (qH = 44.20), all "
+        "launched at the example catenary's 5.10 m/s and 82.0 deg onto a floor pulling with "
+        "Tbar_E = 0.123; the paper's e1 (a tension-dependent term with no bending origin) is "
+        f"left out. Overshoot height and landing distance: {rows}. D and D' (k = 0.430, "
+        "dashed) have the same shape; only the tension differs (Tbar_E = 0.123 and ~0). "
+        "A-C lie on the branch continued from e = 1e-4 m^2 (docs/stiff_chain.md): they rise "
+        "higher than the catenary, as the paper's do, but land wider, where the paper's land "
+        "narrower."
     )
     return fig, caption
 

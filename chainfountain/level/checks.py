@@ -8,10 +8,10 @@ here are those of every level. No check changes the level: the settings
 from __future__ import annotations
 
 import dataclasses
-import math
 
 from chainfountain.fields import iter_numeric_fields
 from chainfountain.level.model import Level, _fail
+from chainfountain.sim import joints
 from chainfountain.sim.config import KINDS, SimConfig
 from chainfountain.sim.kinds import kind_of
 from chainfountain.sim.kinds.fed import DRIVE_FIELDS, IDEAL_DRIVES
@@ -35,33 +35,24 @@ def check_consistency(level: Level, where: str) -> None:
     _check_controls(level, where)
 
 
-SPRING_STABILITY = 2.0
-"""Largest ``omega*h`` the joints' rotary springs are stepped stably at: ``omega =
-sqrt(4 c/I)`` is the relative turning rate of two linked links of moment
-``I = lambda L^3/12`` held by a spring ``c``, ``h`` the pymunk step. pymunk applies the
-spring explicitly, and like any explicit step it diverges beyond 2. Measured (0.5 s from
-each level's start, ``chain.bending_stiffness`` raised): ``wide_low``, ``apparatus_fold``
-and ``beaker`` ran at ``omega*h`` 1.8 and 2.0 and diverged at 2.2-2.3."""
-
-
 def _check_joint_spring(sim: SimConfig, where: str) -> None:
     """``chain.bending_stiffness`` below the explicit spring's stability limit
-    (:data:`SPRING_STABILITY`) at the level's link and step."""
+    (:data:`chainfountain.sim.joints.SPRING_STABILITY`) at the level's link and step; the
+    damper has none (:mod:`chainfountain.sim.joints`)."""
     c = sim.chain.bending_stiffness
     if c <= 0.0:
         return
-    L, lam = sim.chain.link_length, sim.chain.linear_density
-    moment = lam * L**3 / 12.0
     h = sim.solver.dt / sim.solver.substeps
-    c_max = moment * (SPRING_STABILITY / h) ** 2 / 4.0
+    c_max = joints.stiffness_limit(sim.chain, h)
     if c < c_max:
         return
-    omega_h = 2.0 * math.sqrt(c / moment) * h
+    L = sim.chain.link_length
     _fail(where, "chain.bending_stiffness",
-          f"{c!r} N*m/rad makes linked links ring at omega*h = {omega_h:.3g} with "
-          f"{L:g} m links and a {h:g} s pymunk step, and the spring diverges beyond "
-          f"{SPRING_STABILITY:g}; allowed: less than {c_max:.3g} N*m/rad here (or a smaller "
-          "solver.dt, more solver.substeps or longer links)")
+          f"{c!r} N*m/rad makes linked links ring at omega*h = "
+          f"{joints.omega_h(sim.chain, h):.3g} with {L:g} m links and a {h:g} s pymunk step, "
+          f"and the spring diverges beyond {joints.SPRING_STABILITY:g}; allowed: less than "
+          f"{c_max:.3g} N*m/rad here (or a smaller solver.dt, more solver.substeps or longer "
+          "links)")
 
 
 def _check_controls(level: Level, where: str) -> None:

@@ -1,7 +1,9 @@
 """The settings a level runs with: the named step between its checks and its run.
 
 A level with ``solver.accuracy`` above 0 asks for its link length, step and iterations to
-be chosen for that accuracy (:mod:`chainfountain.sim.accuracy`'s error model);
+be chosen for that accuracy (:mod:`chainfountain.sim.accuracy`'s error model; joint springs
+and dampers are scaled to the chosen links so that the chain is the same,
+:func:`chainfountain.sim.joints.same_chain`, with the sub-steps their spring needs);
 :func:`resolve` returns the level with them, which is what runs and what is recorded.
 """
 
@@ -11,7 +13,7 @@ import copy
 import math
 
 from chainfountain.level.model import Level, _fail
-from chainfountain.sim import accuracy
+from chainfountain.sim import accuracy, joints
 from chainfountain.sim.accuracy import Estimate
 from chainfountain.sim.kinds import kind_of
 from chainfountain.sim.reference import LaunchReference
@@ -39,9 +41,10 @@ def resolve(level: Level, where: str) -> tuple[Level, Estimate | None]:
         _fail(where, "solver.accuracy", f"{acc!r}: {exc}; allowed: {least} (0: the level's own "
               "settings, with `chainfountain converge LEVEL` for their error)")
     s = est.settings
-    sim.chain.link_length = s.link_length
+    joints.same_chain(sim.chain, s.link_length)
     sim.chain.link_radius = min(sim.chain.link_radius, 0.4 * s.link_length)
     sim.solver.dt = s.dt
     sim.solver.substeps = 1
+    sim.solver.substeps = joints.substeps_for_spring(sim.chain, sim.solver)
     sim.solver.iterations = s.iterations
     return level, est

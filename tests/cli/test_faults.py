@@ -61,7 +61,7 @@ def _diverging_level():
     unstable at the 0.5 ms step for links this light (omega*h = 2.7), so the run
     diverges before the machine can do anything else (measured: at 0.040-0.058 s from
     four nudged starts). The level check refuses such a spring
-    (:data:`chainfountain.level.checks.SPRING_STABILITY`), so the level is changed after
+    (:data:`chainfountain.sim.joints.SPRING_STABILITY`), so the level is changed after
     it was read, as a study's own code could."""
     lvl = shipped.level("apparatus_floor")
     sim = lvl.sim

@@ -9,8 +9,7 @@ import math
 import pytest
 
 from chainfountain.errors import LevelError
-from chainfountain.level import checks
-from chainfountain.sim import Simulation
+from chainfountain.sim import Simulation, joints
 from chainfountain.sim.watchdog import Diverged
 from chainfountain.study.changes import with_changes
 
@@ -19,7 +18,7 @@ def _limit(cfg) -> float:
     """The stiffness at omega*h = SPRING_STABILITY for ``cfg``'s links and step."""
     moment = cfg.chain.linear_density * cfg.chain.link_length**3 / 12.0
     h = cfg.solver.dt / cfg.solver.substeps
-    return moment * (checks.SPRING_STABILITY / h) ** 2 / 4.0
+    return moment * (joints.SPRING_STABILITY / h) ** 2 / 4.0
 
 
 @pytest.mark.parametrize("name", ["wide_low", "apparatus_fold", "beaker"])
@@ -55,4 +54,4 @@ def test_the_limit_is_where_the_spring_diverges(level):
     assert not _run(cfg, (1.1**2) * c_max, 0.5)
     assert math.isclose(2.0 * math.sqrt(c_max * 12.0 / (cfg.chain.linear_density
                                                          * cfg.chain.link_length**3))
-                        * cfg.solver.dt / cfg.solver.substeps, checks.SPRING_STABILITY)
+                        * cfg.solver.dt / cfg.solver.substeps, joints.SPRING_STABILITY)
