@@ -294,8 +294,45 @@ def wave_analysis(runner, settings: dict, t_from: float, t_to: float, at: list[f
     return out
 
 
+def figure(runner, settings: dict, path: Path, title: str) -> None:
+    """The normal displacement ``w(s, t)`` over the whole run as a space-time map (arc
+    length from the guide across, time up), and the vertex height against time."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    rec = runner.recorder
+    profs = rec.profiles
+    late = [p for p in profs if p.t >= profs[-1].t - 4.0]
+    # every profile's displacement from the last 4 s's mean curve
+    _, _, xb, yb = normal_displacement(late, late[0].t)
+    n = min(len(xb), min(len(p.x) for p in profs))
+    t_all = np.array([p.t for p in profs])
+    X = np.array([p.x[:n] for p in profs])
+    Y = np.array([p.y[:n] for p in profs])
+    tx, ty = np.gradient(xb[:n]), np.gradient(yb[:n])
+    nrm = np.hypot(tx, ty)
+    W = (X - xb[:n]) * (-ty / nrm) + (Y - yb[:n]) * (tx / nrm)
+    fig, ax = plt.subplots(1, 2, figsize=(11, 5), gridspec_kw={"width_ratios": [3, 1]})
+    s = np.arange(n) * settings["L"]
+    lim = float(np.percentile(np.abs(W), 99)) or 1e-6
+    im = ax[0].pcolormesh(s, t_all, W * 1e3, cmap="RdBu_r", vmin=-lim * 1e3, vmax=lim * 1e3,
+                          shading="auto")
+    fig.colorbar(im, ax=ax[0], label="w (mm)")
+    ax[0].set_xlabel("arc length from the guide (m)")
+    ax[0].set_ylabel("t (s)")
+    ax[0].set_title(title)
+    ax[1].plot(rec.series("vertex_y"), rec.series("t"))
+    ax[1].set_xlabel("vertex height (m)")
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
+
+
 def run_one(fountain: str, c: float, d: float, duration: float, sample: float,
-            skip: float, window: float, at: list[float], guide_part: float) -> dict:
+            skip: float, window: float, at: list[float], guide_part: float,
+            fig: Path | None = None) -> dict:
     lvl, settings = case_level(fountain, c, d, 1)
     lvl = with_changes(lvl, {"recording.sample_interval": sample}, where="stability")
     runner = start(lvl)
@@ -314,6 +351,9 @@ def run_one(fountain: str, c: float, d: float, duration: float, sample: float,
                                        guide_part)
     out["waves_late"] = wave_analysis(runner, settings, runner.time - window, runner.time,
                                       at, guide_part)
+    if fig is not None:
+        figure(runner, settings, fig.with_name(f"{fig.stem}_{fountain}_c{c:g}_d{d:g}"
+                                               f"{fig.suffix}"), f"{fountain} c={c:g} d={d:g}")
     return out
 
 
@@ -361,6 +401,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--at", type=float, nargs="+", default=[0.1, 0.3, 0.5, 0.7, 0.9])
     ap.add_argument("--guide-part", type=float, default=0.3)
     ap.add_argument("--out", type=Path)
+    ap.add_argument("--figure", type=Path, metavar="PATH.png",
+                    help="also draw each run's w(s, t) to PATH_<fountain>_c<c>_d<d>.png")
     a = ap.parse_args(argv)
     runs = []
     for f in a.fountain:
@@ -369,7 +411,7 @@ def main(argv: list[str] | None = None) -> int:
         for c in cs:
             for d in ds:
                 r = run_one(f, c, d, a.duration, a.sample, a.skip, a.window, a.at,
-                            a.guide_part)
+                            a.guide_part, a.figure)
                 runs.append(r)
                 print(_line(r), flush=True)
                 if a.out is not None:
