@@ -142,8 +142,10 @@ class Theory(_Part):
     rel_error: RelErrors
     abs_error: AbsErrors
     theory: str = "catenary"
-    joints: dict[str, float | None] | None = None
-    """A stiff chain's ``c`` (N*m/rad), ``d`` (N*m*s/rad), ``e`` (m^2), ``delta`` (m^3)."""
+    joints: dict[str, Any] | None = None
+    """A stiff chain's ``c`` (N*m/rad), ``d`` (N*m*s/rad), ``e`` (m^2), ``delta`` (m^3), the
+    damper's decay ``damper_decay`` and whether the fountain ``settles``
+    (:func:`chainfountain.theory.stiff.damper_decay`)."""
     catenary: dict[str, Any] | None = None
     """A stiff chain's catenary: ``h``, ``vertex_x``, ``l``, ``q``, ``T0_bar`` and
     ``rel_error`` (``h``, ``vertex_x``, ``l``) of the window against them."""

@@ -102,6 +102,10 @@ def stiff_lines(th: Theory, h: float, l: float, v: float | None) -> list[str]:  
         lines = [f"  vertex height {h:.4f} m (stiff-chain theory {th.h:.4f}, {pct(err.h)}), "
                  f"landing {l:.4f} m (stiff-chain theory {th.l:.4f}, {pct(err.l)}){speed}; "
                  f"joints {joints}"]
+    if j.get("settles") is False:
+        lines.append(f"  the damper decays the stiff chain's standing waves by A = "
+                     f"{j.get('damper_decay') or 0:.2g} a pass, below the 2.2 at which stiff "
+                     "fountains settle: this one does not (docs/stiff_stability.md)")
     return lines + ([beside] if beside else [])
 
 

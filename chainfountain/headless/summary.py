@@ -68,16 +68,26 @@ def _tension_end(s: Summary) -> float:
     return float(tb[-1]) if tb is not None and len(tb) else float("nan")
 
 
-def _joints(level: Level, v: float) -> dict[str, float | None]:
+def _joints(level: Level, v: float, cat: LaunchReference) -> dict[str, Any]:
     """A stiff chain's joints, physical and scaled at speed ``v``
     (:func:`~chainfountain.theory.stiff.scaled_stiffness`, :func:`~chainfountain.theory.
-    stiff.scaled_damping`)."""
-    from chainfountain.theory.stiff import scaled_damping, scaled_stiffness
+    stiff.scaled_damping`), with the damper's decay over the catenary's flight and whether
+    it settles (:func:`~chainfountain.theory.stiff.damper_decay`, ``docs/stiff_stability.md``;
+    ``damper_decay`` ``None``: no standing waves to decay)."""
+    from chainfountain.theory.stiff import (
+        SETTLES_AT,
+        damper_decay,
+        scaled_damping,
+        scaled_stiffness,
+    )
 
     ch = level.sim.chain
     c, d, L, lam = ch.bending_stiffness, ch.bending_damping, ch.link_length, ch.linear_density
-    return {"c": finite(c), "d": finite(d), "e": finite(scaled_stiffness(c, L, lam, v)),
-            "delta": finite(scaled_damping(d, L, lam, v))}
+    e, delta = scaled_stiffness(c, L, lam, v), scaled_damping(d, L, lam, v)
+    decay = damper_decay(e, delta, cat.arc_length, 0.5 * (cat.T0_bar + cat.TE_bar))
+    return {"c": finite(c), "d": finite(d), "e": finite(e), "delta": finite(delta),
+            "damper_decay": finite(decay) if math.isfinite(decay) else None,
+            "settles": bool(decay >= SETTLES_AT)}
 
 
 def _beside(cat: LaunchReference, s: Summary) -> dict[str, Any]:
@@ -107,7 +117,8 @@ def theory_section(level: Level, sim: Simulation, rec: Recorder,
         return Theory(h=None, vertex_x=None, l=None, q=None, k=cat.k, v=cat.v, T0_bar=None,
                       TE_bar=cat.TE_bar, rel_error=RelErrors(**none),
                       abs_error=AbsErrors(T0_bar=None, TE_bar=None, tension_rms=None),
-                      theory="stiff", joints=_joints(level, cat.v), catenary=_beside(cat, s),
+                      theory="stiff", joints=_joints(level, cat.v, cat),
+                      catenary=_beside(cat, s),
                       why_none=pred.note)
     errs = s.errors(ref)
     stiff = isinstance(ref, StiffReference)
@@ -123,7 +134,7 @@ def theory_section(level: Level, sim: Simulation, rec: Recorder,
                             tension_rms=finite(s.tension_rms)))
     if stiff:
         out.theory = "stiff"
-        out.joints = _joints(level, ref.v)
+        out.joints = _joints(level, ref.v, ref.catenary)
         out.catenary = _beside(ref.catenary, s)
     return out
 

@@ -36,7 +36,7 @@ inverted catenary (section "Inverted Catenary"). Its error at link length ``L``,
 3. **Joint resistance** (``chain.bending_stiffness`` c, ``chain.bending_damping`` d): the
    figures are compared with the steady stiff theory (:mod:`chainfountain.theory.stiff`),
    and the link term above stays; the margin is :data:`STIFF_MARGIN` instead of
-   ``MARGIN``, 1.25 times the largest miss beyond the link term of 21 steady runs
+   ``MARGIN``, 1.25 times the largest miss beyond the link term of 19 steady runs
    (``research/stiff_runs.py``; ``wide_low`` and a 75-deg, 3.5-m/s launch, c 0.003-0.08,
    d 1e-5-1e-3, links of 1 and 2 cm, the damper's sub-steps at ``2 d h/I <= 0.3``; the sim
    sits 0.2-0.7 % below the theory in height). It holds for joints no stiffer than
@@ -82,7 +82,7 @@ C_STEP = {"vertex_y": 0.60, "vertex_x": 0.30, "landing_x": 0.25}
 """Bound on the step error per unit ``q*v*dt*Tbar_E/(k/q)``: 1.25 times the smallest
 coefficient that covers every converged run's miss beyond the margin (0.48 / 0.24 / 0.20)."""
 STIFF_MARGIN = {"vertex_y": 0.0082, "vertex_x": 0.0076, "landing_x": 0.0070}
-"""A stiff chain's margin: 1.25 times the largest miss beyond the link term of the 21
+"""A stiff chain's margin: 1.25 times the largest miss beyond the link term of the 19
 steady stiff runs (0.66 / 0.61 / 0.56 %)."""
 STIFF_EQ2 = 0.018
 """Largest ``e q^2`` measured (0.017)."""

@@ -11,7 +11,7 @@ any explicit step the spring diverges once ``omega h`` passes 2 (:data:`SPRING_S
 whole up to ``d h/I = 100``), but beyond ``x ~ 1`` it is no longer the damper ``d``: on
 ``wide_low`` with ``d = 1e-3`` (``x = 15``) the vertex lies +0.4 ... +2.8 % off the steady
 theory by the solver's iterations (10 ... 160), and within -0.5 % once sub-steps bring
-``x`` to 0.25 (``d = 3e-4``: -0.5 % at ``x = 0.45``). :data:`DAMPER_X` is the limit
+``x`` to 0.5 (``d = 3e-4``: -0.5 % at ``x = 0.45``). :data:`DAMPER_X` is the limit
 checked before a run and kept by the sub-steps refinement and ``solver.accuracy`` choose.
 
 **The same chain at other links.** A chain of links ``L`` with joint springs ``c`` and

@@ -53,6 +53,7 @@ length ``delta/e`` at the launch. Without a damper only ``e > 0`` is solved (at
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -169,6 +170,21 @@ def damper_growth(e: float, delta: float, length: float) -> float:
     if delta <= 0.0 or e <= 0.0:
         return 0.0
     return delta * length / (2.0 * e * e)
+
+
+SETTLES_AT = 2.2
+"""Smallest :func:`damper_decay` at which the simulated stiff fountains settle: of 30 runs
+on two launches (``docs/stiff_stability.md``) every steady one has ``A >= 2.2`` and every
+one with ``A <= 1.8`` is not steady (one stiff run cycles at 3.1)."""
+
+
+def damper_decay(e: float, delta: float, length: float, T_bar_mean: float) -> float:
+    """``A = delta (1 - Tbar) S/(2 e^2)``: how much the damper decays the standing bending
+    waves over one pass of a flight of arc length ``S`` (:data:`SETTLES_AT`); ``inf``
+    without stiffness (no standing waves), 0 without a damper."""
+    if e <= 0.0:
+        return math.inf if delta > 0.0 else 0.0
+    return delta * (1.0 - T_bar_mean) * length / (2.0 * e * e)
 
 
 def _guess(f: Fountain, n: int) -> tuple[Array, Array, float]:

@@ -104,3 +104,16 @@ def test_a_run_without_a_steady_stiff_fountain_says_so(tmp_path, monkeypatch):
     text = describe_outputs(path)
     assert "no steady stiff fountain at c = 0.03 N*m/rad" in text
     assert "the catenary (no joint resistance)" in text
+
+
+def test_a_chain_too_little_damped_to_settle_says_so(stiff_run, tmp_path):
+    """``stiff_chain``'s damper settles its fountain (A well above 2.2); without it the
+    same springs do not, and summary.json and the printed lines say so."""
+    j = json.loads(stiff_run.read_text())["theory"]["joints"]
+    assert j["settles"] is True and j["damper_decay"] > 2.2
+    assert "does not" not in describe_outputs(stiff_run, RunSummary.load(stiff_run))
+    bare = run_level(laid(d=0.0), tmp_path, 0.2, progress=False)
+    jb = json.loads(bare.read_text())["theory"]["joints"]
+    assert jb["settles"] is False and jb["damper_decay"] == 0.0
+    assert "below the 2.2 at which stiff fountains settle: this one does not" in (
+        describe_outputs(bare, RunSummary.load(bare)))
