@@ -58,6 +58,8 @@ class Readout:
     joints: str = ""
     """A stiff chain's joints (``c = ..., d = ...``), else ''."""
     theory_note: str = ""
+    settle_note: str = ""
+    """Why a stiff chain will not settle on its theory's fountain ('' when it will)."""
     """Why a stiff chain has no theory curve ("no steady stiff fountain at c = ..., d =
     ..."), else ''."""
     tension_theory_y: np.ndarray = field(default_factory=lambda: np.zeros(0))
@@ -238,6 +240,8 @@ def _stiff_overlay(r: Readout, ref: StiffReference, g: float) -> None:
     """The stiff-chain theory's curve, vertex and tensions in ``r`` (the measured figures
     stay; before the chain lands, the theory's stand in for them)."""
     r.theory, r.theory_label = ref.theory, ref.label
+    if not ref.settles:
+        r.settle_note = "too little damping: this stiff chain does not settle"
     r.joints = f"c = {ref.c:.3g} N*m/rad, d = {ref.d:.3g} N*m*s/rad"
     r.curve = ref.curve(160)
     r.T0_theory, r.TE_theory = ref.T0_bar, ref.TE_bar

@@ -37,6 +37,8 @@ def plain_rows(ro: Readout, lam: float) -> list[Row]:
         rows.append(Row(f"   {who} predicts {ro.paper_h:.2f} m", "dim"))
     elif ro.theory_note:
         rows.append(Row(f"   {ro.theory_note}", "warn"))
+    if ro.settle_note:
+        rows.append(Row(f"   {ro.settle_note}", "warn"))
     rows.append(Row(f"lands  {_num(ro.l, '.2f')} m away, {_num(ro.H, '.2f')} m down",
                     "text", "l, H"))
     if ro.origin != "launch":

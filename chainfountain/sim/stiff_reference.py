@@ -26,7 +26,13 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from chainfountain.sim.reference import LaunchReference
-from chainfountain.theory.stiff import NoSteadyFountain, StiffFountain, stiff_fountain_of
+from chainfountain.theory.stiff import (
+    SETTLES_AT,
+    NoSteadyFountain,
+    StiffFountain,
+    damper_decay,
+    stiff_fountain_of,
+)
 
 if TYPE_CHECKING:
     from chainfountain.sim.config import SimConfig
@@ -142,6 +148,18 @@ class StiffReference:
     def landing_angle(self) -> float:
         """Tangent angle at the floor (rad, from ``+x``; negative: falling)."""
         return float(self.fountain.alpha[-1])
+
+    def damper_decay(self) -> float:
+        """How much the damper decays the standing bending waves over one pass of the
+        flight (:func:`chainfountain.theory.stiff.damper_decay`)."""
+        f = self.fountain
+        return damper_decay(f.e, f.delta, float(f.s[-1]), float(np.mean(f.T_bar)))
+
+    @property
+    def settles(self) -> bool:
+        """Whether a simulated chain settles on this fountain (the damper's decay at least
+        :data:`chainfountain.theory.stiff.SETTLES_AT`; ``docs/stiff_stability.md``)."""
+        return self.damper_decay() >= SETTLES_AT
 
     def describe(self) -> str:
         """``stiff-chain theory at c = ..., d = ...`` with the scaled figures."""

@@ -99,3 +99,21 @@ def test_the_readout_says_when_there_is_no_steady_stiff_fountain(tmp_path, monke
 
     assert any(r.text.strip() == ro.note and r.colour == "warn"
                for r in plain_rows(ro, 0.05))
+
+
+def test_the_readout_warns_when_the_damper_is_too_weak_to_settle(tmp_path, monkeypatch):
+    """``stiff_chain``'s damper settles its fountain; with the damping slider at 0 the
+    theory's steady fountain still exists, and the readout says the chain will not
+    settle on it (``docs/stiff_stability.md``)."""
+    from chainfountain.app.readout_text import plain_rows
+
+    monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
+    s = Session(shipped.level("stiff_chain"))
+    assert s.refresh_theory(wait=True)
+    assert s.sim.reference.settles and not s.readout().settle_note
+    assert s.set_field("chain.bending_damping", 0.0).ok
+    assert s.refresh_theory(wait=True)
+    ro = s.readout()
+    assert isinstance(s.sim.reference, StiffReference) and not s.sim.reference.settles
+    assert any("does not settle" in r.text and r.colour == "warn"
+               for r in plain_rows(ro, 0.05))
