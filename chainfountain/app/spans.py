@@ -30,6 +30,7 @@ from chainfountain.app.controls import FieldSpec
 from chainfountain.fields import get_value, set_value
 from chainfountain.level import io
 from chainfountain.level.io import Level, LevelError
+from chainfountain.sim import joints
 from chainfountain.sim.apparatus.laws import floor_runs_on, fold_cart_span, fold_runs_on
 from chainfountain.sim.config import SimConfig
 from chainfountain.sim.kinds import kind_of
@@ -57,8 +58,14 @@ rebuilt with ``xi3`` 0.48: stopped at 5.6 s; 0.52: held 40 s; 0.4 and 0.6 with t
 cart moved by the paper's law (63 g and 53 g): stopped at 3.7 and 2.6 s
 (``docs/apparatus.md``, "Tuning the damped folds live")."""
 
+JOINT_FIELDS = ("chain.bending_stiffness", "chain.bending_damping")
+"""The joints' spring and damper: their sliders stop short of the step limits the level
+check refuses (:mod:`chainfountain.sim.joints`: the spring's ``omega h < 2``, the damper's
+``2 d h/I <= 0.3``)."""
+
 NARROWED_FIELDS = frozenset(MACHINE_FIELDS) | frozenset(FLOOR_FIELDS) | \
-    frozenset(FOLD_FIELDS) | frozenset(FOLD_OTHER_FIELDS) | frozenset(FOLD_OFFSETS)
+    frozenset(FOLD_FIELDS) | frozenset(FOLD_OTHER_FIELDS) | frozenset(FOLD_OFFSETS) | \
+    frozenset(JOINT_FIELDS)
 """Every field whose slider may span less than the schema's range (the window recomputes
 their spans after any change)."""
 
@@ -103,8 +110,12 @@ def admissible(level: Level, spec: FieldSpec,
     its chain runs on; a contact fold machine's, that its carts stay within their measured
     band of ``origin``'s), or ``None`` when the field is none of an ideal machine's,
     :data:`FLOOR_FIELDS` of a contact floor machine or the ``FOLD_*`` fields of a contact
-    fold machine, or the present value is outside already (the schema's range then)."""
+    fold machine, or the present value is outside already (the schema's range then). The
+    joints' spring and damper (:data:`JOINT_FIELDS`) span the slider's own range cut at
+    their step limits."""
     sim = level.sim
+    if spec.path in JOINT_FIELDS:
+        return _joint_span(sim, spec)
     variant = kind_of(sim).style(sim)  # an apparatus's variant ("fold", "floor", ...)
     fold = (variant == "fold" and origin is not None and len(sim.carts) >= 2
             and len(origin.carts) >= 2 and (origin.apparatus.fold_roller == "contact"
@@ -133,6 +144,20 @@ def admissible(level: Level, spec: FieldSpec,
     if not spec.hi_incl:
         hi = hi - 1e-9 * (hi - lo)
     return _edge(ok, now, lo), _edge(ok, now, hi)
+
+
+def _joint_span(sim: SimConfig, spec: FieldSpec) -> tuple[float, float] | None:
+    """The joint field's slider span cut at its step limit (``None``: the present value
+    is beyond it already, set on purpose)."""
+    h = sim.solver.dt / sim.solver.substeps
+    if spec.path == "chain.bending_stiffness":
+        limit = joints.stiffness_limit(sim.chain, h) * (1.0 - 1e-6)  # strictly below
+    else:
+        limit = joints.damping_limit(sim.chain, h)
+    lo, hi = spec.slider_lo / spec.scale, spec.slider_hi / spec.scale
+    if float(get_value(sim, spec.path)) > limit:
+        return None
+    return lo, min(hi, limit)
 
 
 def narrowed(level: Level, spec: FieldSpec, origin: SimConfig | None = None) -> FieldSpec:

@@ -117,3 +117,19 @@ def test_the_readout_warns_when_the_damper_is_too_weak_to_settle(tmp_path, monke
     assert isinstance(s.sim.reference, StiffReference) and not s.sim.reference.settles
     assert any("does not settle" in r.text and r.colour == "warn"
                for r in plain_rows(ro, 0.05))
+
+
+def test_the_joint_sliders_stop_at_their_step_limits(app):
+    """The damping slider ends where the level check's damper limit is (0.00064 N*m*s/rad
+    at 4-cm links and 62.5-us steps), below its 3x-the-value span; the stiffness slider
+    keeps its span, far below the spring's limit."""
+    from chainfountain.sim import joints
+
+    s = app.session
+    h = s.level.sim.solver.dt / s.level.sim.solver.substeps
+    damp = app._row("chain.bending_damping").spec
+    assert damp.slider_hi == pytest.approx(joints.damping_limit(s.level.sim.chain, h))
+    assert s.set_field("chain.bending_damping", damp.slider_hi).ok
+    stiff = app._row("chain.bending_stiffness").spec
+    assert stiff.slider_hi < joints.stiffness_limit(s.level.sim.chain, h)
+    assert stiff.slider_hi == pytest.approx(0.05)
