@@ -300,8 +300,9 @@ def stiff_fountain_of(c: float, d: float, L: float, lam: float, v: float, alpha0
     :func:`scaled_stiffness` and :func:`scaled_damping`. ``None`` where neither matters
     (``e <= 0`` and a damper too faint to show, :data:`LAYER_FRACTION`): the paper's
     catenary is then the fountain.
-    Tries the catenary's guess (or ``guess``) first, then continues from the undamped or
-    the loose chain; :class:`NoSteadyFountain` when none of these converges."""
+    Tries the catenary's guess (or ``guess``) first, then continues from the loose chain
+    (stiffness first, then the damper), giving up at the first step that fails;
+    :class:`NoSteadyFountain` when none of these converges."""
     e = scaled_stiffness(c, L, lam, v)
     delta = scaled_damping(d, L, lam, v)
     ec = c * L / (lam * v * v)
@@ -314,10 +315,16 @@ def stiff_fountain_of(c: float, d: float, L: float, lam: float, v: float, alpha0
     try:
         return stiff_fountain(v, alpha0, H, TE_bar, e, g, guess=guess, delta=delta, ec=ec)
     except NoSteadyFountain as first:
-        path = continued(v, alpha0, H, TE_bar, _ramp(e, delta), g)
-        if path[-1] is None:
+        last: StiffFountain | None = None
+        for e_i, d_i, ec_i in _ramp(e, delta):  # stops at the first step it cannot take
+            try:
+                last = stiff_fountain(v, alpha0, H, TE_bar, e_i, g, guess=last, delta=d_i,
+                                      ec=ec_i)
+            except NoSteadyFountain:
+                raise first from None
+        if last is None:
             raise first from None
-        return path[-1]
+        return stiff_fountain(v, alpha0, H, TE_bar, e, g, guess=last, delta=delta, ec=ec)
 
 
 def _ramp(e: float, delta: float, steps: int = 12) -> list[tuple[float, float, float]]:
