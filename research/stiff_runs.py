@@ -325,11 +325,17 @@ def main(argv: list[str] | None = None) -> int:
     for f, c, d in todo:
         for r in a.refine:
             res = run_case(f, c, d, r, a.duration, a.window, a.damper_x)
-            runs.append(res)
-            print(_line(res), flush=True)
-            if a.out is not None:
-                a.out.write_text(json.dumps(runs, indent=1))
+            record(runs, res, _line(res), a.out)
     return 0
+
+
+def record(runs: list[dict[str, Any]], res: dict[str, Any], line: str,
+           out: Path | None) -> None:
+    """Append a run, print its line and rewrite ``out`` (JSON) with every run so far."""
+    runs.append(res)
+    print(line, flush=True)
+    if out is not None:
+        out.write_text(json.dumps(runs, indent=1))
 
 
 if __name__ == "__main__":

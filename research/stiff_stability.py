@@ -58,7 +58,6 @@ about 7 s per second at ``d = 1e-3`` (50 substeps).
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import sys
 import time
@@ -70,7 +69,7 @@ import numpy as np
 from chainfountain.study.api import start
 from chainfountain.study.changes import with_changes
 from chainfountain.theory.stiff import scaled_stiffness
-from research.stiff_runs import FOUNTAINS, case_level
+from research.stiff_runs import FOUNTAINS, case_level, record
 
 GRIDS: dict[str, tuple[list[float], list[float]]] = {
     "wide_low": ([0.01, 0.04, 0.121, 0.25], [0.0, 1e-5, 1e-4, 1e-3]),
@@ -412,10 +411,7 @@ def main(argv: list[str] | None = None) -> int:
             for d in ds:
                 r = run_one(f, c, d, a.duration, a.sample, a.skip, a.window, a.at,
                             a.guide_part, a.figure)
-                runs.append(r)
-                print(_line(r), flush=True)
-                if a.out is not None:
-                    a.out.write_text(json.dumps(runs, indent=1))
+                record(runs, r, _line(r), a.out)
     return 0
 
 

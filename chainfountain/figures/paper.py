@@ -115,10 +115,17 @@ def paper_stiff(e2: float) -> StiffFountain | None:
     branch continued upwards from :data:`PAPER_START_E` in steps of at most 25 % (a second
     branch, which solves from the catenary's guess find, exists above 5.3e-4 m^2 and folds
     there; ``research/stiff_branches.py`` maps both). ``None`` where none is found."""
+    return paper_stiffs([e2])[e2]
+
+
+def paper_stiffs(es: list[float]) -> dict[float, StiffFountain | None]:
+    """:func:`paper_stiff` at each of ``es``, along one continuation through all of them."""
     base = example_fountain()
-    n = max(2, math.ceil(math.log(max(e2, PAPER_START_E) / PAPER_START_E) / math.log(1.25)) + 1)
-    path = [float(e) for e in np.geomspace(PAPER_START_E, e2, n)]
-    return continued(base.v, base.alpha0, base.H, base.TE_bar, path)[-1]
+    top = max(max(es), PAPER_START_E)
+    n = max(2, math.ceil(math.log(top / PAPER_START_E) / math.log(1.25)) + 1)
+    path = sorted({float(e) for e in np.geomspace(PAPER_START_E, top, n)} | set(es))
+    found = continued(base.v, base.alpha0, base.H, base.TE_bar, path)
+    return {e: found[path.index(e)] for e in es}
 
 
 def paper_stiff_fountains() -> dict[str, PaperCurve]:
@@ -128,8 +135,9 @@ def paper_stiff_fountains() -> dict[str, PaperCurve]:
     ``Tbar_E = 0.123`` (:func:`paper_stiff`)."""
     base = example_fountain()
     out: dict[str, PaperCurve] = {}
+    solved = paper_stiffs(list(PAPER_E2.values()))
     for name, e2 in PAPER_E2.items():
-        f = paper_stiff(e2)
+        f = solved[e2]
         if f is None:
             empty = np.array([np.nan])
             out[name] = PaperCurve(f"{name}: e2={e2:.0e}, no steady solution found", empty,

@@ -16,6 +16,7 @@ from chainfountain.app import layout, text  # noqa: E402
 from chainfountain.app.session import Session  # noqa: E402
 from chainfountain.app.window import App  # noqa: E402
 from tests import shipped
+from tests.app.offscreen import shipped_app
 
 SIZES = ((720, 540), (900, 600), (1280, 760), (1920, 1080), (800, 1100), (1080, 1920))
 """The smallest supported window, a small laptop's, the default, a projector's, and two
@@ -52,10 +53,8 @@ def test_text_grows_with_the_window_and_more_in_projector_mode() -> None:
 
 @pytest.fixture
 def beaker_app(tmp_path, monkeypatch):
-    monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
-    a = App(Session(shipped.level("beaker")), size=(1280, 760), offscreen=True)
-    yield a
-    a.finish()
+    with shipped_app("beaker", tmp_path / "home", monkeypatch) as a:
+        yield a
 
 
 def test_projector_mode_keeps_the_windows_size_whichever_way_it_starts(tmp_path,

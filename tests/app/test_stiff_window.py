@@ -20,14 +20,13 @@ from chainfountain.app.session import Session  # noqa: E402
 from chainfountain.app.window import App  # noqa: E402
 from chainfountain.sim.stiff_reference import StiffReference  # noqa: E402
 from tests import shipped  # noqa: E402
+from tests.app.offscreen import shipped_app  # noqa: E402
 
 
 @pytest.fixture
 def app(tmp_path, monkeypatch):
-    monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
-    a = App(Session(shipped.level("stiff_chain")), size=(1280, 760), offscreen=True)
-    yield a
-    a.finish()
+    with shipped_app("stiff_chain", tmp_path / "home", monkeypatch) as a:
+        yield a
 
 
 def frames_until(app: App, done, seconds: float = 20.0) -> None:
