@@ -26,10 +26,12 @@ _ITEM = re.compile(r"^([a-z_]+)\[(\d+)\](\..+)$")
 
 def _bending_stiffness(sim: Any, index: int | None, v: float) -> None:
     sim.chain.set_bending(stiffness=v)
+    sim.joints_changed()  # a motor-fed chain's stiff theory follows
 
 
 def _bending_damping(sim: Any, index: int | None, v: float) -> None:
     sim.chain.set_bending(damping=v)
+    sim.joints_changed()
 
 
 def _friction(sim: Any, index: int | None, v: float) -> None:

@@ -279,12 +279,15 @@ class Simulation:
         (:meth:`LaunchReference.of_level`), or the stiff fountain for a motor-fed chain
         with joint resistance (:func:`~chainfountain.sim.stiff_reference.predict`, solved
         from the present one)."""
-        try:
-            cat = LaunchReference.of_level(self.config, v)
-        except ValueError:
-            cat = None
         guess = self.reference if isinstance(self.reference, StiffReference) else None
-        return predict(self.config, cat, guess)
+        return predict(self.config, self._catenary_at(v), guess)
+
+    def _catenary_at(self, v: float) -> LaunchReference | None:
+        """The paper's catenary for this level at chain speed ``v`` (``None``: none)."""
+        try:
+            return LaunchReference.of_level(self.config, v)
+        except ValueError:
+            return None
 
     def set_theory(self, pred: Prediction) -> None:
         """Take ``pred`` as the level's theory (:attr:`reference`, :attr:`catenary`,
@@ -303,10 +306,7 @@ class Simulation:
         if not (self.defer_theory and stiff_applies(self.config)):
             self.set_theory(self.predict_at(v))
             return
-        try:
-            self.catenary = LaunchReference.of_level(self.config, v)
-        except ValueError:
-            self.catenary = None
+        self.catenary = self._catenary_at(v)
         if self.feed is not None:
             self.feed.set_reference(self.catenary)
         self.theory_stale = True
@@ -314,8 +314,9 @@ class Simulation:
 
     def joints_changed(self) -> None:
         """The joints' spring or damper changed live: the stiff theory is solved again
-        (at once, or by :meth:`refresh_theory` when :attr:`defer_theory`)."""
-        if self.feed is None:
+        (at once, or by :meth:`refresh_theory` when :attr:`defer_theory`); nothing for a
+        kind whose chain is compared with the string model whatever its joints."""
+        if self.feed is None or not self.kind.stiff_theory:
             return
         if self.defer_theory:
             self.theory_stale = True

@@ -78,18 +78,6 @@ def _end_tension(sim: Any, index: int | None, v: float) -> None:
     sim.set_feed_speed(sim.config.feed.speed)  # recomputes the reference
 
 
-def _bending_stiffness(sim: Any, index: int | None, v: float) -> None:
-    """``chain.bending_stiffness`` live: the joints' springs, then the stiff theory."""
-    sim.chain.set_bending(stiffness=v)
-    sim.joints_changed()
-
-
-def _bending_damping(sim: Any, index: int | None, v: float) -> None:
-    """``chain.bending_damping`` live: the joints' dampers, then the stiff theory."""
-    sim.chain.set_bending(damping=v)
-    sim.joints_changed()
-
-
 def accuracy_refusal(cfg: SimConfig) -> str | None:
     """``solver.accuracy``'s error model covers a motor-fed fountain on an absorbing floor,
     without blocks in the scene or self-collision."""
@@ -105,9 +93,7 @@ def accuracy_refusal(cfg: SimConfig) -> str | None:
 KIND = Kind(
     config=FeedConfig, name="feed", table="feed", title="a motor-fed fountain", check=check,
     default_duration=default_duration, reach=reach, build=build,
-    live={"feed.speed": speed_setter, "feed.end_tension": _end_tension,
-          "chain.bending_stiffness": _bending_stiffness,
-          "chain.bending_damping": _bending_damping},
+    live={"feed.speed": speed_setter, "feed.end_tension": _end_tension},
     accuracy_refusal=accuracy_refusal, style=lambda cfg: "motor",
     sections=("error_bars", "error_model"), predicted=True, stiff_theory=True,
 )
