@@ -242,18 +242,24 @@ def fit_catenary(points: Array, x_v: float, y_v: float, q0: float,
     """Least-squares fit of ``q*(y - y_v) = 1 - cosh(q*(x - x_v))`` (paper Eq. func_graph).
 
     Gauss-Newton on ``(x_v, y_v, q)`` starting from the given values; returns
-    the fitted ``(x_v, y_v, q)``.
+    the fitted ``(x_v, y_v, q)``. A shape no catenary fits (a fountain that has fallen
+    into a line) drives the iteration to overflow: it stops there and raises
+    :class:`FloatingPointError`, which the caller records as a failed fit.
     """
     x, y = points[:, 0], points[:, 1]
     p = np.array([x_v, y_v, max(q0, 1e-6)])
     for _ in range(iterations):
         xv, yv, q = p
-        z = q * (x - xv)
-        ch, sh = np.cosh(z), np.sinh(z)
-        model = yv + (1.0 - ch) / q
-        r = y - model
-        # d model / d(xv, yv, q)
-        jac = np.column_stack((sh, np.ones_like(x), -(1.0 - ch) / q**2 - sh * (x - xv) / q))
+        with np.errstate(over="ignore", invalid="ignore"):
+            z = q * (x - xv)
+            ch, sh = np.cosh(z), np.sinh(z)
+            model = yv + (1.0 - ch) / q
+            r = y - model
+            # d model / d(xv, yv, q)
+            jac = np.column_stack((sh, np.ones_like(x),
+                                   -(1.0 - ch) / q**2 - sh * (x - xv) / q))
+        if not (np.all(np.isfinite(jac)) and np.all(np.isfinite(r))):
+            raise FloatingPointError("the catenary fit diverged (no catenary fits this shape)")
         step, *_ = np.linalg.lstsq(jac, r, rcond=None)
         p = p + step
         p[2] = max(p[2], 1e-6)
