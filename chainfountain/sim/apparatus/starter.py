@@ -46,6 +46,19 @@ launch speed (short: a slow head droops out of the guide instead of flying)."""
 CATCH_RAMP = 0.2
 """'fold': time (s) over which the starter runs the chain up from the launch speed to
 ``apparatus.speed`` once the end guide has caught the head."""
+STORE = 1.12
+"""'fold': the least chain the starter keeps in flight, over the predicted fountain's
+length, while it threads the head round the folding roller. With both ends driven at
+one speed a fountain of about its own length falls: in ``apparatus_fold_gripped`` with
+``apparatus.drop`` 0.55 m (a slower launch) it was caught with 1.07 times its length and
+fell within 0.8 s, where the shipped drop of 0.5 m is caught with 1.10-1.15 times it and
+stands. Below this the end guide's drive runs slower than the upper guide's until it is
+in flight (:meth:`Starter.end_speed`). Holding an upper bound too (1.15-1.25) lost
+starts that hold without one."""
+STORE_GAIN = 3.0
+"""'fold': how fast (per unit of the relative shortfall) the end guide's drive slows to
+store chain: the shortfall closes with a time constant of ``length/(v*gain)``, about
+0.1 s."""
 HOME = 0.01
 """'fold': the starter lets go early once the fountain lands within this (m) of the end
 guide's first turn (:meth:`Starter._landed_home`). It first lands long (the launch
@@ -184,12 +197,27 @@ class Starter:
         it onto the table."""
         fold = self.fold
         assert fold is not None
+        v = self.end_speed(v)
         run_along(fold.guide, fold.held, v)
         lo = fold.lower
         u = 0.5 * v
         lo.carriage.velocity = (u, 0.0)
         lo.roller.velocity = (u, 0.0)
         lo.roller.angular_velocity = -u / self.layout.R_lo
+
+    def end_speed(self, v: float) -> float:
+        """'fold' from rest: the speed of the end guide's drive (and twice the folding
+        roller's) when the upper guide runs at ``v``. From the catch until the first link
+        is laid on the lower table it runs slower while less than :data:`STORE` times the
+        predicted fountain's length is in flight, by :data:`STORE_GAIN` times the
+        relative shortfall (at most half ``v``), so that a narrow fountain starts with
+        the excess the shipped one has; otherwise at ``v``."""
+        fold = self.fold
+        if self._caught_t is None or fold is None or self._laid_t < math.inf:
+            return v
+        want = STORE * self.layout.fountain.length
+        have = (fold.fly_next - fold.cap_next + 1) * self.layout.L
+        return v * max(0.5, 1.0 - STORE_GAIN * max(0.0, (want - have) / want))
 
     def fade(self) -> None:
         """'fold', for :data:`FADE` s after the starter lets go (before each pymunk step):
