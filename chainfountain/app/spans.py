@@ -16,7 +16,9 @@ pick-up law leaves the chain running (:data:`FLOOR_FIELDS`; the limit is measure
 span the measured band around the balance the level was built with
 (:data:`FOLD_FIELDS`, :data:`~chainfountain.sim.apparatus.laws.FOLD_CART_BAND`), and so
 do a gripped fold's with a brake
-(:data:`~chainfountain.sim.apparatus.laws.BRAKED_CART_BAND`).
+(:data:`~chainfountain.sim.apparatus.laws.BRAKED_CART_BAND`). A gripped fold from rest's
+drop, start speed and launch angle span its measured start region (:data:`START_FIELDS`,
+:mod:`chainfountain.sim.apparatus.region`).
 """
 
 from __future__ import annotations
@@ -31,6 +33,7 @@ from chainfountain.fields import get_value, set_value
 from chainfountain.level import io
 from chainfountain.level.io import Level, LevelError
 from chainfountain.sim import joints
+from chainfountain.sim.apparatus import region as start_region
 from chainfountain.sim.apparatus.laws import floor_runs_on, fold_cart_span, fold_runs_on
 from chainfountain.sim.config import SimConfig
 from chainfountain.sim.kinds import kind_of
@@ -58,6 +61,13 @@ rebuilt with ``xi3`` 0.48: stopped at 5.6 s; 0.52: held 40 s; 0.4 and 0.6 with t
 cart moved by the paper's law (63 g and 53 g): stopped at 3.7 and 2.6 s
 (``docs/apparatus.md``, "Tuning the damped folds live")."""
 
+START_FIELDS = ("apparatus.drop", "apparatus.speed", "apparatus.launch_angle",
+                "apparatus.floor_depth")
+"""A contact machine from rest's geometry (a gripped fold's, the floor machine's): their
+sliders span its measured start region at the other fields' values
+(:mod:`chainfountain.sim.apparatus.region`, which the level check reads), found by
+bisection."""
+
 JOINT_FIELDS = ("chain.bending_stiffness", "chain.bending_damping")
 """The joints' spring and damper: their sliders stop short of the step limits the level
 check refuses (:mod:`chainfountain.sim.joints`: the spring's ``omega h < 2``, the damper's
@@ -65,7 +75,7 @@ check refuses (:mod:`chainfountain.sim.joints`: the spring's ``omega h < 2``, th
 
 NARROWED_FIELDS = frozenset(MACHINE_FIELDS) | frozenset(FLOOR_FIELDS) | \
     frozenset(FOLD_FIELDS) | frozenset(FOLD_OTHER_FIELDS) | frozenset(FOLD_OFFSETS) | \
-    frozenset(JOINT_FIELDS)
+    frozenset(JOINT_FIELDS) | frozenset(START_FIELDS)
 """Every field whose slider may span less than the schema's range (the window recomputes
 their spans after any change)."""
 
@@ -128,6 +138,8 @@ def admissible(level: Level, spec: FieldSpec,
         return built, built
     if fold and spec.path in FOLD_OTHER_FIELDS:
         ok = _accepts(level, spec.path, origin, lambda c: fold_runs_on(c, origin))
+    elif spec.path in START_FIELDS and start_region.from_rest(sim):
+        ok = _accepts(level, spec.path, origin)
     elif variant == "floor" and spec.path in FLOOR_FIELDS:
         ok = _accepts(level, spec.path, origin, floor_runs_on)
     elif spec.path in MACHINE_FIELDS and spec.path in kind_of(sim).live:

@@ -509,6 +509,13 @@ class ApparatusConfig:
         "docs/apparatus.md#guides)",
         choices=("walls", "joints"),
     )
+    start_region: str = param(
+        "checked", unit="", doc="From rest (initial.mode = 'stub'): 'checked' refuses a gripped "
+        "fold or floor machine set outside the region where it was measured to form and hold "
+        "(docs/apparatus.md#where-the-machines-start-from-rest); 'unchecked' runs it anyway, "
+        "for a study of that region itself (research/contact_region)",
+        choices=("checked", "unchecked"),
+    )
 
 
 @dataclass

@@ -5,7 +5,8 @@ The chain's head waits inside the upper guide; the starter launches it at the sp
 which a free head flies onto the predicted fountain end, the end guide catches it, the
 starter runs the chain up to ``apparatus.speed`` and carries the head round the folding
 roller onto the lower table, and 3 s later lets go, gradually over 3 s. Asserted on both
-presets as shipped, nudged at 0.1 s by two seeds (at rest a nudge changes nothing):
+presets as shipped, nudged at 0.1 s (at rest a nudge changes nothing; other settings
+from rest: ``test_start_region.py``):
 
 - the head is caught at the mouth within 1 s and pinned to the lower table within 3 s;
 - the run holds to 15 s and its speed over 10-15 s is within 1 % of the speed the same
@@ -37,7 +38,7 @@ pytestmark = pytest.mark.xdist_group("apparatus_from_rest")
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("seed", [0, 1])
+@pytest.mark.parametrize("seed", [1])
 @pytest.mark.parametrize("name", sorted(HELD_SPEED))
 def test_a_gripped_fold_forms_from_rest_and_holds(name: str, seed: int) -> None:
     level = shipped.level(name)

@@ -7,6 +7,7 @@ import dataclasses
 import math
 
 from chainfountain.errors import fail
+from chainfountain.sim.apparatus import region as start_region
 from chainfountain.sim.config import SimConfig
 from chainfountain.sim.kinds.sizing import (
     MAX_LINKS,
@@ -34,6 +35,10 @@ def _check_apparatus_start(sim: SimConfig, where: str) -> None:
               "initial.mode = 'stub' (to start a perturbed run, set initial.seed above 0: "
               f"a 1e-12 nudge); allowed: {default!r}" + (", or 'stub'" if f.name == "mode" else ""))
     if not from_rest:
+        if a.start_region != "checked":
+            fail(where, "apparatus.start_region",
+                  f"{a.start_region!r} has no effect with initial.mode = 'catenary' (the "
+                  "region is where a machine forms from rest); allowed: 'checked'")
         if a.starter:
             fail(where, "apparatus.starter",
                   f"{a.starter!r} s has no effect with initial.mode = 'catenary' (the chain "
@@ -123,6 +128,9 @@ def check_apparatus(sim: SimConfig, where: str) -> None:
               f"{a.pickup_rest_links!r} leaves the pick-up roller too little resting chain to "
               "roll on; allowed: 0 (as apparatus.rest_links) or at least 5")
     _check_apparatus_start(sim, where)
+    found = start_region.problem(sim) or start_region.floor_problem(sim)
+    if found is not None:
+        fail(where, *found)
     if a.swing_damper and a.variant != "fold":
         fail(where, "apparatus.swing_damper",
               f"{a.swing_damper!r} N*s/m only applies to variant = 'fold' (it acts between the "

@@ -1,0 +1,176 @@
+"""Where the contact machines form from rest and hold: their measured start regions.
+
+**A gripped fold** started from rest (``initial.mode = "stub"``, the starter of
+:mod:`.starter`) launches the chain's head onto the predicted fountain's end, has the end
+guide catch it and threads it round the folding roller. Whether that works depends on
+the fountain it is built for through one number, how near it is to critical,
+
+    Q = Tbar_E + k H,  k = g / v**2
+
+(``v`` = ``apparatus.speed``, the speed the end guide is placed for; the paper needs
+``Q < 1`` for a fountain at all), and on the launch angle. Measured on
+``apparatus_fold_gripped`` from rest, two starts each, 30 s (``chainfountain sweep
+research/contact_region/fold_drop.toml``, ``fold_speed``, ``fold_angle``;
+docs/apparatus.md, "Where the machines start from rest"): over the drop 0.3-0.625 m at
+3 m/s and the speed 2.6-3.6 m/s at 0.5 m, every start with ``Q`` from 0.606 to 0.796
+formed and held, whichever of the two moved it. At ``Q`` 0.594 and below (a wide, high
+fountain) the launched head stores up to 1.36 times the fountain's length, the fountain
+lands beyond the end guide's mouth and the run ends within 1.8 s (both starts); at 0.824
+one start lost the chain at 2.7 s and the other still swung at 30 s; at 0.878 and 0.896
+both lost it (too narrow a fountain: the slow launch leaves it too little chain to
+stand). Over the launch angle at the shipped ``Q`` (0.715), 40-70 deg held both starts;
+35 deg lost one (it ran away at 7.7 s), 75 deg swung 1-8 % below the law at 30 s, 80 deg
+lost both. :data:`FROM_REST_Q` and :data:`FROM_REST_ANGLE` are those bands.
+
+**The floor machine** from rest stops where its cart holds the chain back too hard, as
+it does when the cart is changed live: :func:`floor_problem` refuses what
+:func:`~chainfountain.sim.apparatus.laws.floor_runs_on` does not admit (measured from rest,
+``research/contact_region/floor_drop.toml``: a drop of 0.25 m with the 9-g cart stopped at
+12.6 and 12.9 s; 0.4-0.85 m held), and its launch angle is held to :data:`FLOOR_ANGLE`.
+
+``apparatus.start_region = "unchecked"`` runs a start outside these regions, for a study
+of the regions themselves.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from chainfountain.sim.config import SimConfig
+
+FROM_REST_Q = (0.606, 0.796)
+"""The band of ``Q = Tbar_E + g H / v**2`` in which every measured gripped fold formed from
+rest and held 30 s (two starts each; the nearest failures: 0.594 below, 0.824 above)."""
+
+FROM_REST_ANGLE = (math.radians(40.0), math.radians(70.0))
+"""The launch angles (rad) at which ``apparatus_fold_gripped`` formed from rest and held
+30 s, two starts each, at its shipped ``Q`` of 0.715 (the nearest failures: 35 and
+75 deg)."""
+
+FLOOR_ANGLE = (math.radians(30.0), math.radians(80.0))
+"""The launch angles (rad) at which ``apparatus_floor`` formed from rest and ran 30 s, two
+starts each (``research/contact_region/floor_angle.toml``: 30-70 deg steady, 80 deg one
+start still swinging at 30 s; lower and higher not measured)."""
+
+
+def applies(cfg: SimConfig) -> bool:
+    """Whether ``cfg`` is a gripped fold started from rest, the machine the region was
+    measured on."""
+    a = cfg.apparatus
+    return (a.variant == "fold" and a.fold_roller == "gripped"
+            and cfg.initial.mode == "stub")
+
+
+def from_rest(cfg: SimConfig) -> bool:
+    """Whether ``cfg`` is a contact machine started from rest whose start is checked here:
+    a gripped fold (:func:`problem`) or the floor machine (:func:`floor_problem`)."""
+    return applies(cfg) or (cfg.apparatus.variant == "floor" and cfg.initial.mode == "stub")
+
+
+def start_q(cfg: SimConfig) -> float:
+    """``Q = Tbar_E + g H / v**2`` of the fountain the machine is built for."""
+    a = cfg.apparatus
+    return float(a.end_tension) + float(cfg.gravity) * float(a.drop) / float(a.speed) ** 2
+
+
+def problem(cfg: SimConfig) -> tuple[str, str] | None:
+    """``(field, message)`` when a gripped fold from rest lies outside its measured start
+    region (:data:`FROM_REST_Q`, :data:`FROM_REST_ANGLE`), the message naming the value
+    and the admissible range at the other fields' values; ``None`` inside it, or when the
+    region does not apply (:func:`applies`)."""
+    if not applies(cfg) or cfg.apparatus.start_region == "unchecked":
+        return None
+    a, g = cfg.apparatus, float(cfg.gravity)
+    lo, hi = FROM_REST_ANGLE
+    if not lo - 1e-9 <= a.launch_angle <= hi + 1e-9:
+        return ("apparatus.launch_angle",
+                f"{a.launch_angle!r} rad ({math.degrees(a.launch_angle):.1f} deg) is outside "
+                "where a gripped fold was measured to form from rest and hold; allowed: "
+                f"{lo:.4f}-{hi:.4f} rad ({math.degrees(lo):.0f}-{math.degrees(hi):.0f} deg), "
+                "or initial.mode = 'catenary' (laid on its path)")
+    q = start_q(cfg)
+    q_lo, q_hi = FROM_REST_Q
+    if q_lo - 1e-9 <= q <= q_hi + 1e-9:
+        return None
+    te, v, H = float(a.end_tension), float(a.speed), float(a.drop)
+    why = ("too wide a fountain: the launched head stores too much chain and it lands "
+           "beyond the end guide" if q < q_lo else
+           "too near critical: the slow launch leaves the fountain too little chain to stand")
+    drops = f"a drop of {max(q_lo - te, 0.0) * v * v / g:.4g}-{(q_hi - te) * v * v / g:.4g} m"
+    speeds = (f"a start speed of {math.sqrt(g * H / (q_hi - te)):.4g}-"
+              f"{math.sqrt(g * H / (q_lo - te)):.4g} m/s" if q_lo > te else "")
+    other = f" (or {speeds} at this drop)" if speeds else ""
+    return ("apparatus.drop",
+            f"{H!r} m at apparatus.speed = {v:g} m/s and end_tension = {te:g} gives "
+            f"Tbar_E + g*H/v^2 = {q:.3f}, {why} (a gripped fold formed from rest and held "
+            f"at {q_lo:.3f}-{q_hi:.3f}); allowed: {drops} at this speed{other}, or "
+            "initial.mode = 'catenary' (laid on its path)")
+
+
+def floor_problem(cfg: SimConfig) -> tuple[str, str] | None:
+    """``(field, message)`` when a contact floor machine started from rest would stop: the
+    speed its cart selects by this model's pick-up law leaves ``g (H + floor_depth)/v**2``
+    above :data:`~chainfountain.sim.apparatus.laws.FLOOR_KH_MAX`
+    (:func:`~chainfountain.sim.apparatus.laws.floor_runs_on`; measured from rest,
+    ``research/contact_region/floor_drop.toml``: ``apparatus_floor`` with a drop of 0.25 m
+    stopped at 12.6 and 12.9 s, two starts). ``None`` when it runs on, or for other
+    machines."""
+    from chainfountain.sim.apparatus.laws import FLOOR_KH_MAX, floor_runs_on, floor_speeds
+
+    a = cfg.apparatus
+    if (a.variant != "floor" or cfg.initial.mode != "stub" or not cfg.carts
+            or a.start_region == "unchecked"):
+        return None
+    lo, hi = FLOOR_ANGLE
+    if not lo - 1e-9 <= a.launch_angle <= hi + 1e-9:
+        return ("apparatus.launch_angle",
+                f"{a.launch_angle!r} rad ({math.degrees(a.launch_angle):.1f} deg) is outside "
+                "where the floor machine was measured to form from rest and run on; allowed: "
+                f"{lo:.4f}-{hi:.4f} rad ({math.degrees(lo):.0f}-{math.degrees(hi):.0f} deg), "
+                "or initial.mode = 'catenary' (laid on its path)")
+    if floor_runs_on(cfg):
+        return None
+    if cfg.carts[0].incline < 0.0:
+        return None  # refused by the cart check with its own reason
+    v = floor_speeds(cfg)[0]
+    g, depth = float(cfg.gravity), float(a.floor_depth)
+    kh = g * (a.drop + depth) / (v * v) if math.isfinite(v) and v > 0 else math.inf
+    least, most = _edge(cfg, "drop", 20.0), _edge(cfg, "mass", 0.0)
+    speed = f"{v:.3g} m/s" if math.isfinite(v) else "none"
+    drop = f" or a drop of at least {least:.4g} m with this cart" if least is not None else ""
+    cart = (f"an upper cart of at most {1e3 * most:.4g} g at this drop"
+            if most is not None else "a lighter upper cart")
+    return ("carts[0].mass",
+            f"{cfg.carts[0].mass!r} kg ({1e3 * cfg.carts[0].mass:.3g} g) with a drop of "
+            f"{a.drop:g} m: this model's pick-up selects {speed}, g*(H + floor_depth)/v^2 = "
+            f"{kh:.3g}, and above {FLOOR_KH_MAX:g} the chain slows and stops (measured); "
+            f"allowed: {cart}{drop}")
+
+
+def _edge(cfg: SimConfig, what: str, far: float) -> float | None:
+    """The drop (``what = "drop"``, m; the least) or the upper cart's mass (``"mass"``, kg;
+    the most) at which :func:`~chainfountain.sim.apparatus.laws.floor_runs_on` holds with
+    ``cfg``'s other fields, by bisection towards ``far``; ``None`` if none does."""
+    import copy
+
+    from chainfountain.sim.apparatus.laws import floor_runs_on
+
+    trial = copy.deepcopy(cfg)
+
+    def runs(x: float) -> bool:
+        if what == "drop":
+            trial.apparatus.drop = x
+        else:
+            trial.carts[0].mass = x
+        return floor_runs_on(trial)
+
+    bad = float(cfg.apparatus.drop) if what == "drop" else float(cfg.carts[0].mass)
+    good = far
+    if not runs(good):
+        return None
+    for _ in range(40):
+        mid = 0.5 * (bad + good)
+        bad, good = (bad, mid) if runs(mid) else (mid, good)
+    return good
