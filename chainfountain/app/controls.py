@@ -176,6 +176,9 @@ class FieldSpec:
     narrowed: bool = False
     """The slider spans only where the machine keeps running
     (:func:`chainfountain.app.spans.narrowed`), inside what the schema allows."""
+    refused_beyond: bool = False
+    """A narrowed slider's span is what the level check accepts: a value typed beyond it is
+    refused (a machine's start region, the joints' step limits), not run."""
     file_unit: str = ""
     """The unit in the level file when the panel shows another (``rad`` for ``deg``,
     ``kg`` for ``g``); empty when they are the same."""

@@ -178,5 +178,7 @@ def narrowed(level: Level, spec: FieldSpec, origin: SimConfig | None = None) -> 
     if span is None:
         return spec
     lo, hi = span
+    refused = spec.path in JOINT_FIELDS or spec.path in START_FIELDS
     return dataclasses.replace(spec, slider_lo=lo * spec.scale, slider_hi=hi * spec.scale,
-                               log=False, log_floor=0.0, narrowed=True)
+                               log=False, log_floor=0.0, narrowed=True,
+                               refused_beyond=refused)

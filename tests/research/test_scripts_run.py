@@ -21,7 +21,11 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 RESEARCH = ROOT / "research"
-SCRIPTS = sorted(p.stem for p in RESEARCH.glob("*.py") if p.stem != "__init__")
+SCRIPTS = sorted([p.stem for p in RESEARCH.glob("*.py") if p.stem != "__init__"]
+                 + [f"contact_region.{p.stem}" for p in (RESEARCH / "contact_region").glob("*.py")
+                    if p.stem != "__init__"])
+"""The scripts run as ``python -m research.NAME``: the top-level modules and the study
+folders' (``contact_region``)."""
 FIRST_PARTY = ("chainfountain", "research")
 
 
