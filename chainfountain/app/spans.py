@@ -62,7 +62,7 @@ cart moved by the paper's law (63 g and 53 g): stopped at 3.7 and 2.6 s
 (``docs/apparatus.md``, "Tuning the damped folds live")."""
 
 START_FIELDS = ("apparatus.drop", "apparatus.speed", "apparatus.launch_angle",
-                "apparatus.floor_depth")
+                "apparatus.floor_depth", "apparatus.swing_damper", "chain.friction")
 """A contact machine from rest's geometry (a gripped fold's, the floor machine's): their
 sliders span its measured start region at the other fields' values
 (:mod:`chainfountain.sim.apparatus.region`, which the level check reads), found by

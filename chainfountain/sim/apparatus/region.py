@@ -23,7 +23,7 @@ stand). Over the launch angle at the shipped ``Q`` (0.715), 40-70 deg held both 
 lost both. Settings drawn at random inside those bands (``research/contact_region/
 draws.py``) showed that the start speed matters beyond ``Q``: above 3.2 m/s four of four
 lost the chain. :data:`FROM_REST_Q`, :data:`FROM_REST_SPEED` and :data:`FROM_REST_ANGLE`
-are the bands admitted.
+are the bands admitted, and :data:`FROM_REST_RANGE` the swing damper's and the friction's.
 
 **The floor machine** from rest stops where its cart holds the chain back too hard, as
 it does when the cart is changed live: :func:`floor_problem` refuses what
@@ -59,6 +59,15 @@ the speed alone at 0.5 m, 2.8-3.2 m/s held; with the drop drawn to keep ``Q`` in
 every start at 2.72-3.18 m/s held and four of four at 3.23-3.37 m/s lost the chain within
 2.4 s (the end guide, placed for a fountain faster than the one the carts and brake
 select, about 3 m/s, misses it or loses it at the hand-over)."""
+
+FROM_REST_RANGE = {"apparatus.swing_damper": (0.5, 1.5), "chain.friction": (0.3, 2.0)}
+"""The swing damper (N s/m) and chain friction a gripped fold from rest is admitted with
+(the ends of their sliders' own spans above), each measured alone at the shipped
+geometry, two starts each, 30 s (``research/contact_region/fold_damper.toml``,
+``fold_friction.toml``): with no damper
+both starts lost the chain at 20.8 and 22.4 s, at 0.1 N s/m one at 28.4 s and the other
+still swung 17 % below the law; 0.5 (shipped), 1.0 and 1.5 held. With no friction both
+lost it at 5.7 s (the pick-up roller slips); 0.3, 0.6 (shipped), 1.2 and 2.0 held."""
 
 FLOOR_ANGLE = (math.radians(30.0), math.radians(80.0))
 """The launch angles (rad) at which ``apparatus_floor`` formed from rest and ran 30 s, two
@@ -100,6 +109,15 @@ def problem(cfg: SimConfig) -> tuple[str, str] | None:
                 f"{a.speed!r} m/s is outside the start speeds at which a gripped fold was "
                 f"measured to form from rest and hold; allowed: {v_lo:g}-{v_hi:g} m/s, or "
                 "initial.mode = 'catenary' (laid on its path)")
+    for path, (least, most) in FROM_REST_RANGE.items():
+        value = float(a.swing_damper if path == "apparatus.swing_damper"
+                      else cfg.chain.friction)
+        if not least - 1e-12 <= value <= most + 1e-12:
+            why = ("below what a gripped fold was measured to need to form from rest and "
+                   "hold (less lets its landing swing or its pick-up slip)" if value < least
+                   else "beyond where a gripped fold was measured to form from rest")
+            return (path, f"{value!r} is {why}; allowed: {least:g}-{most:g}, or "
+                    "initial.mode = 'catenary' (laid on its path)")
     lo, hi = FROM_REST_ANGLE
     if not lo - 1e-9 <= a.launch_angle <= hi + 1e-9:
         return ("apparatus.launch_angle",

@@ -82,6 +82,16 @@ def test_a_gripped_fold_launched_outside_its_angle_or_speed_band_is_refused() ->
                  {**laid, "apparatus.drop": 0.6})  # the region is the start's, not laid
 
 
+@pytest.mark.parametrize("path", sorted(region.FROM_REST_RANGE))
+def test_a_gripped_fold_with_its_damper_or_friction_outside_is_refused(path: str) -> None:
+    least, most = region.FROM_REST_RANGE[path]
+    for value in (0.9 * least, 1.01 * most):
+        msg = _refused("apparatus_fold_gripped", {path: value})
+        assert path in msg and f"allowed: {least:g}-{most:g}" in msg
+    for value in (least, most):
+        with_changes(shipped.level("apparatus_fold_gripped"), {path: value})
+
+
 def test_a_floor_machine_whose_cart_would_stop_it_is_refused() -> None:
     msg = _refused("apparatus_floor", {"apparatus.drop": 0.3})
     assert "carts[0].mass" in msg and "at most" in msg and "a drop of at least" in msg
@@ -99,11 +109,12 @@ def test_a_floor_machine_whose_cart_would_stop_it_is_refused() -> None:
     ("apparatus_fold_gripped", "apparatus.speed"),
     ("apparatus_special_gripped", "apparatus.launch_angle"),
     ("apparatus_floor", "apparatus.drop"),
+    ("apparatus_special_gripped", "apparatus.swing_damper"),
 ])
 def test_the_sliders_span_the_admitted_range(name: str, path: str) -> None:
     level = shipped.level(name)
     lo, hi = spans.admissible(level, spec_for(level.sim, path), level.sim)
-    assert lo < float(_get(level, path)) < hi
+    assert lo <= float(_get(level, path)) <= hi
     for x in (lo + 1e-6 * (hi - lo), hi - 1e-6 * (hi - lo)):
         with_changes(level, {path: x})
     for x in (lo - 1e-3 * (hi - lo), hi + 1e-3 * (hi - lo)):
