@@ -118,13 +118,9 @@ def problem(cfg: SimConfig) -> tuple[str, str] | None:
                    else "beyond where a gripped fold was measured to form from rest")
             return (path, f"{value!r} is {why}; allowed: {least:g}-{most:g}, or "
                     "initial.mode = 'catenary' (laid on its path)")
-    lo, hi = FROM_REST_ANGLE
-    if not lo - 1e-9 <= a.launch_angle <= hi + 1e-9:
-        return ("apparatus.launch_angle",
-                f"{a.launch_angle!r} rad ({math.degrees(a.launch_angle):.1f} deg) is outside "
-                "where a gripped fold was measured to form from rest and hold; allowed: "
-                f"{lo:.4f}-{hi:.4f} rad ({math.degrees(lo):.0f}-{math.degrees(hi):.0f} deg), "
-                "or initial.mode = 'catenary' (laid on its path)")
+    found = _angle_problem(a.launch_angle, FROM_REST_ANGLE, "a gripped fold", "hold")
+    if found is not None:
+        return found
     q = start_q(cfg)
     q_lo, q_hi = FROM_REST_Q
     if q_lo - 1e-9 <= q <= q_hi + 1e-9:
@@ -145,6 +141,19 @@ def problem(cfg: SimConfig) -> tuple[str, str] | None:
             "initial.mode = 'catenary' (laid on its path)")
 
 
+def _angle_problem(angle: float, band: tuple[float, float], machine: str,
+                   holds: str) -> tuple[str, str] | None:
+    """``(field, message)`` when the launch ``angle`` (rad) lies outside ``band``."""
+    lo, hi = band
+    if lo - 1e-9 <= angle <= hi + 1e-9:
+        return None
+    return ("apparatus.launch_angle",
+            f"{angle!r} rad ({math.degrees(angle):.1f} deg) is outside where {machine} was "
+            f"measured to form from rest and {holds}; allowed: {lo:.4f}-{hi:.4f} rad "
+            f"({math.degrees(lo):.0f}-{math.degrees(hi):.0f} deg), or initial.mode = "
+            "'catenary' (laid on its path)")
+
+
 def floor_problem(cfg: SimConfig) -> tuple[str, str] | None:
     """``(field, message)`` when a contact floor machine started from rest would stop: the
     speed its cart selects by this model's pick-up law leaves ``g (H + floor_depth)/v**2``
@@ -159,13 +168,9 @@ def floor_problem(cfg: SimConfig) -> tuple[str, str] | None:
     if (a.variant != "floor" or cfg.initial.mode != "stub" or not cfg.carts
             or a.start_region == "unchecked"):
         return None
-    lo, hi = FLOOR_ANGLE
-    if not lo - 1e-9 <= a.launch_angle <= hi + 1e-9:
-        return ("apparatus.launch_angle",
-                f"{a.launch_angle!r} rad ({math.degrees(a.launch_angle):.1f} deg) is outside "
-                "where the floor machine was measured to form from rest and run on; allowed: "
-                f"{lo:.4f}-{hi:.4f} rad ({math.degrees(lo):.0f}-{math.degrees(hi):.0f} deg), "
-                "or initial.mode = 'catenary' (laid on its path)")
+    found = _angle_problem(a.launch_angle, FLOOR_ANGLE, "the floor machine", "run on")
+    if found is not None:
+        return found
     if floor_runs_on(cfg):
         return None
     if cfg.carts[0].incline < 0.0:
