@@ -62,12 +62,12 @@ select, about 3 m/s, misses it or loses it at the hand-over)."""
 
 FROM_REST_RANGE = {"apparatus.swing_damper": (0.5, 1.5), "chain.friction": (0.3, 2.0)}
 """The swing damper (N s/m) and chain friction a gripped fold from rest is admitted with
-(the ends of their sliders' own spans above), each measured alone at the shipped
+(their upper ends are the ends of their sliders), each measured alone at the shipped
 geometry, two starts each, 30 s (``research/contact_region/fold_damper.toml``,
-``fold_friction.toml``): with no damper
-both starts lost the chain at 20.8 and 22.4 s, at 0.1 N s/m one at 28.4 s and the other
-still swung 17 % below the law; 0.5 (shipped), 1.0 and 1.5 held. With no friction both
-lost it at 5.7 s (the pick-up roller slips); 0.3, 0.6 (shipped), 1.2 and 2.0 held."""
+``fold_friction.toml``): with no damper both starts lost the chain at 20.8 and 22.4 s,
+at 0.1 N s/m one at 28.4 s and the other still swung 17 % below the law; 0.5 (shipped),
+1.0 and 1.5 held. With no friction both lost it at 5.7 s (the pick-up roller slips); 0.3,
+0.6 (shipped), 1.2 and 2.0 held."""
 
 FLOOR_ANGLE = (math.radians(30.0), math.radians(80.0))
 """The launch angles (rad) at which ``apparatus_floor`` formed from rest and ran 30 s, two
@@ -97,7 +97,8 @@ def start_q(cfg: SimConfig) -> float:
 
 def problem(cfg: SimConfig) -> tuple[str, str] | None:
     """``(field, message)`` when a gripped fold from rest lies outside its measured start
-    region (:data:`FROM_REST_Q`, :data:`FROM_REST_ANGLE`), the message naming the value
+    region (:data:`FROM_REST_SPEED`, :data:`FROM_REST_RANGE`, :data:`FROM_REST_ANGLE`,
+    :data:`FROM_REST_Q`, checked in that order), the message naming the value
     and the admissible range at the other fields' values; ``None`` inside it, or when the
     region does not apply (:func:`applies`)."""
     if not applies(cfg) or cfg.apparatus.start_region == "unchecked":
