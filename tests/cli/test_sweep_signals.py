@@ -20,8 +20,10 @@ from pathlib import Path
 
 import pytest
 
-SWEEP = 'base = "wide_low"\nduration = 4.0\n[grid]\n"feed.speed" = [4.0, 4.2, 4.4, 4.6]\n'
-"""Four points of most of a second of wall time each."""
+SWEEP = 'base = "wide_low"\nduration = 10.0\n[grid]\n"feed.speed" = [4.0, 4.2, 4.4, 4.6]\n'
+"""Four points of about two seconds of wall time each: long enough that the point seen
+running is still running when the signal arrives (with points of under a second, a
+loaded machine finished it in between and the table had nothing interrupted)."""
 WAIT = 120.0
 """Seconds a step may take at most (a loaded machine), before the test gives up."""
 
