@@ -40,6 +40,8 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
+from chainfountain.fields import get_value
+
 if TYPE_CHECKING:
     from chainfountain.sim.config import SimConfig
 
@@ -111,8 +113,7 @@ def problem(cfg: SimConfig) -> tuple[str, str] | None:
                 f"measured to form from rest and hold; allowed: {v_lo:g}-{v_hi:g} m/s, or "
                 "initial.mode = 'catenary' (laid on its path)")
     for path, (least, most) in FROM_REST_RANGE.items():
-        value = float(a.swing_damper if path == "apparatus.swing_damper"
-                      else cfg.chain.friction)
+        value = float(get_value(cfg, path))
         if not least - 1e-12 <= value <= most + 1e-12:
             why = ("below what a gripped fold was measured to need to form from rest and "
                    "hold (less lets its landing swing or its pick-up slip)" if value < least

@@ -125,6 +125,8 @@ class Starter:
         """The fold whose end guide and roller the starter drives ('fold' only)."""
         self.lower = fold.lower if fold is not None else None
         self.follow = follow
+        self._store = STORE * layout.fountain.length if layout.fold_guided else math.nan
+        """'fold': the least chain (m) kept in flight while threading (:data:`STORE`)."""
         self.starting = layout.from_rest
         """True while the starter drives the chain."""
         self.fading = False
@@ -215,7 +217,7 @@ class Starter:
         fold = self.fold
         if self._caught_t is None or fold is None or self._laid_t < math.inf:
             return v
-        want = STORE * self.layout.fountain.length
+        want = self._store
         have = (fold.fly_next - fold.cap_next + 1) * self.layout.L
         return v * max(0.5, 1.0 - STORE_GAIN * max(0.0, (want - have) / want))
 
