@@ -183,8 +183,8 @@ class GrippedFold:
             return
         link, pj, gj = self._welds[0]
         front = self._ends(link)[0]
-        if front.x > cx:
-            return
+        if front.x > cx or front.y > self.fold.lower.roller.position.y:
+            return  # not yet under the centre (a head gripped early is still on top)
         self._welds.popleft()
         self.space.remove(pj, gj)
         self._pin_front(link)

@@ -74,3 +74,25 @@ def test_a_fold_that_cannot_start_from_rest_is_refused(level, changes: dict, fie
     with pytest.raises(LevelError) as err:
         with_changes(level("apparatus_fold_gripped"), changes)
     assert field in str(err.value) and "\n" not in str(err.value)
+
+
+def test_the_head_is_pinned_under_the_folding_roller_not_on_top() -> None:
+    """A head threaded over the folding roller whose back touches the rim before the
+    roller's centre is gripped there, on top, with its front already behind the centre;
+    it lands only once its front has gone round to the bottom (``grip._land_head``). At
+    this setting (``apparatus_special_gripped``, launch angle 1.07 rad) the head used to
+    be pinned on top, 2R above the table, and the roller jerked backwards at 2.3 s."""
+    level = with_changes(shipped.level("apparatus_special_gripped"),
+                         {"apparatus.start_region": "unchecked",
+                          "apparatus.launch_angle": 1.07})
+    sim = Simulation(level.sim)
+    app = sim.apparatus
+    sim.advance(0.1)
+    sim.nudge(0)
+    while not app.head_pinned and sim.time < 3.0:
+        sim.advance(0.01)
+    assert app.head_pinned
+    roller, R = app.fold.lower.roller, level.sim.apparatus.fold_roller_radius
+    pin_y = app.grip._table_pin.anchor_a.y  # on the static body: world coordinates
+    assert pin_y < roller.position.y - 0.9 * R
+    sim.advance(1.0)  # and the fold goes on (raises RunEnded if it collapsed)
