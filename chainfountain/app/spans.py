@@ -139,6 +139,9 @@ def admissible(level: Level, spec: FieldSpec,
     if fold and spec.path in FOLD_OTHER_FIELDS:
         ok = _accepts(level, spec.path, origin, lambda c: fold_runs_on(c, origin))
     elif spec.path in START_FIELDS and start_region.from_rest(sim):
+        pinned = start_region.fixed_geometry(sim)
+        if spec.path in pinned:  # the special's tables: admitted only as measured
+            return pinned[spec.path], pinned[spec.path]
         ok = _accepts(level, spec.path, origin)
     elif variant == "floor" and spec.path in FLOOR_FIELDS:
         ok = _accepts(level, spec.path, origin, floor_runs_on)

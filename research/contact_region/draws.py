@@ -3,7 +3,9 @@
 Draws ``--n`` settings of a gripped-fold preset uniformly inside its admissible region
 (:mod:`chainfountain.sim.apparatus.region`: the start speed within its band, the drop
 within the band of ``Q = Tbar_E + g H/v**2``, the launch angle within its band; both
-carts within their measured bands, :func:`chainfountain.sim.apparatus.laws.fold_runs_on`),
+carts within their measured bands, :func:`chainfountain.sim.apparatus.laws.fold_runs_on`;
+the bands of the preset's table offsets, ``region.bands``; where those fix the geometry,
+the carts alone),
 runs each from rest for ``--seconds`` (``chainfountain run``, one process per core) and
 prints how many formed and held, each setting's speed against the paper's laws with the
 brake, and the wall time::
@@ -40,16 +42,20 @@ def draw(name: str, n: int, seed: int) -> list[dict[str, float]]:
     base = load(resolve(name))
     rng = np.random.default_rng(seed)
     g, te = base.sim.gravity, base.sim.apparatus.end_tension
-    q_lo, q_hi = region.FROM_REST_Q
-    a_lo, a_hi = region.FROM_REST_ANGLE
+    band = region.bands(base.sim)  # the bands at the preset's table offsets
+    assert band is not None, f"{name}: no start region at its table offsets"
+    q_lo, q_hi = band.q
+    a_lo, a_hi = band.angle
     m_up, m_lo = base.sim.carts[0].mass, base.sim.carts[1].mass
     out: list[dict[str, float]] = []
     while len(out) < n:
-        v = float(rng.uniform(*region.FROM_REST_SPEED))
+        v = float(rng.uniform(*band.speed))
         H = float(rng.uniform(max(q_lo - te, 0.0) * v * v / g, (q_hi - te) * v * v / g))
-        changes = {
+        geometry = {
             "apparatus.speed": round(v, 4), "apparatus.drop": round(H, 4),
-            "apparatus.launch_angle": round(float(rng.uniform(a_lo, a_hi)), 4),
+            "apparatus.launch_angle": round(float(rng.uniform(a_lo, a_hi)), 4)}
+        changes = {
+            **({} if band.fixed else geometry),
             "carts[0].mass": round(float(rng.uniform(0.5 * m_up, 1.5 * m_up)), 4),
             "carts[1].mass": round(float(rng.uniform(0.97 * m_lo, 1.1 * m_lo)), 4),
         }
@@ -100,7 +106,7 @@ def main(argv: list[str] | None = None) -> int:
         state = ("holds, steady " if ok and r["steady"] else "holds, swings" if ok
                  else "FAILS        ")
         law = braked_fold_speed(with_changes(base, r["changes"]).sim)
-        c = r["changes"]
+        c = {**region.fixed_geometry(base.sim), **r["changes"]}
         v = r["v"]
         off = f"{100 * (v / law - 1):+.2f} %" if v else "-"
         print(f"{state}  H={c['apparatus.drop']:.3f} v0={c['apparatus.speed']:.3f}"

@@ -23,7 +23,9 @@ stand). Over the launch angle at the shipped ``Q`` (0.715), 40-70 deg held both 
 lost both. Settings drawn at random inside those bands (``research/contact_region/
 draws.py``) showed that the start speed matters beyond ``Q``: above 3.2 m/s four of four
 lost the chain. :data:`FROM_REST_Q`, :data:`FROM_REST_SPEED` and :data:`FROM_REST_ANGLE`
-are the bands admitted, and :data:`FROM_REST_RANGE` the swing damper's and the friction's.
+are the bands admitted, and :data:`FROM_REST_RANGE` the swing damper's and the friction's,
+at the tables they were measured with (:data:`FROM_REST_TABLES`); at the special case's
+level tables the geometry is admitted only as shipped (:data:`SPECIAL_GEOMETRY`).
 
 **The floor machine** from rest stops where its cart holds the chain back too hard, as
 it does when the cart is changed live: :func:`floor_problem` refuses what
@@ -38,7 +40,7 @@ of the regions themselves.
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NamedTuple
 
 from chainfountain.fields import get_value
 
@@ -70,6 +72,41 @@ geometry, two starts each, 30 s (``research/contact_region/fold_damper.toml``,
 at 0.1 N s/m one at 28.4 s and the other still swung 17 % below the law; 0.5 (shipped),
 1.0 and 1.5 held. With no friction both lost it at 5.7 s (the pick-up roller slips); 0.3,
 0.6 (shipped), 1.2 and 2.0 held."""
+
+SPECIAL_GEOMETRY = {"apparatus.drop": 0.5, "apparatus.speed": 3.0,
+                    "apparatus.launch_angle": math.pi / 3.0}
+"""The geometry at which a gripped fold from rest at the special case's level tables
+(``xi2 = xi3 = 0.5``, ``apparatus_special_gripped``) is admitted: as shipped; its carts
+range within their bands. There its starts hold (30 s from rest: ten cart settings drawn
+inside the bands, ten of ten; the shipped setting nudged ten ways, ten of ten at 8 s),
+but over any band of drop, speed and angle some fail, scattered rather than beyond an
+edge, 8-22 s in as the fountain swings or runs away (``research/contact_region/draws.py
+apparatus_special_gripped``): drawn inside the fold's bands, 13 of 16 held (seed 7); inside
+``Q`` 0.62-0.78 and 45-63 deg, which excludes those three, 14 of 16 (seed 11)."""
+
+
+class Bands(NamedTuple):
+    """The bands a gripped fold from rest is admitted in, at one pair of table offsets."""
+
+    q: tuple[float, float]
+    speed: tuple[float, float]
+    angle: tuple[float, float]
+    preset: str
+    """The shipped preset they were measured on."""
+    fixed: dict[str, float] | None = None
+    """Geometry fields admitted only at these values (the bands do not apply to them)."""
+
+
+FROM_REST_TABLES: dict[tuple[float, float], Bands] = {
+    (0.5, 0.303): Bands(FROM_REST_Q, FROM_REST_SPEED, FROM_REST_ANGLE,
+                        "apparatus_fold_gripped"),
+    (0.5, 0.5): Bands(FROM_REST_Q, FROM_REST_SPEED, FROM_REST_ANGLE,
+                      "apparatus_special_gripped", SPECIAL_GEOMETRY),
+}
+"""The table offsets ``(xi2, xi3)`` at which a gripped fold from rest was measured, and
+its bands there; other offsets are refused (the carts are balanced, and the start
+threads the head, for the tables the machine is built with)."""
+
 
 FLOOR_ANGLE = (math.radians(30.0), math.radians(80.0))
 """The launch angles (rad) at which ``apparatus_floor`` formed from rest and ran 30 s, two
@@ -106,7 +143,15 @@ def problem(cfg: SimConfig) -> tuple[str, str] | None:
     if not applies(cfg) or cfg.apparatus.start_region == "unchecked":
         return None
     a, g = cfg.apparatus, float(cfg.gravity)
-    v_lo, v_hi = FROM_REST_SPEED
+    found = _tables_problem(cfg)
+    if found is not None:
+        return found
+    band = bands(cfg)
+    assert band is not None
+    found = _fixed_problem(cfg, band)
+    if found is not None:
+        return found
+    v_lo, v_hi = band.speed
     if not v_lo - 1e-9 <= a.speed <= v_hi + 1e-9:
         return ("apparatus.speed",
                 f"{a.speed!r} m/s is outside the start speeds at which a gripped fold was "
@@ -120,11 +165,12 @@ def problem(cfg: SimConfig) -> tuple[str, str] | None:
                    else "beyond where a gripped fold was measured to form from rest")
             return (path, f"{value!r} is {why}; allowed: {least:g}-{most:g}, or "
                     "initial.mode = 'catenary' (laid on its path)")
-    found = _angle_problem(a.launch_angle, FROM_REST_ANGLE, "a gripped fold", "hold")
+    found = _angle_problem(a.launch_angle, band.angle, f"a gripped fold with these tables "
+                           f"({band.preset})", "hold")
     if found is not None:
         return found
     q = start_q(cfg)
-    q_lo, q_hi = FROM_REST_Q
+    q_lo, q_hi = band.q
     if q_lo - 1e-9 <= q <= q_hi + 1e-9:
         return None
     te, v, H = float(a.end_tension), float(a.speed), float(a.drop)
@@ -141,6 +187,54 @@ def problem(cfg: SimConfig) -> tuple[str, str] | None:
             f"Tbar_E + g*H/v^2 = {q:.3f}, {why} (a gripped fold formed from rest and held "
             f"at {q_lo:.3f}-{q_hi:.3f}); allowed: {drops} at this speed{other}, or "
             "initial.mode = 'catenary' (laid on its path)")
+
+
+def bands(cfg: SimConfig) -> Bands | None:
+    """:data:`FROM_REST_TABLES`' bands for ``cfg``'s table offsets (``None``: none
+    measured)."""
+    a = cfg.apparatus
+    return next((b for (xi2, xi3), b in FROM_REST_TABLES.items()
+                 if abs(a.xi2 - xi2) <= 1e-9 and abs(a.xi3 - xi3) <= 1e-9), None)
+
+
+def fixed_geometry(cfg: SimConfig) -> dict[str, float]:
+    """The geometry fields a gripped fold from rest is admitted only at, with their values
+    (:attr:`Bands.fixed`); empty where they range or the region does not apply."""
+    if not applies(cfg) or cfg.apparatus.start_region == "unchecked":
+        return {}
+    band = bands(cfg)
+    return dict(band.fixed) if band is not None and band.fixed else {}
+
+
+def _fixed_problem(cfg: SimConfig, band: Bands) -> tuple[str, str] | None:
+    """``(field, message)`` when a geometry field is off its :attr:`Bands.fixed` value."""
+    fixed = band.fixed or {}
+    for path, want in fixed.items():
+        value = float(get_value(cfg, path))
+        if abs(value - want) > 1e-6 * abs(want):
+            return (path, f"{value!r}: with these tables ({band.preset}) a gripped fold from "
+                    "rest was measured to hold only at its shipped geometry, a drop of "
+                    f"{fixed['apparatus.drop']:g} m, a start speed of "
+                    f"{fixed['apparatus.speed']:g} m/s and a launch angle of "
+                    f"{math.degrees(fixed['apparatus.launch_angle']):.0f} deg (elsewhere 5 "
+                    "of 32 drawn starts failed, scattered, not beyond an edge); allowed: "
+                    f"{want:.6g}, or initial.mode = 'catenary' (laid on its path)")
+    return None
+
+
+def _tables_problem(cfg: SimConfig) -> tuple[str, str] | None:
+    """``(field, message)`` when a gripped fold from rest has table offsets at which it was
+    not measured (:data:`FROM_REST_TABLES`)."""
+    a = cfg.apparatus
+    if bands(cfg) is not None:
+        return None
+    known = " or ".join(f"xi2 = {xi2:g} with xi3 = {xi3:g} ({b.preset})"
+                        for (xi2, xi3), b in FROM_REST_TABLES.items())
+    path = "apparatus.xi2" if all(abs(a.xi2 - x) > 1e-9 for x, _ in FROM_REST_TABLES) \
+        else "apparatus.xi3"
+    return (path, f"{get_value(cfg, path)!r}: a gripped fold was measured to form from rest "
+            f"and hold only with the tables at {known}; allowed: those, or initial.mode = "
+            "'catenary' (laid on its path)")
 
 
 def _angle_problem(angle: float, band: tuple[float, float], machine: str,
