@@ -61,7 +61,11 @@ def tooltip(spec: FieldSpec, expert: bool = True) -> str:
     view's starts with the field's path and gives the level file's units too."""
     how = "applies live" if spec.live else "restarts the scene"
     span = ""
-    if spec.narrowed and spec.refused_beyond:
+    if spec.narrowed and spec.slider_lo == spec.slider_hi:
+        span = (f" This level accepts only {spec.slider_lo:.4g}{spec.shown_unit} here, the "
+                "value it was measured to run at; another is refused, and the message says "
+                "why.")
+    elif spec.narrowed and spec.refused_beyond:
         lo, hi = spec.slider_lo, spec.slider_hi
         span = (f" The slider spans {lo:.4g}-{hi:.4g}{spec.shown_unit}, the values this level "
                 "accepts; a value typed beyond is refused, and the message says why.")

@@ -329,6 +329,8 @@ class App(InputMixin, DrawMixin):
         v = self.session.value(row.spec.path) if value is None else value
         if slider:
             row.slider.set_current_value(row.spec.to_slider(v), warn=False)
+            fixed = row.spec.narrowed and row.spec.slider_lo == row.spec.slider_hi
+            (row.slider.disable if fixed else row.slider.enable)()  # nothing to drag
         row.entry.set_text(row.spec.fmt(row.spec.to_display(v)))
 
     # ------------------------------------------------------------------ the view
