@@ -302,12 +302,12 @@ def braked_fold_speed(cfg: SimConfig) -> float:
                             float(a.drop), g)
 
 
-def floor_runs_on(cfg: SimConfig) -> bool:
+def floor_runs_on(cfg: SimConfig, kh_max: float = FLOOR_KH_MAX) -> bool:
     """Whether a contact 'floor' machine's cart and drag leave it a speed by this model's
-    law with ``g*(H + floor_depth)/v**2`` at most :data:`FLOOR_KH_MAX` (so the chain
-    runs on), its cart holding the chain back (an incline of 0 or more)."""
+    law with ``g*(H + floor_depth)/v**2`` at most ``kh_max`` (:data:`FLOOR_KH_MAX`: the
+    chain runs on), its cart holding the chain back (an incline of 0 or more)."""
     if cfg.carts and cfg.carts[0].incline < 0.0:  # a cart pulling the chain on: the rig
         return False  # laws were measured with carts holding it back
     v = floor_speeds(cfg)[0]
     H = float(cfg.apparatus.drop) + float(cfg.apparatus.floor_depth)
-    return math.isfinite(v) and float(cfg.gravity) * H / (v * v) <= FLOOR_KH_MAX
+    return math.isfinite(v) and float(cfg.gravity) * H / (v * v) <= kh_max
