@@ -87,8 +87,14 @@ def _stop_midway(tmp_path: Path, sig: signal.Signals, group: bool) -> tuple[int,
     last line on stderr and the table's rows."""
     with _sweep(tmp_path, "--jobs", "2") as proc:
         out = tmp_path / "out"
-        _until("a point done and one running", lambda: {r["status"] for r in _records(out)}
-               >= {"done", "running"})
+        # a point done, then one that started after it: the point seen running has just
+        # begun (one running since the start may be finishing as the signal is sent)
+        first = _until("a point done", lambda: [r for r in _records(out)
+                                                 if r["status"] == "done"] or None)
+        early = {r["key"] for r in _records(out) if r["status"] == "running"}
+        early |= {r["key"] for r in first}
+        _until("a later point running", lambda: any(
+            r["status"] == "running" and r["key"] not in early for r in _records(out)))
         (os.killpg if group else os.kill)(proc.pid, sig)
         _, err = proc.communicate(timeout=WAIT)
         # every process of the sweep ends with it (workers, resource trackers)
