@@ -18,7 +18,9 @@ span the measured band around the balance the level was built with
 do a gripped fold's with a brake
 (:data:`~chainfountain.sim.apparatus.laws.BRAKED_CART_BAND`). A gripped fold from rest's
 drop, start speed and launch angle span its measured start region (:data:`START_FIELDS`,
-:mod:`chainfountain.sim.apparatus.region`).
+:mod:`chainfountain.sim.apparatus.region`), and so do a contact machine from rest's link
+length and joints; a field it was measured only as built at (``region.pinned``) has a
+one-value span, its slider greyed out.
 """
 
 from __future__ import annotations
@@ -62,7 +64,8 @@ cart moved by the paper's law (63 g and 53 g): stopped at 3.7 and 2.6 s
 (``docs/apparatus.md``, "Tuning the damped folds live")."""
 
 START_FIELDS = ("apparatus.drop", "apparatus.speed", "apparatus.launch_angle",
-                "apparatus.floor_depth", "apparatus.swing_damper", "chain.friction")
+                "apparatus.floor_depth", "apparatus.swing_damper", "chain.friction",
+                "chain.link_length")
 """A contact machine from rest's geometry (a gripped fold's, the floor machine's): their
 sliders span its measured start region at the other fields' values
 (:mod:`chainfountain.sim.apparatus.region`, which the level check reads), found by
@@ -124,7 +127,12 @@ def admissible(level: Level, spec: FieldSpec,
     joints' spring and damper (:data:`JOINT_FIELDS`) span the slider's own range cut at
     their step limits."""
     sim = level.sim
-    if spec.path in JOINT_FIELDS:
+    from_rest = start_region.from_rest(sim) and sim.apparatus.start_region != "unchecked"
+    if from_rest:
+        pinned = start_region.pinned(sim)
+        if spec.path in pinned:  # measured only as built (region.pinned)
+            return pinned[spec.path], pinned[spec.path]
+    if spec.path in JOINT_FIELDS and not from_rest:
         return _joint_span(sim, spec)
     variant = kind_of(sim).style(sim)  # an apparatus's variant ("fold", "floor", ...)
     fold = (variant == "fold" and origin is not None and len(sim.carts) >= 2
@@ -138,10 +146,7 @@ def admissible(level: Level, spec: FieldSpec,
         return built, built
     if fold and spec.path in FOLD_OTHER_FIELDS:
         ok = _accepts(level, spec.path, origin, lambda c: fold_runs_on(c, origin))
-    elif spec.path in START_FIELDS and start_region.from_rest(sim):
-        pinned = start_region.fixed_geometry(sim)
-        if spec.path in pinned:  # the special's tables: admitted only as measured
-            return pinned[spec.path], pinned[spec.path]
+    elif from_rest and (spec.path in START_FIELDS or spec.path in JOINT_FIELDS):
         ok = _accepts(level, spec.path, origin)
     elif variant == "floor" and spec.path in FLOOR_FIELDS:
         ok = _accepts(level, spec.path, origin, floor_runs_on)

@@ -186,8 +186,9 @@ def test_the_braked_gripped_folds_carts_span_where_it_keeps_running(level,
     from chainfountain.sim.apparatus.laws import fold_runs_on
 
     def load() -> Level:
-        return with_changes(level("apparatus_fold_gripped"),
-                            {"apparatus.end_follow": follow})
+        laid = {} if follow else {"initial.mode": "catenary", "apparatus.starter": 0.0}
+        return with_changes(level("apparatus_fold_gripped"),  # a fixed guide: measured laid
+                            {"apparatus.end_follow": follow, **laid})
 
     lvl = load()
     for path, want in (("carts[0].mass", upper), ("carts[1].mass", lower)):

@@ -33,6 +33,14 @@ it does when the cart is changed live: :func:`floor_problem` refuses what
 ``research/contact_region/floor_drop.toml``: a drop of 0.25 m with the 9-g cart stopped at
 12.6 and 12.9 s; 0.4-0.85 m held), and its launch angle is held to :data:`FLOOR_ANGLE`.
 
+**The rest of the build.** The chain's links, friction and joints, the rollers and the
+treadmill were swept one at a time (:data:`FROM_REST_RANGE`, :data:`FLOOR_FROM_REST_RANGE`);
+a gripped fold's brake, bearing drag, tracks and carts range where
+:func:`~chainfountain.sim.apparatus.laws.fold_runs_on` holds against its preset's balance
+(:attr:`Bands.carts`), the floor's cart, track, drag and upper table where
+:func:`~chainfountain.sim.apparatus.laws.floor_runs_on` does; every other field is
+admitted only as built (:mod:`.builds`, :func:`pinned`).
+
 ``apparatus.start_region = "unchecked"`` runs a start outside these regions, for a study
 of the regions themselves.
 """
@@ -40,9 +48,12 @@ of the regions themselves.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import TYPE_CHECKING, NamedTuple
 
-from chainfountain.fields import get_value
+from chainfountain.fields import get_value, set_value
+from chainfountain.sim.apparatus import builds
+from chainfountain.sim.apparatus.builds import off_build
 
 if TYPE_CHECKING:
     from chainfountain.sim.config import SimConfig
@@ -64,14 +75,24 @@ every start at 2.72-3.18 m/s held and four of four at 3.23-3.37 m/s lost the cha
 2.4 s (the end guide, placed for a fountain faster than the one the carts and brake
 select, about 3 m/s, misses it or loses it at the hand-over)."""
 
-FROM_REST_RANGE = {"apparatus.swing_damper": (0.5, 1.5), "chain.friction": (0.3, 2.0)}
-"""The swing damper (N s/m) and chain friction a gripped fold from rest is admitted with
-(their upper ends are the ends of their sliders), each measured alone at the shipped
-geometry, two starts each, 30 s (``research/contact_region/fold_damper.toml``,
-``fold_friction.toml``): with no damper both starts lost the chain at 20.8 and 22.4 s,
-at 0.1 N s/m one at 28.4 s and the other still swung 17 % below the law; 0.5 (shipped),
-1.0 and 1.5 held. With no friction both lost it at 5.7 s (the pick-up roller slips); 0.3,
-0.6 (shipped), 1.2 and 2.0 held."""
+FROM_REST_RANGE: dict[str, tuple[float, float]] = {
+    "apparatus.swing_damper": (0.5, 1.5), "chain.friction": (0.3, 2.0),
+    "chain.link_length": (0.015, 0.025), "apparatus.roller_radius": (0.02, 0.045),
+    "apparatus.fold_roller_radius": (0.07, 0.13), "apparatus.plate_links": (10, 40),
+    "chain.bending_stiffness": (0.0, 1e-5), "chain.bending_damping": (0.0, 1e-7)}
+"""The fields a gripped fold from rest is admitted within, besides its geometry and carts,
+each measured alone at the shipped geometry, two starts each, 30 s
+(``research/contact_region/fold_*.toml``). The swing damper (N s/m): with none both starts
+lost the chain at 20.8 and 22.4 s, at 0.1 one at 28.4 s and the other still swung 17 %
+below the law; 0.5 (shipped), 1.0 and 1.5 held. The chain's friction: with none both lost
+it at 5.7 s (the pick-up roller slips); 0.3, 0.6 (shipped), 1.2 and 2.0 held. Links of
+15 and 25 mm (20 shipped) held at 3.01 and 2.95 m/s; a pick-up roller of 20 and 45 mm
+(30) and a folding roller of 70 and 130 mm (100) held; treadmill plates of 10 and 40 links
+(20) held. Joint resistance: a spring of 1e-5 N m/rad and a damper of 1e-7 N m s/rad held
+at 2.99 m/s; from 1e-4 N m/rad and 1e-6 N m s/rad up (to 0.13 and 1e-5) every start lost
+the head at 1.2-1.4 s, before the end guide caught it (the stiffened head flies at
+1.9 m/s, not the 3 m/s the guide is placed for). The upper ends of the damper's and
+friction's bands are their sliders' ends."""
 
 SPECIAL_GEOMETRY = {"apparatus.drop": 0.5, "apparatus.speed": 3.0,
                     "apparatus.launch_angle": math.pi / 3.0}
@@ -93,6 +114,9 @@ class Bands(NamedTuple):
     angle: tuple[float, float]
     preset: str
     """The shipped preset they were measured on."""
+    carts: tuple[float, float] = (0.019, 0.311)
+    """The preset's cart masses (kg), the balance its carts, brake and bearing drag range
+    about (:func:`~chainfountain.sim.apparatus.laws.fold_runs_on`)."""
     fixed: dict[str, float] | None = None
     """Geometry fields admitted only at these values (the bands do not apply to them)."""
 
@@ -101,7 +125,7 @@ FROM_REST_TABLES: dict[tuple[float, float], Bands] = {
     (0.5, 0.303): Bands(FROM_REST_Q, FROM_REST_SPEED, FROM_REST_ANGLE,
                         "apparatus_fold_gripped"),
     (0.5, 0.5): Bands(FROM_REST_Q, FROM_REST_SPEED, FROM_REST_ANGLE,
-                      "apparatus_special_gripped", SPECIAL_GEOMETRY),
+                      "apparatus_special_gripped", (0.019, 0.328), SPECIAL_GEOMETRY),
 }
 """The table offsets ``(xi2, xi3)`` at which a gripped fold from rest was measured, and
 its bands there; other offsets are refused (the carts are balanced, and the start
@@ -122,6 +146,25 @@ FLOOR_ANGLE = (math.radians(30.0), math.radians(80.0))
 """The launch angles (rad) at which ``apparatus_floor`` formed from rest and ran 30 s, two
 starts each (``research/contact_region/floor_angle.toml``: 30-70 deg steady, 80 deg one
 start still swinging at 30 s; lower and higher not measured)."""
+
+
+FLOOR_FROM_REST_RANGE: dict[str, tuple[float, float]] = {
+    "chain.link_length": (0.015, 0.025), "apparatus.roller_radius": (0.03, 0.045),
+    "apparatus.plate_links": (20, 40), "chain.bending_stiffness": (0.0, 1e-4),
+    "chain.bending_damping": (0.0, 1e-5), "chain.friction": (0.3, 2.0)}
+"""The fields besides its geometry and cart a floor machine from rest is admitted within,
+each measured alone at ``apparatus_floor``'s build, two starts each, 30 s
+(``research/contact_region/floor_*.toml``; the cart, its track, the bearing drag and the
+upper table's offset range where :func:`~chainfountain.sim.apparatus.laws.floor_runs_on`
+holds, which predicted every one of those sweeps' outcomes). Links of 15 and 25 mm (20
+shipped) held at 3.01 and 2.91 m/s; a pick-up roller of 45 mm held, of 20 mm one start
+ran its roller into the channel at 5.7 s (the band stops at the shipped 30 mm); a
+treadmill plate of 40 links held, of 10 both stopped at 4.0 s (the band stops at the
+shipped 20). Joint springs of 1e-5 and 1e-4 N m/rad held steady at 2.95 and 2.93 m/s;
+from 1e-3 to 0.03 every start ran 30 s but none settled (2.69-3.01 m/s, swinging); dampers
+of 1e-7 to 1e-5 N m s/rad (the last the damper's step limit at this step) held steady,
+slowed to 2.74 m/s at 1e-5. The chain's friction: 0.3, 1.2 and 2.0 (0.6 shipped) held at
+3.04, 2.87 and 2.82 m/s."""
 
 
 def applies(cfg: SimConfig) -> bool:
@@ -153,7 +196,7 @@ def problem(cfg: SimConfig) -> tuple[str, str] | None:
     if not applies(cfg) or cfg.apparatus.start_region == "unchecked":
         return None
     a, g = cfg.apparatus, float(cfg.gravity)
-    found = _tables_problem(cfg)
+    found = _tables_problem(cfg) or off_build(cfg)
     if found is not None:
         return found
     band = bands(cfg)
@@ -167,14 +210,12 @@ def problem(cfg: SimConfig) -> tuple[str, str] | None:
                 f"{a.speed!r} m/s is outside the start speeds at which a gripped fold was "
                 f"measured to form from rest and hold; allowed: {v_lo:g}-{v_hi:g} m/s, or "
                 "initial.mode = 'catenary' (laid on its path)")
-    for path, (least, most) in FROM_REST_RANGE.items():
-        value = float(get_value(cfg, path))
-        if not least - 1e-12 <= value <= most + 1e-12:
-            why = ("below what a gripped fold was measured to need to form from rest and "
-                   "hold (less lets its landing swing or its pick-up slip)" if value < least
-                   else "beyond where a gripped fold was measured to form from rest")
-            return (path, f"{value!r} is {why}; allowed: {least:g}-{most:g}, or "
-                    "initial.mode = 'catenary' (laid on its path)")
+    found = _range_problem(cfg, FROM_REST_RANGE, "a gripped fold")
+    if found is not None:
+        return found
+    found = _carts_problem(cfg, band)
+    if found is not None:
+        return found
     found = _angle_problem(a.launch_angle, band.angle, f"a gripped fold with these tables "
                            f"({band.preset})", "hold")
     if found is not None:
@@ -199,12 +240,93 @@ def problem(cfg: SimConfig) -> tuple[str, str] | None:
             "initial.mode = 'catenary' (laid on its path)")
 
 
+def _range_problem(cfg: SimConfig, ranges: dict[str, tuple[float, float]],
+                   machine: str) -> tuple[str, str] | None:
+    """``(field, message)`` for the first field of ``ranges`` outside its band."""
+    for path, (least, most) in ranges.items():
+        value = float(get_value(cfg, path))
+        if not least - 1e-12 <= value <= most + 1e-12:
+            return (path, f"{get_value(cfg, path)!r} is outside where {machine} was measured "
+                    f"to form from rest and hold; allowed: {least:g}-{most:g}, or "
+                    "initial.mode = 'catenary' (laid on its path)")
+    return None
+
+
+def _carts_problem(cfg: SimConfig, band: Bands) -> tuple[str, str] | None:
+    """``(field, message)`` when a gripped fold's carts, brake and bearing drag push it off
+    the balance of the preset its tables were measured on (:attr:`Bands.carts`; the bands
+    of :func:`~chainfountain.sim.apparatus.laws.fold_runs_on`, measured from rest with the
+    following end guide)."""
+    import copy
+
+    from chainfountain.sim.apparatus.laws import fold_runs_on
+
+    balance = copy.deepcopy(cfg)
+    for cart, mass in zip(balance.carts, band.carts, strict=True):
+        cart.mass, cart.incline = mass, math.radians(30.0)
+    balance.apparatus.fold_brake, balance.apparatus.bearing_drag = 1.0, 0.0
+    if fold_runs_on(cfg, balance):
+        return None
+    trial = copy.deepcopy(cfg)
+
+    def runs(path: str, x: float) -> bool:
+        set_value(trial, path, x)
+        return fold_runs_on(trial, balance)
+
+    up, lo = (1e3 * m for m in band.carts)
+    built = (f"the balance {band.preset} holds at ({up:g} and {lo:g} g on 30-deg tracks, a "
+             "brake of 1 N*s/m, no bearing drag)")
+    for path in _CART_PUSHES:  # the first field off the balance whose own span is found
+        now, home = float(get_value(cfg, path)), float(get_value(balance, path))
+        if abs(now - home) <= 1e-12 or not runs(path, home):
+            set_value(trial, path, now)
+            continue
+        lo_x, hi_x = (_bisect(lambda x, p=path: runs(p, x), home, end) for end in
+                      (max(0.0, home - 10.0 * abs(now - home)), home + 10.0 * abs(now - home)))
+        return (path, f"{now!r} pushes the gripped fold too far from {built} for a start "
+                f"from rest (the carts' measured bands, laws.fold_runs_on); allowed: "
+                f"{lo_x:.4g}-{hi_x:.4g} with the other fields as they are, or initial.mode = "
+                "'catenary' (laid on its path)")
+    return ("carts[1].mass", f"{cfg.carts[1].mass!r} kg with the upper cart at "
+            f"{cfg.carts[0].mass:g} kg pushes the gripped fold too far from {built} for a "
+            "start from rest; allowed: the carts within their bands of it (the window's cart "
+            "sliders span them), or initial.mode = 'catenary' (laid on its path)")
+
+
+_CART_PUSHES = ("apparatus.fold_brake", "apparatus.bearing_drag", "carts[1].incline",
+                "carts[0].incline", "carts[1].mass", "carts[0].mass")
+"""The fields that move a fold's net push (:func:`_carts_problem` names the first one off
+its balance)."""
+
+
+def _bisect(ok: Callable[[float], bool], inside: float, outside: float) -> float:
+    """The last value from ``inside`` (accepted) towards ``outside`` that ``ok`` accepts."""
+    if ok(outside):
+        return outside
+    for _ in range(40):
+        mid = 0.5 * (inside + outside)
+        inside, outside = (mid, outside) if ok(mid) else (inside, mid)
+    return inside
+
+
 def bands(cfg: SimConfig) -> Bands | None:
     """:data:`FROM_REST_TABLES`' bands for ``cfg``'s table offsets (``None``: none
     measured)."""
     a = cfg.apparatus
     return next((b for (xi2, xi3), b in FROM_REST_TABLES.items()
                  if abs(a.xi2 - xi2) <= 1e-9 and abs(a.xi3 - xi3) <= 1e-9), None)
+
+
+def pinned(cfg: SimConfig) -> dict[str, float]:
+    """Every number a contact machine from rest is admitted only at, with its value: its
+    build's (:mod:`.builds`) and, at the special case's tables, its geometry
+    (:func:`fixed_geometry`); empty where no region applies."""
+    if not from_rest(cfg) or cfg.apparatus.start_region == "unchecked":
+        return {}
+    out = {path: float(v) for path, v in builds.pinned(cfg).items()
+           if not isinstance(v, (str, bool))}
+    out.update(fixed_geometry(cfg))
+    return out
 
 
 def fixed_geometry(cfg: SimConfig) -> dict[str, float]:
@@ -274,7 +396,8 @@ def floor_problem(cfg: SimConfig) -> tuple[str, str] | None:
     if (a.variant != "floor" or cfg.initial.mode != "stub" or not cfg.carts
             or a.start_region == "unchecked"):
         return None
-    found = _angle_problem(a.launch_angle, FLOOR_ANGLE, "the floor machine", "run on")
+    found = (off_build(cfg) or _range_problem(cfg, FLOOR_FROM_REST_RANGE, "the floor machine")
+             or _angle_problem(a.launch_angle, FLOOR_ANGLE, "the floor machine", "run on"))
     if found is not None:
         return found
     if floor_runs_on(cfg, FLOOR_FROM_REST_KH):

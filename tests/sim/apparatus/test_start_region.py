@@ -101,14 +101,58 @@ def test_level_tables_from_rest_admit_only_their_shipped_geometry_and_other_tabl
                  {"initial.mode": "catenary", "apparatus.starter": 0.0, "apparatus.drop": 0.52})
 
 
-@pytest.mark.parametrize("path", sorted(region.FROM_REST_RANGE))
-def test_a_gripped_fold_with_its_damper_or_friction_outside_is_refused(path: str) -> None:
-    least, most = region.FROM_REST_RANGE[path]
-    for value in (0.9 * least, 1.01 * most):
-        msg = _refused("apparatus_fold_gripped", {path: value})
+_RANGES = [("apparatus_fold_gripped", p, r) for p, r in region.FROM_REST_RANGE.items()] + \
+    [("apparatus_floor", p, r) for p, r in region.FLOOR_FROM_REST_RANGE.items()]
+
+
+@pytest.mark.parametrize("name, path, band", _RANGES, ids=[f"{n}:{p}" for n, p, _ in _RANGES])
+def test_a_machine_from_rest_with_a_field_outside_its_measured_band_is_refused(
+        name: str, path: str, band: tuple[float, float]) -> None:
+    least, most = band
+    whole = isinstance(least, int)
+    step = 1 if whole else 0.05 * max(most - least, most)
+    fine = {"solver.substeps": 4}  # the joints' step limits (the floor's damper) beyond
+    for value in ([least - step] if least > 0 else []) + [most + step]:
+        msg = _refused(name, {path: value, **fine})
         assert path in msg and f"allowed: {least:g}-{most:g}" in msg
     for value in (least, most):
-        with_changes(shipped.level("apparatus_fold_gripped"), {path: value})
+        with_changes(shipped.level(name), {path: value})
+
+
+@pytest.mark.parametrize("name, path, value", [
+    ("apparatus_fold_gripped", "gravity", 1.62),
+    ("apparatus_fold_gripped", "apparatus.starter", 4.0),
+    ("apparatus_fold_gripped", "apparatus.end_follow", 0.0),
+    ("apparatus_special_gripped", "apparatus.roller_mass", 0.03),
+    ("apparatus_floor", "apparatus.end", "solid"),
+    ("apparatus_floor", "chain.linear_density", 0.08),
+])
+def test_a_machine_from_rest_off_its_build_is_refused(name: str, path: str, value) -> None:
+    msg = _refused(name, {path: value})
+    assert path in msg and "only with this field as built" in msg
+    with_changes(shipped.level(name), {path: value, "initial.mode": "catenary",
+                                       "apparatus.starter": 0.0})
+
+
+def test_a_gripped_fold_whose_brake_moves_it_off_its_carts_balance_is_refused() -> None:
+    # measured from rest: brakes of 0.5, 1.5 and 2.5 N s/m (1 shipped) lost the chain
+    for brake in (0.5, 1.5):
+        msg = _refused("apparatus_fold_gripped", {"apparatus.fold_brake": brake})
+        assert "apparatus.fold_brake" in msg and "allowed: 0.90" in msg
+    # a shallower upper track (20 deg) stays inside the band: measured, it held
+    with_changes(shipped.level("apparatus_fold_gripped"), {"carts[0].incline": 0.35})
+    msg = _refused("apparatus_fold_gripped", {"carts[1].incline": 0.35})
+    assert "carts[1].incline" in msg
+
+
+def test_a_pinned_field_has_a_one_value_slider() -> None:
+    level = shipped.level("apparatus_fold_gripped")
+    for path in ("apparatus.fold_clearance", "chain.bending_stiffness"):
+        lo, hi = spans.admissible(level, spec_for(level.sim, path), level.sim)
+        if path == "apparatus.fold_clearance":
+            assert lo == hi == 0.0
+        else:  # ranged, not pinned: its measured band
+            assert (lo, hi) == pytest.approx(region.FROM_REST_RANGE[path], rel=1e-3, abs=1e-12)
 
 
 def test_a_floor_machine_whose_cart_would_stop_it_is_refused() -> None:
