@@ -1,17 +1,19 @@
-"""Random settings inside a gripped fold's start region, each run from rest.
+"""Random settings inside a contact machine's start region, each run from rest.
 
-Draws ``--n`` settings of a gripped-fold preset uniformly inside its admissible region
-(:mod:`chainfountain.sim.apparatus.region`: the start speed within its band, the drop
-within the band of ``Q = Tbar_E + g H/v**2``, the launch angle within its band; both
-carts within their measured bands, :func:`chainfountain.sim.apparatus.laws.fold_runs_on`;
-the bands of the preset's table offsets, ``region.bands``; where those fix the geometry,
-the carts alone),
-runs each from rest for ``--seconds`` (``chainfountain run``, one process per core) and
-prints how many formed and held, each setting's speed against the paper's laws with the
-brake, and the wall time::
+Draws ``--n`` settings of a gripped-fold or floor preset uniformly inside its admissible
+region (:mod:`chainfountain.sim.apparatus.region`, which the level check reads): every
+field the region ranges over (``region.FROM_REST_RANGE``, ``FLOOR_FROM_REST_RANGE``: the
+chain's links, friction and joints, the rollers, the treadmill), the upper cart and its
+track, and for a gripped fold the lower cart and, where its tables' bands do not fix
+them (``region.bands``), the drop, start speed and launch angle; for the floor machine
+the drop, start speed, launch angle, upper table offset and bearing drag. A draw the level
+check refuses (the carts' push, the floor's law) is drawn again. Each runs from rest for
+``--seconds`` (``chainfountain run``, one process per core); the script prints how many
+formed and held, each setting's speed against its law (a gripped fold's: the paper's laws
+with the brake; the floor's: this model's pick-up law) and the wall time::
 
     python -m research.contact_region.draws apparatus_fold_gripped --n 20
-    python -m research.contact_region.draws apparatus_special_gripped --n 20 --seed 1
+    python -m research.contact_region.draws apparatus_floor --n 20 --seed 1
 
 A setting "holds" when the run goes its full length with no early end; "steady" or
 "swings" says whether its speed had settled by the steady test (``recording``).
@@ -33,38 +35,57 @@ from joblib import Parallel, delayed
 from chainfountain.level.io import load
 from chainfountain.level.library import resolve
 from chainfountain.sim.apparatus import region
-from chainfountain.sim.apparatus.laws import braked_fold_speed, fold_runs_on
+from chainfountain.sim.apparatus.laws import braked_fold_speed, floor_speeds
 from chainfountain.study.changes import with_changes
 
 
+def _uniform(rng: np.random.Generator, band: tuple[float, float]) -> float | int:
+    lo, hi = band
+    if isinstance(lo, int) and isinstance(hi, int):
+        return int(rng.integers(lo, hi + 1))
+    return float(f"{rng.uniform(lo, hi):.5g}")
+
+
 def draw(name: str, n: int, seed: int) -> list[dict[str, float]]:
-    """``n`` settings inside the region of preset ``name`` (rejection sampling)."""
+    """``n`` settings inside the region of preset ``name`` (rejection sampling: every field
+    the region ranges over drawn uniformly in its band, kept where the level check, which
+    reads the region, admits it)."""
     base = load(resolve(name))
     rng = np.random.default_rng(seed)
     g, te = base.sim.gravity, base.sim.apparatus.end_tension
-    band = region.bands(base.sim)  # the bands at the preset's table offsets
-    assert band is not None, f"{name}: no start region at its table offsets"
-    q_lo, q_hi = band.q
-    a_lo, a_hi = band.angle
-    m_up, m_lo = base.sim.carts[0].mass, base.sim.carts[1].mass
+    floor = base.sim.apparatus.variant == "floor"
+    band = None if floor else region.bands(base.sim)  # the bands at the preset's tables
+    assert floor or band is not None, f"{name}: no start region at its table offsets"
+    ranges = region.FLOOR_FROM_REST_RANGE if floor else region.FROM_REST_RANGE
+    m_up = base.sim.carts[0].mass
     out: list[dict[str, float]] = []
     while len(out) < n:
-        v = float(rng.uniform(*band.speed))
-        H = float(rng.uniform(max(q_lo - te, 0.0) * v * v / g, (q_hi - te) * v * v / g))
-        geometry = {
-            "apparatus.speed": round(v, 4), "apparatus.drop": round(H, 4),
-            "apparatus.launch_angle": round(float(rng.uniform(a_lo, a_hi)), 4)}
-        changes = {
-            **({} if band.fixed else geometry),
-            "carts[0].mass": round(float(rng.uniform(0.5 * m_up, 1.5 * m_up)), 4),
-            "carts[1].mass": round(float(rng.uniform(0.97 * m_lo, 1.1 * m_lo)), 4),
-        }
+        changes: dict[str, float] = {p: _uniform(rng, r) for p, r in ranges.items()}
+        changes["carts[0].incline"] = _uniform(rng, (0.35, 0.7))
+        changes["carts[0].mass"] = round(float(rng.uniform(0.3 * m_up, 1.5 * m_up)), 4)
+        if floor:
+            changes |= {"apparatus.drop": _uniform(rng, (0.37, 0.9)),
+                        "apparatus.speed": _uniform(rng, (2.5, 3.5)),
+                        "apparatus.launch_angle": _uniform(rng, region.FLOOR_ANGLE),
+                        "apparatus.xi2": _uniform(rng, (0.1, 0.5)),
+                        "apparatus.bearing_drag": _uniform(rng, (0.0, 0.02))}
+        else:
+            assert band is not None
+            m_lo = base.sim.carts[1].mass
+            changes["carts[1].mass"] = round(float(rng.uniform(0.97 * m_lo, 1.1 * m_lo)), 4)
+            if not band.fixed:
+                v = float(rng.uniform(*band.speed))
+                q_lo, q_hi = band.q
+                changes |= {
+                    "apparatus.speed": round(v, 4),
+                    "apparatus.drop": round(float(rng.uniform(max(q_lo - te, 0.0) * v * v / g,
+                                                              (q_hi - te) * v * v / g)), 4),
+                    "apparatus.launch_angle": _uniform(rng, band.angle)}
         try:
-            level = with_changes(base, changes)
-        except Exception:  # refused: outside the region after rounding
+            with_changes(base, changes)
+        except Exception:  # refused: outside the region (the carts' push, the floor's law)
             continue
-        if fold_runs_on(level.sim, base.sim):
-            out.append(changes)
+        out.append(changes)
     return out
 
 
@@ -105,15 +126,18 @@ def main(argv: list[str] | None = None) -> int:
         held += bool(ok)
         state = ("holds, steady " if ok and r["steady"] else "holds, swings" if ok
                  else "FAILS        ")
-        law = braked_fold_speed(with_changes(base, r["changes"]).sim)
-        c = {**region.fixed_geometry(base.sim), **r["changes"]}
+        sim = with_changes(base, r["changes"]).sim
+        law = floor_speeds(sim)[0] if sim.apparatus.variant == "floor" else \
+            braked_fold_speed(sim)
+        c = {**region.pinned(base.sim), **r["changes"]}
         v = r["v"]
         off = f"{100 * (v / law - 1):+.2f} %" if v else "-"
-        print(f"{state}  H={c['apparatus.drop']:.3f} v0={c['apparatus.speed']:.3f}"
-              f" a0={np.degrees(c['apparatus.launch_angle']):.1f}"
-              f" up={1e3 * c['carts[0].mass']:.1f} g"
-              f" lo={1e3 * c['carts[1].mass']:.1f} g  v={v if v else float('nan'):.3f} ({off} of"
-              f" the laws)  {r['ended'] or r['refused']}")
+        which = "this model's pick-up law" if sim.apparatus.variant == "floor" else \
+            "the laws with the brake"
+        shown = " ".join(f"{k.split('.')[-1]}={val:.4g}" for k, val in sorted(c.items())
+                         if k in r["changes"])
+        print(f"{state}  v={v if v else float('nan'):.3f} ({off} of {which})  {shown}  "
+              f"{r['ended'] or r['refused']}")
     if a.save is not None:
         a.save.parent.mkdir(parents=True, exist_ok=True)
         a.save.write_text(json.dumps({"preset": a.preset, "seconds": a.seconds,
