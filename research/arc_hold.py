@@ -66,7 +66,7 @@ def run(level: str, hold: str, bias: float, factor: float, window: tuple[float, 
     ch = {k: _value(v) for k, v in (x.split("=", 1) for x in sets)}
     if factor != 1.0:
         ch["solver.dt"] = lvl.sim.solver.dt * factor
-    cfg = laid_on_path(with_changes(lvl, ch)).sim
+    cfg = with_changes(laid_on_path(lvl), ch).sim
     sim = Simulation(cfg)
     rc = dataclasses.replace(cfg.recording, sample_interval=0.002)
     rec = Recorder(sim, rc)

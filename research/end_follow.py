@@ -51,7 +51,7 @@ def main() -> None:
     ch["apparatus.end_follow"] = a.gain
     if a.dt_factor != 1.0:
         ch["solver.dt"] = lvl.sim.solver.dt * a.dt_factor
-    lvl = laid_on_path(with_changes(lvl, ch) if ch else lvl)
+    lvl = with_changes(laid_on_path(lvl), ch) if ch else laid_on_path(lvl)
     os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
     from chainfountain.app.session import Session
 

@@ -47,7 +47,7 @@ def laid_run(h: float, changes: list[str], level: str = "apparatus_fold") -> Sim
     ch = {k: parse_val(v) for k, v in (a.split("=", 1) for a in changes)}
     lvl = io.load(shipped_dir() / f"{level}.toml")
     ch["solver.dt"] = h * lvl.sim.solver.substeps
-    sim = Simulation(laid_on_path(with_changes(lvl, ch)).sim)
+    sim = Simulation(with_changes(laid_on_path(lvl), ch).sim)
     sim.advance(1.0)
     return sim
 

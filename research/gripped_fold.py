@@ -55,7 +55,7 @@ def build(level: str, changes: dict, dt_factor: float, contact: bool) -> Simulat
     ch = dict(changes) if contact else {**GRIPPED, **changes}
     if dt_factor != 1.0:
         ch["solver.dt"] = lvl.sim.solver.dt * dt_factor
-    return Simulation(laid_on_path(with_changes(lvl, ch)).sim)
+    return Simulation(with_changes(laid_on_path(lvl), ch).sim)
 
 
 def hold(sim: Simulation, seconds: float) -> tuple[list[float], str]:
