@@ -140,7 +140,9 @@ def admissible(level: Level, spec: FieldSpec,
                                              or origin.apparatus.fold_brake > 0.0))
     if fold and spec.path in FOLD_FIELDS:  # linear in the carts' forces: exact
         i = FOLD_FIELDS.index(spec.path)
-        return fold_cart_span(sim, origin, i) or fold_cart_span(origin, origin, i)
+        scale = start_region.cart_scale(sim)  # a gripped fold from rest: its margin
+        return (fold_cart_span(sim, origin, i, scale)
+                or fold_cart_span(origin, origin, i, scale))
     if fold and spec.path in FOLD_OFFSETS:  # the carts are balanced for these only
         built = float(get_value(origin, spec.path))
         return built, built

@@ -63,17 +63,20 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("runs", type=Path, help="folder holding the sweeps' --out folders")
     p.add_argument("--out", type=Path, default=OUT)
     a = p.parse_args(argv)
-    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12, 4.8),
+    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12, 5.8),
                                   gridspec_kw={"width_ratios": [2.2, 1]})
     v = np.linspace(2.4, 3.8, 200)
+    m_lo, m_hi = region.MEASURED_Q
+    ax.fill_between(v, (m_lo - TE) * v * v / G, (m_hi - TE) * v * v / G, color="0.5",
+                    alpha=0.08, label=f"measured to hold: {m_lo:.3f} <= Tbar_E + gH/v0^2 <= "
+                    f"{m_hi:.3f}")
     q_lo, q_hi = region.FROM_REST_Q
-    ax.fill_between(v, (q_lo - TE) * v * v / G, (q_hi - TE) * v * v / G, color="0.5",
-                    alpha=0.08, label=f"{q_lo:.3f} <= Tbar_E + gH/v0^2 <= {q_hi:.3f}")
     s_lo, s_hi = region.FROM_REST_SPEED
     vin = np.linspace(s_lo, s_hi, 100)
     ax.fill_between(vin, (q_lo - TE) * vin * vin / G, (q_hi - TE) * vin * vin / G,
                     color="tab:green", alpha=0.18,
-                    label=f"admitted: that and v0 in {s_lo:g}-{s_hi:g} m/s")
+                    label=f"admitted (the inner half): Q {q_lo:.4g}-{q_hi:.4g}, v0 "
+                    f"{s_lo:g}-{s_hi:g} m/s")
     for q in (1.0,):
         ax.plot(v, (q - TE) * v * v / G, "k:", lw=1, label="no fountain above (Q = 1)")
     seen: set[str] = set()
@@ -97,14 +100,17 @@ def main(argv: list[str] | None = None) -> int:
             seen.add(o)
             ax.plot(vv + shift, H, ls="none", ms=6, label=label, **STYLE[o])
     for draws in sorted(a.runs.glob("draws*.json")):
-        rows = json.loads(draws.read_text())["rows"]
-        for r in rows:
-            c = r["changes"]
+        data = json.loads(draws.read_text())
+        shift = 0.03 if "special" in data["preset"] else 0.0  # its geometry: as shipped
+        a_lo, a_hi = (math.degrees(x) for x in region.FROM_REST_ANGLE)
+        for r in data["rows"]:
+            c = {**SHIPPED, **r["changes"]}
             o = "fails" if r["rc"] != 0 or r["ended"] else "holds" if r["steady"] else "swings"
-            label = (f"random draw {o} (any launch angle of 40-70 deg)" if f"d{o}" not in seen
-                     else None)
+            label = (f"random draw {o} (every field drawn; {a_lo:g}-{a_hi:g} deg)"
+                     if f"d{o}" not in seen else None)
             seen.add(f"d{o}")
-            ax.plot(c["apparatus.speed"], c["apparatus.drop"], ls="none", ms=4, label=label,
+            ax.plot(c["apparatus.speed"] + shift, c["apparatus.drop"], ls="none", ms=4,
+                    label=label,
                     marker="X" if o == "fails" else "D",
                     fillstyle="none" if o == "swings" else "full",
                     color="tab:red" if o == "fails" else "tab:blue")
@@ -116,10 +122,13 @@ def main(argv: list[str] | None = None) -> int:
     ax.set_ylabel("drop H = apparatus.drop (m)")
     ax.set_ylim(0.2, 0.8)
     ax.set_title("gripped folds from rest, 30 s (Tbar_E = 0.17)")
-    ax.legend(fontsize=7, loc="upper left")
+    fig.legend(*ax.get_legend_handles_labels(), fontsize=8, loc="lower center", ncol=3,
+               frameon=False)
     ax.grid(alpha=0.3)
+    lo, hi = (math.degrees(x) for x in region.MEASURED_ANGLE)
+    ax2.axvspan(lo, hi, color="0.5", alpha=0.08, label="measured to hold")
     lo, hi = (math.degrees(x) for x in region.FROM_REST_ANGLE)
-    ax2.axvspan(lo, hi, color="tab:green", alpha=0.12, label="admitted")
+    ax2.axvspan(lo, hi, color="tab:green", alpha=0.18, label="admitted")
     for deg, seed, o in angle_rows:
         ax2.plot(deg, seed, ls="none", ms=7, **STYLE[o])
     ax2.plot(60.0, 0.5, marker="*", ms=16, color="gold", mec="k", ls="none")
@@ -128,7 +137,7 @@ def main(argv: list[str] | None = None) -> int:
     ax2.set_xlabel("launch angle alpha0 (deg); H = 0.5 m, v0 = 3 m/s")
     ax2.set_title("launch angle")
     ax2.grid(alpha=0.3)
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0.17, 1, 1))
     fig.savefig(a.out, dpi=110)
     print(f"wrote {a.out}")
     floor = a.out.with_name("contact_region_floor.png")
@@ -146,7 +155,7 @@ def floor_strips(runs: Path, out: Path) -> None:
     from chainfountain.level.library import resolve
 
     level = load(resolve("apparatus_floor"))
-    fig, axes = plt.subplots(1, len(FLOOR_SWEEPS), figsize=(14, 3.2))
+    fig, axes = plt.subplots(1, len(FLOOR_SWEEPS), figsize=(14, 3.7))
     for ax, (name, path, label, scale) in zip(axes, FLOOR_SWEEPS, strict=True):
         span = admissible(level, spec_for(level.sim, path), level.sim)
         if span is not None:
@@ -166,9 +175,9 @@ def floor_strips(runs: Path, out: Path) -> None:
         ax.set_xlabel(label)
         ax.grid(alpha=0.3)
     handles = [plt.Line2D([], [], ls="none", ms=7, label=k, **v) for k, v in STYLE.items()]
-    axes[0].legend(handles=handles, fontsize=7, loc="upper left")
+    fig.legend(handles=handles, fontsize=8, loc="lower center", ncol=len(handles), frameon=False)
     fig.suptitle("apparatus_floor from rest, 30 s each (star: shipped; green: admitted)")
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0.08, 1, 1))
     fig.savefig(out, dpi=110)
     plt.close(fig)
 

@@ -171,18 +171,20 @@ def test_the_contact_fold_machines_carts_span_their_measured_band(level) -> None
 
 
 @pytest.mark.parametrize("follow, upper, lower", [
-    (2.0, (0.008, 0.027), (0.306, 0.341)),  # as shipped: laws.FOLLOW_CART_BAND
+    (2.0, (0.0135, 0.023), (0.3085, 0.326)),  # from rest: half laws.FOLLOW_CART_BAND
     (0.0, (0.017, 0.020), (0.309, 0.316)),  # a fixed end guide: laws.BRAKED_CART_BAND
 ])
 def test_the_braked_gripped_folds_carts_span_where_it_keeps_running(level,
         follow: float, upper: tuple[float, float], lower: tuple[float, float]) -> None:
     """``apparatus_fold_gripped`` (19 / 311 g): with its end guide following the landing,
-    upper 8-27 g and lower 306-341 g, where every pair held from rest (but upper 8 g
-    with 306 g: laws.FOLLOW_LIGHT_CORNER);
-    with the guide fixed, upper 17-20 g and lower 309-316 g (where the fountain still lands
-    in the catch). The upper cart 1 g lighter moves the lower's span down by 1.5 g; the
-    brake spans where the carts' push stays in its band; the window shows a brake slider
-    for it and none for a contact fold."""
+    from rest, upper 13.5-23 g and lower 308.5-326 g, the inner half
+    (region.FROM_REST_MARGIN) of the measured band where every pair held from rest
+    (upper 8-27 g and lower 306-341 g, but upper 8 g with 306 g: laws.FOLLOW_LIGHT_CORNER);
+    with the guide fixed, laid on its path, upper 17-20 g and lower 309-316 g (where the
+    fountain still lands in the catch). The upper cart 1 g lighter moves the lower's span
+    down by 1.5 g; the brake spans where the carts' push stays in its band; the window
+    shows a brake slider for it and none for a contact fold."""
+    from chainfountain.sim.apparatus import region
     from chainfountain.sim.apparatus.laws import fold_runs_on
 
     def load() -> Level:
@@ -198,7 +200,7 @@ def test_the_braked_gripped_folds_carts_span_where_it_keeps_running(level,
         for m, runs in ((lo, True), (hi, True), (lo - 1e-5, False), (hi + 1e-5, False)):
             cand = load()
             cand.sim.carts[i].mass = m
-            assert fold_runs_on(cand.sim, lvl.sim) is runs
+            assert fold_runs_on(cand.sim, lvl.sim, region.cart_scale(cand.sim)) is runs
     moved = load()
     moved.sim.carts[0].mass = 0.018
     assert spans.admissible(moved, _spec(moved, "carts[1].mass"), lvl.sim) == \
@@ -222,18 +224,20 @@ def test_both_gripped_fold_carts_far_lighter_at_once_are_outside_the_spans(level
         upper: float, lower: float, runs: bool) -> None:
     """Both carts much lighter than 19 / 311 g at once lost the chain from rest (upper 8 g
     with lower 306 g in one of three starts; laws.FOLLOW_LIGHT_CORNER), where each alone,
-    and 8 g with 311 g or 13 g with 306 g, kept it: the pair is outside the spans, and each
-    slider's span follows the other's."""
+    and 8 g with 311 g or 13 g with 306 g, kept it: the pair is outside the measured band.
+    From rest the sliders span its inner half, and each follows the other's: the lower at
+    308.5 g (its lowest), the upper starts at 14.75 g; the upper at 13.5 g (its lowest),
+    the lower starts at 311 g."""
     from chainfountain.sim.apparatus.laws import fold_runs_on
 
     lvl = level("apparatus_fold_gripped")
     cand = level("apparatus_fold_gripped")
     cand.sim.carts[0].mass, cand.sim.carts[1].mass = upper, lower
     assert fold_runs_on(cand.sim, lvl.sim) is runs
-    cand.sim.carts[1].mass = 0.306  # the upper slider then starts at 10.5 g
+    cand.sim.carts[0].mass, cand.sim.carts[1].mass = 0.019, 0.3085
     lo, _ = spans.admissible(cand, _spec(cand, "carts[0].mass"), lvl.sim)
-    assert lo == pytest.approx(0.0105, abs=1e-9)
-    cand.sim.carts[0].mass = 0.008  # the lower slider at 311 g
+    assert lo == pytest.approx(0.01475, abs=1e-9)
+    cand.sim.carts[0].mass, cand.sim.carts[1].mass = 0.0135, 0.311
     lo, _ = spans.admissible(cand, _spec(cand, "carts[1].mass"), lvl.sim)
     assert lo == pytest.approx(0.311, abs=1e-9)
 

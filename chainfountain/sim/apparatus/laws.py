@@ -218,12 +218,22 @@ def _fold_offsets(cfg: SimConfig, balance: SimConfig) -> list[float]:
     return [up + drag, lo - drag - brake]
 
 
-def fold_runs_on(cfg: SimConfig, balance: SimConfig) -> bool:
+def _scaled(bands: _Bands, scale: float) -> _Bands:
+    """``bands`` shrunk by ``scale`` towards the balance (every offset, and the light
+    corner's bound, times ``scale``)."""
+    carts, pushes, w, corner = bands
+    carts = tuple((scale * lo, scale * hi) for lo, hi in carts)  # type: ignore[assignment]
+    pushes = (scale * pushes[0], scale * pushes[1])
+    return carts, pushes, w, None if corner is None else (corner[0], scale * corner[1])
+
+
+def fold_runs_on(cfg: SimConfig, balance: SimConfig, scale: float = 1.0) -> bool:
     """Whether a 'fold' machine's carts lie within their band of ``balance``'s (the level
-    as built), each, and their net push within its band (:func:`_bands`)."""
+    as built), each, and their net push within its band (:func:`_bands`), the bands shrunk
+    by ``scale`` towards the balance (a start from rest: ``region.FROM_REST_MARGIN``)."""
     if len(cfg.carts) < 2 or len(balance.carts) < 2:
         return True
-    carts, pushes, w, corner = _bands(balance)
+    carts, pushes, w, corner = _scaled(_bands(balance), scale)
     df = _fold_offsets(cfg, balance)
     for (lo, hi), d in zip(carts, df, strict=True):
         if not lo - 1e-12 <= d <= hi + 1e-12:
@@ -234,13 +244,15 @@ def fold_runs_on(cfg: SimConfig, balance: SimConfig) -> bool:
     return pushes[0] - 1e-12 <= push <= pushes[1] + 1e-12
 
 
-def fold_cart_span(cfg: SimConfig, balance: SimConfig, i: int) -> tuple[float, float] | None:
+def fold_cart_span(cfg: SimConfig, balance: SimConfig, i: int,
+                   scale: float = 1.0) -> tuple[float, float] | None:
     """The masses (kg) of cart ``i`` (0 upper, 1 lower) of a 'fold' machine for which, the
     other cart as it is, :func:`fold_runs_on` holds; ``None`` when the other cart is so
     far off that none does, or the cart's track is level (its mass pushes nothing) or
-    tilted the other way (only a negative mass would run)."""
+    tilted the other way (only a negative mass would run). ``scale`` as in
+    :func:`fold_runs_on`."""
     df = _fold_offsets(cfg, balance)
-    carts, (a, b), w, corner = _bands(balance)
+    carts, (a, b), w, corner = _scaled(_bands(balance), scale)
     lo, hi = carts[i]
     if i == 1:  # a <= d1 - w*d0 <= b
         lo, hi = max(lo, a + w * df[0]), min(hi, b + w * df[0])

@@ -22,10 +22,13 @@ stand). Over the launch angle at the shipped ``Q`` (0.715), 40-70 deg held both 
 35 deg lost one (it ran away at 7.7 s), 75 deg swung 1-8 % below the law at 30 s, 80 deg
 lost both. Settings drawn at random inside those bands (``research/contact_region/
 draws.py``) showed that the start speed matters beyond ``Q``: above 3.2 m/s four of four
-lost the chain. :data:`FROM_REST_Q`, :data:`FROM_REST_SPEED` and :data:`FROM_REST_ANGLE`
-are the bands admitted, and :data:`FROM_REST_RANGE` the swing damper's and the friction's,
-at the tables they were measured with (:data:`FROM_REST_TABLES`); at the special case's
-level tables the geometry is admitted only as shipped (:data:`SPECIAL_GEOMETRY`).
+lost the chain. Every field measured alone holds over its band, but drawn all at once
+over their whole bands some starts fail (3-4 of 30, scattered), so a start from rest is
+admitted only in the inner half of each band (:data:`FROM_REST_MARGIN`):
+:data:`FROM_REST_Q`, :data:`FROM_REST_SPEED`, :data:`FROM_REST_ANGLE`, the other fields'
+:data:`FROM_REST_RANGE` and the carts' bands, at the tables they were measured with
+(:data:`FROM_REST_TABLES`); at the special case's level tables the geometry is admitted
+only as shipped (:data:`SPECIAL_GEOMETRY`).
 
 **The floor machine** from rest stops where its cart holds the chain back too hard, as
 it does when the cart is changed live: :func:`floor_problem` refuses what
@@ -58,30 +61,73 @@ from chainfountain.sim.apparatus.builds import off_build
 if TYPE_CHECKING:
     from chainfountain.sim.config import SimConfig
 
-FROM_REST_Q = (0.606, 0.796)
+FROM_REST_MARGIN = 0.5
+"""The part of each measured band a gripped fold from rest is admitted in: every band
+(:data:`MEASURED_Q`, :data:`MEASURED_SPEED`, :data:`MEASURED_ANGLE`,
+:data:`MEASURED_RANGE` and the carts' bands of
+:func:`~chainfountain.sim.apparatus.laws.fold_runs_on`) shrunk by this factor towards the
+shipped presets' value (:data:`SHIPPED`). Each band was measured with the other fields
+at the build (or, for the geometry and carts, drawn together); with every field drawn at
+once over its whole band, 26 of 30 starts of ``apparatus_fold_gripped`` and 27 of 30 of
+``apparatus_special_gripped`` held 30 s, the failures scattered over the fields (the
+folding roller rolling backwards, a runaway, a lost catch 2.5-18 s in;
+``python -m research.contact_region.draws PRESET --n 30 --seed 101``). Inside the inner
+half (``--seed 202``) 29 of 30 of ``apparatus_fold_gripped`` and 30 of 30 of
+``apparatus_special_gripped`` held; the one failure (the folding roller rolling
+backwards at 19.4 s, friction 1.27, 61.7 deg, a stiffness of 4.4e-6 N m/rad) is marginal:
+moved back to the shipped value, any one of eight fields alone lets it hold."""
+
+SHIPPED: dict[str, float] = {
+    "q": 0.715, "apparatus.speed": 3.0, "apparatus.launch_angle": math.pi / 3.0,
+    "apparatus.swing_damper": 0.5, "chain.friction": 0.6, "chain.link_length": 0.02,
+    "apparatus.roller_radius": 0.03, "apparatus.fold_roller_radius": 0.1,
+    "apparatus.plate_links": 20, "chain.bending_stiffness": 0.0,
+    "chain.bending_damping": 0.0}
+"""The gripped presets' values (both alike; ``q``: ``Tbar_E + g H/v**2``), about which
+the admitted bands lie (:data:`FROM_REST_MARGIN`)."""
+
+
+def _inner(path: str, band: tuple[float, float]) -> tuple[float, float]:
+    """``band`` shrunk by :data:`FROM_REST_MARGIN` towards :data:`SHIPPED`'s ``path``."""
+    lo, hi, mid = band[0], band[1], SHIPPED[path]
+    out = (mid - FROM_REST_MARGIN * (mid - lo), mid + FROM_REST_MARGIN * (hi - mid))
+    if isinstance(lo, int) and isinstance(hi, int):
+        return (math.floor(out[0] + 0.5), math.floor(out[1] + 0.5))  # type: ignore[return-value]
+    return (float(f"{out[0]:.6g}"), float(f"{out[1]:.6g}"))
+
+
+MEASURED_Q = (0.606, 0.796)
 """The band of ``Q = Tbar_E + g H / v**2`` in which every measured gripped fold formed from
-rest and held 30 s (two starts each; the nearest failures: 0.594 below, 0.824 above)."""
+rest and held 30 s, the rest as built (two starts each; the nearest failures: 0.594 below,
+0.824 above)."""
 
-FROM_REST_ANGLE = (math.radians(40.0), math.radians(65.0))
-"""The launch angles (rad) admitted for a gripped fold from rest. Along the angle alone, at
-the shipped ``Q`` of 0.715 and 3 m/s, 40-70 deg held both starts (the nearest failures: 35
-and 75 deg); with the drop and speed drawn at random inside their bands, one start at 69
-deg lost the chain at 2.3 s, so the band stops at 65."""
+MEASURED_ANGLE = (math.radians(40.0), math.radians(65.0))
+"""The launch angles (rad) at which a gripped fold from rest held. Along the angle alone,
+at the shipped ``Q`` of 0.715 and 3 m/s, 40-70 deg held both starts (the nearest failures:
+35 and 75 deg); with the drop and speed drawn at random inside their bands, one start at
+69 deg lost the chain at 2.3 s, so the band stops at 65."""
 
-FROM_REST_SPEED = (2.7, 3.2)
-"""The start speeds (m/s, ``apparatus.speed``) admitted for a gripped fold from rest. Along
-the speed alone at 0.5 m, 2.8-3.2 m/s held; with the drop drawn to keep ``Q`` in its band,
-every start at 2.72-3.18 m/s held and four of four at 3.23-3.37 m/s lost the chain within
-2.4 s (the end guide, placed for a fountain faster than the one the carts and brake
+MEASURED_SPEED = (2.7, 3.2)
+"""The start speeds (m/s, ``apparatus.speed``) at which a gripped fold from rest held.
+Along the speed alone at 0.5 m, 2.8-3.2 m/s held; with the drop drawn to keep ``Q`` in its
+band, every start at 2.72-3.18 m/s held and four of four at 3.23-3.37 m/s lost the chain
+within 2.4 s (the end guide, placed for a fountain faster than the one the carts and brake
 select, about 3 m/s, misses it or loses it at the hand-over)."""
 
-FROM_REST_RANGE: dict[str, tuple[float, float]] = {
+FROM_REST_Q = _inner("q", MEASURED_Q)
+"""The admitted band of ``Q`` (:data:`FROM_REST_MARGIN` of :data:`MEASURED_Q`)."""
+FROM_REST_ANGLE = _inner("apparatus.launch_angle", MEASURED_ANGLE)
+"""The admitted launch angles (rad; :data:`FROM_REST_MARGIN` of :data:`MEASURED_ANGLE`)."""
+FROM_REST_SPEED = _inner("apparatus.speed", MEASURED_SPEED)
+"""The admitted start speeds (m/s; :data:`FROM_REST_MARGIN` of :data:`MEASURED_SPEED`)."""
+
+MEASURED_RANGE: dict[str, tuple[float, float]] = {
     "apparatus.swing_damper": (0.5, 1.5), "chain.friction": (0.3, 2.0),
     "chain.link_length": (0.015, 0.025), "apparatus.roller_radius": (0.02, 0.045),
     "apparatus.fold_roller_radius": (0.07, 0.13), "apparatus.plate_links": (10, 40),
     "chain.bending_stiffness": (0.0, 1e-5), "chain.bending_damping": (0.0, 1e-7)}
-"""The fields a gripped fold from rest is admitted within, besides its geometry and carts,
-each measured alone at the shipped geometry, two starts each, 30 s
+"""The bands of a gripped fold's other fields, besides its geometry and carts, in which
+it held, each measured alone at the shipped geometry, two starts each, 30 s
 (``research/contact_region/fold_*.toml``). The swing damper (N s/m): with none both starts
 lost the chain at 20.8 and 22.4 s, at 0.1 one at 28.4 s and the other still swung 17 %
 below the law; 0.5 (shipped), 1.0 and 1.5 held. The chain's friction: with none both lost
@@ -93,6 +139,11 @@ at 2.99 m/s; from 1e-4 N m/rad and 1e-6 N m s/rad up (to 0.13 and 1e-5) every st
 the head at 1.2-1.4 s, before the end guide caught it (the stiffened head flies at
 1.9 m/s, not the 3 m/s the guide is placed for). The upper ends of the damper's and
 friction's bands are their sliders' ends."""
+
+FROM_REST_RANGE: dict[str, tuple[float, float]] = {
+    path: _inner(path, band) for path, band in MEASURED_RANGE.items()}
+"""The bands a gripped fold from rest is admitted in, besides its geometry and carts
+(:data:`FROM_REST_MARGIN` of :data:`MEASURED_RANGE`)."""
 
 SPECIAL_GEOMETRY = {"apparatus.drop": 0.5, "apparatus.speed": 3.0,
                     "apparatus.launch_angle": math.pi / 3.0}
@@ -173,6 +224,14 @@ def applies(cfg: SimConfig) -> bool:
     a = cfg.apparatus
     return (cfg.kind == "apparatus" and a.variant == "fold" and a.fold_roller == "gripped"
             and cfg.initial.mode == "stub")
+
+
+def cart_scale(cfg: SimConfig) -> float:
+    """The factor a fold's carts' bands are shrunk by
+    (:func:`~chainfountain.sim.apparatus.laws.fold_runs_on`): :data:`FROM_REST_MARGIN` for
+    a gripped fold from rest whose region is checked, 1 otherwise."""
+    checked = applies(cfg) and cfg.apparatus.start_region != "unchecked"
+    return FROM_REST_MARGIN if checked else 1.0
 
 
 def from_rest(cfg: SimConfig) -> bool:
@@ -266,13 +325,13 @@ def _carts_problem(cfg: SimConfig, band: Bands) -> tuple[str, str] | None:
     for cart, mass in zip(balance.carts, band.carts, strict=True):
         cart.mass, cart.incline = mass, math.radians(30.0)
     balance.apparatus.fold_brake, balance.apparatus.bearing_drag = 1.0, 0.0
-    if fold_runs_on(cfg, balance):
+    if fold_runs_on(cfg, balance, FROM_REST_MARGIN):
         return None
     trial = copy.deepcopy(cfg)
 
     def runs(path: str, x: float) -> bool:
         set_value(trial, path, x)
-        return fold_runs_on(trial, balance)
+        return fold_runs_on(trial, balance, FROM_REST_MARGIN)
 
     up, lo = (1e3 * m for m in band.carts)
     built = (f"the balance {band.preset} holds at ({up:g} and {lo:g} g on 30-deg tracks, a "
