@@ -127,7 +127,7 @@ def admissible(level: Level, spec: FieldSpec,
     joints' spring and damper (:data:`JOINT_FIELDS`) span the slider's own range cut at
     their step limits."""
     sim = level.sim
-    from_rest = start_region.from_rest(sim) and sim.apparatus.start_region != "unchecked"
+    from_rest = kind_of(sim).start_region(sim) and sim.apparatus.start_region != "unchecked"
     if from_rest:
         pinned = start_region.pinned(sim)
         if spec.path in pinned:  # measured only as built (region.pinned)

@@ -222,7 +222,7 @@ def applies(cfg: SimConfig) -> bool:
     """Whether ``cfg`` is a gripped fold started from rest, the machine the region was
     measured on."""
     a = cfg.apparatus
-    return (cfg.kind == "apparatus" and a.variant == "fold" and a.fold_roller == "gripped"
+    return (a.variant == "fold" and a.fold_roller == "gripped"
             and cfg.initial.mode == "stub")
 
 
@@ -237,8 +237,7 @@ def cart_scale(cfg: SimConfig) -> float:
 def from_rest(cfg: SimConfig) -> bool:
     """Whether ``cfg`` is a contact machine started from rest whose start is checked here:
     a gripped fold (:func:`problem`) or the floor machine (:func:`floor_problem`)."""
-    return applies(cfg) or (cfg.kind == "apparatus" and cfg.apparatus.variant == "floor"
-                            and cfg.initial.mode == "stub")
+    return applies(cfg) or (cfg.apparatus.variant == "floor" and cfg.initial.mode == "stub")
 
 
 def start_q(cfg: SimConfig) -> float:

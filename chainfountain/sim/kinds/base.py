@@ -64,6 +64,10 @@ class Kind:
     style: Callable[[SimConfig], str] = lambda cfg: ""
     """The finer style of the kind a level has (a feed's drive, an apparatus's variant),
     for the window's defaults."""
+    start_region: Callable[[SimConfig], bool] = lambda cfg: False
+    """Whether the level starts from rest where a measured start region admits it (the
+    contact machines: :func:`chainfountain.sim.apparatus.region.from_rest`), so that the
+    window's sliders span that region."""
     seed_field: str = "initial.seed"
     """The field ``--seed`` sets."""
     unseeded: Callable[[SimConfig], str | None] = lambda cfg: None

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from chainfountain.sim.apparatus import Apparatus
+from chainfountain.sim.apparatus import Apparatus, region
 from chainfountain.sim.bodies import nudge_bodies
 from chainfountain.sim.chain import Chain
 from chainfountain.sim.config import ApparatusConfig, SimConfig
@@ -70,5 +70,6 @@ KIND = Kind(
     live={"carts[].mass": _cart_mass, "apparatus.bearing_drag": _losses,
           "apparatus.fold_brake": _losses, "apparatus.swing_damper": _losses},
     style=lambda cfg: cfg.apparatus.variant, sections=("apparatus",),
+    start_region=region.from_rest,
     study_start=study_start,
 )
