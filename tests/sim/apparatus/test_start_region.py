@@ -249,3 +249,18 @@ def test_a_setting_drawn_inside_the_region_forms_from_rest_and_holds(name: str) 
     assert not sim.apparatus.starting
     law = (braked_fold_speed(level.sim) if name in FOLDS else floor_speeds(level.sim)[0])
     assert float(np.mean(v)) == pytest.approx(law, rel=0.03), changes
+
+
+@pytest.mark.parametrize("name", FOLDS)
+def test_the_admitted_bands_lie_about_both_gripped_presets_values(name: str) -> None:
+    """``region.SHIPPED``, about which the measured bands are halved, is each gripped
+    preset's own value, and every admitted band holds it."""
+    sim = shipped.level(name).sim
+    q = sim.apparatus.end_tension + sim.gravity * sim.apparatus.drop / sim.apparatus.speed ** 2
+    assert region.SHIPPED["q"] == pytest.approx(q, rel=1e-9)
+    bands = {"q": region.FROM_REST_Q, "apparatus.speed": region.FROM_REST_SPEED,
+             "apparatus.launch_angle": region.FROM_REST_ANGLE, **region.FROM_REST_RANGE}
+    for path, (lo, hi) in bands.items():
+        value = q if path == "q" else float(_get(shipped.level(name), path))
+        assert region.SHIPPED[path] == pytest.approx(value, rel=1e-9, abs=1e-15), path
+        assert lo <= value <= hi, path
