@@ -129,8 +129,9 @@ class Recorder:
             lo = app.lower
             roller = (app.upper.x, app.upper.speed, lo.x if lo else float("nan"),
                       lo.speed if lo else float("nan"))
-            pivots = None
+            pivots, mouth = None, None
             if app.fold_guided:
+                mouth = app.fold_mouth  # before the bookkeeping: this step's guided links
                 # joint force sizes: the lower guide's correction (no contact involved)
                 pivots = np.array([abs(lk.up_joint.impulse) if lk.up_joint is not None
                                    else np.nan for lk in sim.chain.links]) / sim.h
@@ -146,7 +147,7 @@ class Recorder:
                 end = sim.chain.links[0].body
                 lower = (app.tail_grooved, len(app.turn_held), end.mass, end.moment)
             self._raw.append(("apparatus", sim.time, pre.velocity, post, contacts, roller,
-                              pivots, pre.angular_velocity, lower, pivot_x))
+                              pivots, pre.angular_velocity, lower, pivot_x, mouth))
             return
         end_force = sim.ends.end_force
         if end_force is not None:  # the floor's pull is an external force on link 0
@@ -198,13 +199,14 @@ class Recorder:
     def _analyse_apparatus(self, t: float, pre_vel: np.ndarray, post: ChainState,
                            contacts: np.ndarray, roller: tuple,
                            pivots: np.ndarray | None, pre_w: np.ndarray,
-                           lower: tuple | None, pivot_x: np.ndarray | None) -> None:
+                           lower: tuple | None, pivot_x: np.ndarray | None,
+                           mouth: int | None = None) -> None:
         from chainfountain.sim.apparatus_report import analyse
 
         sim = self.sim
         s, prof = analyse(sim.apparatus, t, pre_vel, post, contacts, sim.dt,
                           sim.chain.cfg.linear_density, roller, pivots, pre_w, lower,
-                          pivot_x)
+                          pivot_x, mouth)
         self._ap_samples.append(s)
         sp = prof["speed"]
         self._samples.append(Sample(

@@ -602,11 +602,18 @@ class Apparatus:
     def last_mouth_offset(self) -> float:
         return self.fold.last_mouth_offset if self.fold is not None else math.nan
 
-    def fold_guided_range(self, position: np.ndarray, x_lower: float) -> tuple[int, int]:
+    def fold_guided_range(self, position: np.ndarray, x_lower: float,
+                          mouth: int | None = None) -> tuple[int, int]:
         """:meth:`.fold.FoldPart.fold_guided_range` ('fold' only)."""
         if self.fold is None:
             raise ValueError("fold_guided_range: this apparatus has no fold")
-        return self.fold.fold_guided_range(position, x_lower)
+        return self.fold.fold_guided_range(position, x_lower, mouth)
+
+    @property
+    def fold_mouth(self) -> int:
+        """'fold' guide: chain index of the next link the mouth captures, one past the
+        last guided link (read between a step and its bookkeeping, the step's own)."""
+        return self.fold.cap_next if self.fold is not None else -1
 
     # open tail
     @property

@@ -304,11 +304,17 @@ class FoldPart:
         a, b = self.plate_lo.a, self.plate_lo.b
         self.plate_lo.unsafe_set_endpoints((a.x + dx, a.y), b)
 
-    def fold_guided_range(self, position: np.ndarray, x_lower: float) -> tuple[int, int]:
+    def fold_guided_range(self, position: np.ndarray, x_lower: float,
+                          mouth: int | None = None) -> tuple[int, int]:
         """'fold' guide, from a recorded state: index ``i_p`` of the lower-plate link
         about 6 links before the folding roller (its horizontal joint force is the
         tension: the grooves add none) and ``k``, one past the last guided link
-        (the mouth). ``(-1, 0)`` if the plate is empty."""
+        (the mouth). ``(-1, 0)`` if the plate is empty.
+
+        ``mouth``: :attr:`cap_next` as it was during the recorded step, the exact ``k``.
+        Without it ``k`` is found from the positions (the first link from ``i_p`` on
+        more than 4 mm off the guide), which misreads a guided link that its slide
+        joint lets stand off the rise as the mouth."""
         L = self.layout.L
         el = self.guide[-1]
         y = el.a[1]
@@ -326,6 +332,8 @@ class FoldPart:
         on |= e0.on(position, self.capture[0])
         on |= (np.abs(position[:, 1] - y) < 2.0 * rho) & \
             (position[:, 0] > el.a[0] - 0.01)
+        if mouth is not None and ip < mouth <= len(position):
+            return ip, mouth
         off = np.flatnonzero(~on[ip:])
         k = ip + int(off[0]) if len(off) else len(position)
         return ip, k

@@ -59,7 +59,7 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
             roller: tuple[float, float, float, float],
             pivots: np.ndarray | None = None, pre_w: np.ndarray | None = None,
             lower: tuple[int, int, float, float] | None = None,
-            pivot_x: np.ndarray | None = None
+            pivot_x: np.ndarray | None = None, mouth: int | None = None
             ) -> tuple[ApparatusSample, dict]:
     """Measure one sampled step: signed tension from the exact momentum balance summed
     from the downstream end (:func:`chainfountain.sim.measure.joint_forces`, all contact
@@ -71,13 +71,16 @@ def analyse(app: Apparatus, t: float, pre_vel: np.ndarray, post, contacts: np.nd
     :func:`~.impulses.pivot_offset`. ``pre_w`` and ``lower`` ('open' with the joint
     turn): the links' angular velocities before the step and the lower guide's state
     (:func:`~.impulses.open_guide_impulses`). ``pivot_x`` (the gripped fold): every
-    chain joint's force along ``x`` (N), the lower plate strand's tension."""
+    chain joint's force along ``x`` (N), the lower plate strand's tension. ``mouth``
+    ('fold' guide): one past the last link the guide held in this step
+    (:attr:`~chainfountain.sim.apparatus.Apparatus.fold_mouth`); without it the mouth
+    is found from the positions."""
     chain = app.chain
     n = len(post.angle)
     pre = ChainState(position=post.position, angle=post.angle, velocity=pre_vel,
                      angular_velocity=post.angular_velocity)
     contacts, k, T_lo_fold, tail_reaction = _with_guide_impulses(
-        app, pre, pre_vel, post, contacts, dt, roller, pre_w, lower, pivot_x)
+        app, pre, pre_vel, post, contacts, dt, roller, pre_w, lower, pivot_x, mouth)
     F = joint_forces(pre, post, chain.mass, dt, app.g, n - 1, contacts)
     L = app.L
     J, gaps = _joints(post, L)
@@ -131,7 +134,8 @@ def _with_guide_impulses(app: Apparatus, pre: ChainState, pre_vel: np.ndarray, p
                          roller: tuple[float, float, float, float],
                          pre_w: np.ndarray | None,
                          lower: tuple[int, int, float, float] | None,
-                         pivot_x: np.ndarray | None = None
+                         pivot_x: np.ndarray | None = None,
+                         mouth: int | None = None
                          ) -> tuple[np.ndarray, int, float, float]:
     """The contact impulses with the lower guides' (and the end pull's) added as
     'contact' rows for the first ``k`` links. Returns the rows, ``k`` ('fold': one past
@@ -145,7 +149,7 @@ def _with_guide_impulses(app: Apparatus, pre: ChainState, pre_vel: np.ndarray, p
     if app.fold_guided:
         # tension on the lower plate from the horizontal joint force (grooves add none),
         # then along the guided links' axes up to the mouth
-        ip, k = app.fold_guided_range(post.position, roller[2])
+        ip, k = app.fold_guided_range(post.position, roller[2], mouth)
         if ip >= 2 and k > ip + 1:
             if app.gripped and pivot_x is not None:
                 # the welds' and the table pin's impulses are not among the contacts, so

@@ -26,7 +26,8 @@ import numpy as np
 import pytest
 
 from chainfountain.level.model import LevelError
-from chainfountain.sim import Simulation
+from chainfountain.sim import Recorder, Simulation
+from chainfountain.sim.apparatus_report import report
 from chainfountain.study.changes import with_changes
 from tests import shipped
 
@@ -37,17 +38,19 @@ END, WINDOW = 15.0, (10.0, 15.0)
 pytestmark = pytest.mark.xdist_group("apparatus_from_rest")
 
 
-@pytest.mark.slow
-@pytest.mark.parametrize("seed", [1])
-@pytest.mark.parametrize("name", sorted(HELD_SPEED))
-def test_a_gripped_fold_forms_from_rest_and_holds(name: str, seed: int) -> None:
+@pytest.fixture(scope="module", params=sorted(HELD_SPEED))
+def from_rest(request) -> dict:
+    """The preset as shipped, from rest, nudged at 0.1 s (seed 1), 15 s, recorded; its
+    speed and top over 10-15 s and its apparatus report over that window."""
+    name = request.param
     level = shipped.level(name)
     assert level.sim.initial.mode == "stub"  # as shipped: from rest
     sim = Simulation(level.sim)
     app = sim.apparatus
     assert app.speed == 0.0 and app.n_welded == 0  # at rest, nothing threaded
+    rec = Recorder(sim, profiles=False)
     sim.advance(0.1)
-    sim.nudge(seed)
+    sim.nudge(1)
     pinned_at = None
     v, top = [], []
     while sim.time < END - 1e-9:
@@ -57,11 +60,42 @@ def test_a_gripped_fold_forms_from_rest_and_holds(name: str, seed: int) -> None:
         if sim.time > WINDOW[0] + 1e-9:
             v.append(app.speed)
             top.append(max(lk.body.position.y for lk in sim.chain.links))
+    return {"name": name, "sim": sim, "pinned_at": pinned_at, "v": v, "top": top,
+            "report": report(sim, rec, *WINDOW)}
+
+
+@pytest.mark.slow
+def test_a_gripped_fold_forms_from_rest_and_holds(from_rest: dict) -> None:
+    app = from_rest["sim"].apparatus
     assert app.head_caught_at < 1.0
-    assert pinned_at is not None and pinned_at < 3.0
+    assert from_rest["pinned_at"] is not None and from_rest["pinned_at"] < 3.0
     assert not app.starting and not app.fading  # the machine runs on its own
-    assert float(np.mean(v)) == pytest.approx(HELD_SPEED[name], rel=0.01)
-    assert 0.05 < float(np.mean(top)) < 0.2
+    assert float(np.mean(from_rest["v"])) == pytest.approx(HELD_SPEED[from_rest["name"]],
+                                                           rel=0.01)
+    assert 0.05 < float(np.mean(from_rest["top"])) < 0.2
+
+
+@pytest.mark.slow
+def test_what_a_gripped_fold_launches_is_the_papers_fountain(from_rest: dict) -> None:
+    """Across the free flight ``Tbar_0 - Tbar_E = k (y_0 - y_E)`` (the tension less
+    ``lambda v^2`` grows as ``lambda g y`` along a steady flight; the ends' heights
+    measured) and the vertex lies on the catenary through the measured ends.
+
+    Measured (``research/gripped_flight.py``), over 10-15 s from rest, seeds 0-5:
+    ``Tbar_0 - Tbar_E - k dy`` -0.037 ... -0.003 (fold) and -0.019 ... -0.001 (special),
+    together -0.013 with a run-to-run sd of 0.010 (``k H`` 0.55); the vertex -0.6 ...
+    +2.7 % off the catenary through the ends (mean +1.5 %, sd 0.8 %). Asserted within
+    0.06 and 5 %, about 4.5 sd. Before the guide's mouth was read from the guide's own
+    bookkeeping (``Apparatus.fold_mouth``), a guided link standing off the rise was
+    taken for the mouth in about a quarter of the samples: the relation then missed by
+    0.15-0.5 and the vertex lay 21-30 % below that catenary.
+    """
+    m, cat = from_rest["report"]["measured"], from_rest["report"]["catenary"]
+    dy = -m["end"][1]  # the start is at the origin
+    assert m["T0_bar"] - m["TE_bar"] == pytest.approx(m["k"] * dy, abs=0.06)
+    assert abs(cat["vertex_y_rel_error"]) < 0.05
+    lo, hi = from_rest["report"]["paper_ranges"]["T0_bar"]
+    assert lo <= m["T0_bar"] < hi
 
 
 @pytest.mark.parametrize("changes, field", [
