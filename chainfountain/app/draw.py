@@ -99,6 +99,18 @@ def _smooth(y: np.ndarray, n: int) -> np.ndarray:
     return out
 
 
+
+MESSAGE_WORDS_PER_SECOND = 3.0
+"""Reading pace a status message is held for: a class reading a projector, slower than a
+reader alone (about 4 words a second)."""
+
+
+def message_seconds(message: str) -> float:
+    """How long the window shows a status message: 6 s, longer for a long one (a refusal
+    naming the field, the value and what is allowed) at
+    :data:`MESSAGE_WORDS_PER_SECOND`, at most 20 s."""
+    return min(max(6.0, len(message.split()) / MESSAGE_WORDS_PER_SECOND), 20.0)
+
 class DrawMixin:
     """Drawing of :class:`~chainfountain.app.window.App` (reads its own state and the
     session)."""
@@ -265,7 +277,7 @@ class DrawMixin:
         s = self.session
         now = s.clock()
         small = font(18)
-        msgs = [m for t, m in s.messages if now - t < 6.0][-3:]
+        msgs = [m for t, m in s.messages if now - t < message_seconds(m)][-3:]
         width = self.scene_rect.w - px(28)
         return status_rows(msgs, s.stopped if s.paused else None,
                            lambda m: text.wrap(small, m, width))
@@ -280,8 +292,8 @@ class DrawMixin:
                            lh * len(rows))
 
     def _draw_messages(self) -> None:
-        """Status messages (newest last, 6 s each) above the time controls; why a run
-        stopped stays whole while paused."""
+        """Status messages (newest last, each for :func:`message_seconds`) above the time
+        controls; why a run stopped stays whole while paused."""
         rect = self.scene_rect
         small = font(18)
         width = rect.w - px(28)

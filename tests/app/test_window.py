@@ -20,6 +20,7 @@ from chainfountain.app.window import App  # noqa: E402
 from chainfountain.level import io  # noqa: E402
 from chainfountain.sim import placement
 from chainfountain.sim.config import SimConfig  # noqa: E402
+from tests import shipped  # noqa: E402
 
 
 def small_level() -> io.Level:
@@ -716,3 +717,31 @@ def test_a_plot_title_never_runs_under_its_legend(app) -> None:
     short = text.fit_text(f, long, 200)
     assert short.endswith("...") and f.size(short)[0] <= 200
     assert text.fit_text(f, "speed (m/s)", 200) == "speed (m/s)"
+
+
+def test_a_refusal_stays_on_screen_as_long_as_a_class_takes_to_read_it(tmp_path, monkeypatch):
+    """A typed value the level check refuses (a gripped fold's drop beyond its start region)
+    is said in one message naming the field, the value and what is allowed, held for its
+    words at a class's reading pace (3 words a second, at least 6 s, at most 20 s); a
+    short message keeps the 6 s."""
+    monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
+    monkeypatch.setenv("SDL_VIDEODRIVER", "dummy")
+    now = [0.0]
+    s = Session(io.load(shipped.path("apparatus_fold_gripped")), clock=lambda: now[0])
+    a = App(s, size=(1280, 760), offscreen=True)
+    try:
+        r = s.set_field("apparatus.drop", 0.6)
+        assert not r.ok and "apparatus.drop" in r.message and "allowed:" in r.message
+        words = len(r.message.split())
+        assert words > 30  # long enough that 6 s would not do
+        now[0] = 0.99 * words / 3.0
+        assert any("apparatus.drop" in row for row in a._message_rows())
+        now[0] = 20.5
+        assert not any("apparatus.drop" in row for row in a._message_rows())
+        s.say("reset: t = 0")
+        now[0] += 5.9
+        assert any("reset" in row for row in a._message_rows())
+        now[0] += 0.2
+        assert not any("reset" in row for row in a._message_rows())
+    finally:
+        a.finish()

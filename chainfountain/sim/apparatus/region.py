@@ -284,19 +284,19 @@ def problem(cfg: SimConfig) -> tuple[str, str] | None:
     if q_lo - 1e-9 <= q <= q_hi + 1e-9:
         return None
     te, v, H = float(a.end_tension), float(a.speed), float(a.drop)
-    why = ("too wide a fountain: the launched head stores too much chain and it lands "
-           "beyond the end guide" if q < q_lo else
-           "too near critical: the slow launch leaves the fountain too little chain to stand")
+    short = q < q_lo
+    why = ("too wide a fountain: it lands beyond the end guide" if short else
+           "too near critical: too little chain to stand")
     drops = f"a drop of {max(q_lo - te, 0.0) * v * v / g:.4g}-{(q_hi - te) * v * v / g:.4g} m"
     s_lo = max(math.sqrt(g * H / (q_hi - te)), v_lo)
     s_hi = min(math.sqrt(g * H / (q_lo - te)), v_hi) if q_lo > te else v_hi
     speeds = f"a start speed of {s_lo:.4g}-{s_hi:.4g} m/s" if s_lo < s_hi else ""
     other = f" (or {speeds} at this drop)" if speeds else ""
     return ("apparatus.drop",
-            f"{H!r} m at apparatus.speed = {v:g} m/s and end_tension = {te:g} gives "
-            f"Tbar_E + g*H/v^2 = {q:.3f}, {why} (a gripped fold formed from rest and held "
-            f"at {q_lo:.3f}-{q_hi:.3f}); allowed: {drops} at this speed{other}, or "
-            "initial.mode = 'catenary' (laid on its path)")
+            f"{H!r} m is too {'short' if short else 'tall'} a drop for a gripped fold to "
+            f"form from rest at apparatus.speed = {v:g} m/s ({why}); allowed: {drops} at "
+            f"this speed{other}, or initial.mode = 'catenary' (laid on its path); measured: "
+            f"Tbar_E + g*H/v^2 = {q:.3f} here, admitted {q_lo:.3f}-{q_hi:.3f}")
 
 
 def _range_problem(cfg: SimConfig, ranges: dict[str, tuple[float, float]],
