@@ -62,9 +62,9 @@ def tooltip(spec: FieldSpec, expert: bool = True) -> str:
     how = "applies live" if spec.live else "restarts the scene"
     span = ""
     if spec.narrowed and spec.slider_lo == spec.slider_hi:
-        span = (f" This level accepts only {spec.slider_lo:.4g}{spec.shown_unit} here, the "
-                "value it was measured to run at; another is refused, and the message says "
-                "why.")
+        span = (f" Fixed here: with its other settings as they are, this level accepts only "
+                f"{spec.slider_lo:.4g}{spec.shown_unit} (where it was measured to run); "
+                "another is refused, and the message says why.")
     elif spec.narrowed and spec.refused_beyond:
         lo, hi = spec.slider_lo, spec.slider_hi
         span = (f" The slider spans {lo:.4g}-{hi:.4g}{spec.shown_unit}, the values this level "
@@ -80,15 +80,23 @@ def tooltip(spec: FieldSpec, expert: bool = True) -> str:
                        f"{how}.{span}")
 
 
-def row_label(spec: FieldSpec, expert: bool) -> str:
+FIXED_NOTE = "fixed here"
+"""What a row's label says while its slider is greyed out (a one-value span; the tooltip
+says why)."""
+
+
+def row_label(spec: FieldSpec, expert: bool, fixed: bool = False) -> str:
     """What a slider row is called: plain words with the unit (student view), the paper's
-    name with the unit and whether it is live (expert view)."""
+    name with the unit and whether it is live (expert view); ``fixed``: with
+    :data:`FIXED_NOTE` (in the expert view instead of live or not: it does not move)."""
     unit = f" ({spec.unit})" if spec.unit and spec.unit != "1" else ""
     if expert:
-        return f"{spec.label}{unit}  [{'live' if spec.live else 'restarts'}]"
+        how = FIXED_NOTE if fixed else "live" if spec.live else "restarts"
+        return f"{spec.label}{unit}  [{how}]"
     if spec.unit not in PLAIN_UNITS:  # a damper's N*s/m says nothing to a class
         unit = ""
-    return f"{STUDENT_LABELS.get(spec.path, spec.label)}{unit}"
+    note = f" - {FIXED_NOTE}" if fixed else ""
+    return f"{STUDENT_LABELS.get(spec.path, spec.label)}{unit}{note}"
 
 
 def fit_label(label: UILabel, text: str) -> None:
@@ -110,6 +118,8 @@ class ControlRow:
     label: UILabel
     slider: UIHorizontalSlider
     entry: UITextEntryLine
+    fixed: bool = False
+    """The slider is greyed out: its span is one value (the label says so)."""
 
 
 def build_buttons(ui, rect: pygame.Rect, y: int) -> tuple[dict[str, UIButton], int]:

@@ -331,6 +331,9 @@ class App(InputMixin, DrawMixin):
             row.slider.set_current_value(row.spec.to_slider(v), warn=False)
             fixed = row.spec.narrowed and row.spec.slider_lo == row.spec.slider_hi
             (row.slider.disable if fixed else row.slider.enable)()  # nothing to drag
+            if fixed != row.fixed:  # and the label says so
+                row.fixed = fixed
+                panel.fit_label(row.label, panel.row_label(row.spec, self.expert, fixed))
         row.entry.set_text(row.spec.fmt(row.spec.to_display(v)))
 
     # ------------------------------------------------------------------ the view

@@ -12,7 +12,7 @@ import pygame  # noqa: E402
 import pygame_gui  # noqa: E402
 import pytest  # noqa: E402
 
-from chainfountain.app import palette, text  # noqa: E402
+from chainfountain.app import palette, panel, text  # noqa: E402
 from chainfountain.app.draw import ABOUT_SECONDS, STOP_ROWS, status_rows  # noqa: E402
 from chainfountain.app.scene_view import scene_bounds  # noqa: E402
 from chainfountain.app.session import Session, paused_message  # noqa: E402
@@ -743,5 +743,27 @@ def test_a_refusal_stays_on_screen_as_long_as_a_class_takes_to_read_it(tmp_path,
         assert any("reset" in row for row in a._message_rows())
         now[0] += 0.2
         assert not any("reset" in row for row in a._message_rows())
+    finally:
+        a.finish()
+
+
+def test_a_slider_with_one_admissible_value_is_greyed_out_and_its_label_says_so(
+        tmp_path, monkeypatch):
+    """The gripped fold's offsets are balanced as built (a one-value span): their sliders
+    do not move, and their rows say "fixed here" (the tooltip says why); the others
+    move and say whether they act live."""
+    monkeypatch.setenv("CHAINFOUNTAIN_HOME", str(tmp_path / "home"))
+    monkeypatch.setenv("SDL_VIDEODRIVER", "dummy")
+    a = App(Session(io.load(shipped.path("apparatus_fold_gripped"))), size=(1280, 760),
+            offscreen=True)
+    try:
+        a.toggle_expert()
+        rows = {r.spec.path: r for r in a.rows}
+        for path in ("apparatus.xi2", "apparatus.xi3"):
+            r = rows[path]
+            assert not r.slider.is_enabled and "[fixed here]" in r.label.text
+            assert "Fixed here" in panel.tooltip(r.spec, True)
+        r = rows["carts[1].mass"]
+        assert r.slider.is_enabled and "fixed" not in r.label.text
     finally:
         a.finish()
