@@ -292,14 +292,24 @@ class App(InputMixin, DrawMixin):
 
     def shown_specs(self) -> list:
         """The fields the panel shows: every control field (expert view), else the
-        level's student sliders; each spanning where its machine runs."""
+        level's student sliders; each spanning where its machine runs. The spans' search
+        (about 0.5 s on a machine) is kept until the level or the view changes: a resize
+        or projector mode rebuilds the panel with the same spans."""
         level = self.session.level
+        key = (self.expert, repr(level), repr(self.session.origin))
+        cache: dict = self.__dict__.setdefault("_specs_cache", {})
+        if key in cache:
+            return list(cache[key])
         specs = control_fields(level.sim)
         if not self.expert:
             wanted = student_paths(level)
             specs = sorted((s for s in specs if s.path in wanted),
                            key=lambda s: wanted.index(s.path))
-        return [spans.narrowed(level, s, self.session.origin) for s in specs]
+        shown = [spans.narrowed(level, s, self.session.origin) for s in specs]
+        if len(cache) >= 4:  # both views of the level as it is, and of the one before
+            cache.pop(next(iter(cache)))
+        cache[key] = shown
+        return list(shown)
 
     def _build_controls(self) -> None:
         for row in self.rows:

@@ -5,13 +5,12 @@ allowed)."""
 from __future__ import annotations
 
 import dataclasses
-import typing
 from dataclasses import dataclass
 from typing import Any
 
 from chainfountain.errors import LevelError
 from chainfountain.errors import fail as _fail
-from chainfountain.fields import REQUIRED, param
+from chainfountain.fields import REQUIRED, param, type_hints
 from chainfountain.sim.config import SimConfig
 
 SCHEMA_VERSION = 1
@@ -62,7 +61,7 @@ class Level:
 
 
 def _hints(cls: type) -> dict[str, Any]:
-    return typing.get_type_hints(cls)
+    return type_hints(cls)
 
 
 def _is_dataclass_type(tp: Any) -> bool:
