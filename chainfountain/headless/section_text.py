@@ -37,14 +37,33 @@ first that has something to say)."""
 
 
 def apparatus_lines(ap: dict[str, Any], s: RunSummary) -> list[str]:
-    """A braked fold selects its speed: the measured against the paper's laws'."""
+    """A braked fold selects its speed: the measured against the paper's laws'; a fold's
+    flight against the paper's fountain (``flight``: the relation across it and the
+    catenary through its ends, with the means' standard errors)."""
     v_sel = (ap.get("predicted_paper") or {}).get("v_steady")
     v_meas = (ap.get("measured") or {}).get("v")
-    if ap.get("variant") != "fold" or not v_sel or not v_meas:
+    if ap.get("variant") != "fold" or not v_meas:
         return []
     w0, w1 = ap["window"]
-    return [f"  over {w0:.1f}-{w1:.1f} s: speed {v_meas:.3f} m/s; the carts and the "
-            f"brake select {v_sel:.3f} m/s by the paper's laws ({pct(v_meas / v_sel - 1.0)})"]
+    lines = []
+    f = ap.get("flight") or {}
+    se = f.get("v_se")
+    pm = f" +- {se:.3f}" if se is not None else ""
+    if v_sel:
+        lines.append(f"  over {w0:.1f}-{w1:.1f} s: speed {v_meas:.3f}{pm} m/s; the carts and "
+                     f"the brake select {v_sel:.3f} m/s by the paper's laws "
+                     f"({pct(v_meas / v_sel - 1.0)})")
+    if f.get("relation_miss") is not None and f.get("T0_bar") is not None:
+        def bar(x: float | None) -> str:
+            return f" +- {x:.3f}" if x is not None else ""
+        vert = f.get("vertex_y_rel_error")
+        lines += [  # two lines of at most 100 characters
+            f"  the flight: Tbar_0 {f['T0_bar']:.3f}{bar(f.get('T0_bar_se'))}, Tbar_E "
+            f"{f['TE_bar']:.3f}{bar(f.get('TE_bar_se'))}; Tbar_0 - Tbar_E - k dy "
+            f"{f['relation_miss']:+.3f}{bar(f.get('relation_miss_se'))}",
+            f"    (k H {f['kH']:.3f}); vertex {pct(vert)} off the catenary through the ends "
+            "(+-: statistical, not the step's)"]
+    return lines
 
 
 def beaker_lines(bk: dict[str, Any], s: RunSummary) -> list[str]:

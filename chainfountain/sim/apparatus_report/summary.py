@@ -83,6 +83,7 @@ def report(sim, rec, t0: float, t1: float) -> dict:
     out: dict = {"variant": app.variant, "window": [float(w.t[0]), float(w.t[-1])],
                  "measured": _measured(app, w)}
     out["catenary"], out["paper_ranges"] = _catenary_and_ranges(app, w)
+    out["flight"] = _flight(w, out["catenary"])
     paper, law = _predictions(app, w)
     if app.variant == "floor":
         out["speed_selection"] = _speed_selection(app, w, paper, law)
@@ -130,6 +131,67 @@ def _mean(S: list[ApparatusSample], name: str) -> float:
     """Mean of a sample field over the window, nan where it is nan throughout."""
     vals = np.array([getattr(s, name) for s in S], dtype=float)
     return float(np.nanmean(vals)) if np.any(np.isfinite(vals)) else math.nan
+
+
+SOKAL_C = 5.0
+"""Sokal's window constant: the autocorrelation is summed out to the least lag ``M`` with
+``M >= SOKAL_C * tau(M)`` (:func:`mean_se`)."""
+
+
+def mean_se(x: np.ndarray) -> float:
+    """Standard error of the mean of the evenly sampled series ``x`` (its finite values),
+    correlated samples counted by their integrated autocorrelation time ``tau`` (in
+    samples, summed out to Sokal's automatic window ``M``, :data:`SOKAL_C`):
+    ``sd * sqrt(tau / N / (1 - (2M+1)/N))``, the last factor the bias the series' own
+    mean puts into its autocorrelations. nan with fewer than 20 samples, or where the
+    window is too short to tell (``2M+1`` above 60 % of ``N``: under about 6 ``tau``)."""
+    x = np.asarray(x, dtype=float)
+    x = x[np.isfinite(x)]
+    n = len(x)
+    if n < 20:
+        return math.nan
+    d = x - x.mean()
+    var = float(np.dot(d, d) / n)
+    if var == 0.0:
+        return 0.0
+    f = np.fft.rfft(d, 2 * n)
+    acf = np.fft.irfft(f * np.conjugate(f))[:n] / (var * n)
+    tau = 2.0 * np.cumsum(acf) - 1.0
+    m = np.flatnonzero(np.arange(n) >= SOKAL_C * tau)
+    if not len(m):
+        return math.nan
+    M = int(m[0])
+    shrink = 1.0 - (2 * M + 1) / n
+    if shrink < 0.4:
+        return math.nan
+    return math.sqrt(var * max(float(tau[M]), 1.0) / n / shrink)
+
+
+def _flight(w: _Window, catenary: dict) -> dict:
+    """``flight``: is what flies the paper's fountain? The window means of ``Tbar_0``,
+    ``Tbar_E`` and of the paper's relation across a steady flight,
+    ``Tbar_0 - Tbar_E = k (y_0 - y_E)`` (the tension less ``lambda v^2`` grows as
+    ``lambda g y``; the ends' measured heights, the start at ``y = 0``), with the
+    standard errors of their means (:func:`mean_se`), and the vertex against the
+    catenary through the measured ends. The step's error is not in these bars: halving
+    the step moves them by more on the contact machines (docs/apparatus.md)."""
+    S = w.S
+    T0 = np.array([s.T0_bar for s in S], dtype=float)
+    TE = np.array([s.TE_bar for s in S], dtype=float)
+    k = w.g / np.array([s.v for s in S], dtype=float) ** 2
+    miss = T0 - TE - k * -np.array([s.end_y for s in S], dtype=float)
+    return {
+        "T0_bar": w.T0, "T0_bar_se": mean_se(T0),
+        "TE_bar": w.TE, "TE_bar_se": mean_se(TE),
+        "relation_miss": float(np.nanmean(miss)) if np.any(np.isfinite(miss)) else math.nan,
+        "relation_miss_se": mean_se(miss),
+        "kH": w.kH,
+        "v_se": mean_se(np.array([s.v for s in S], dtype=float)),
+        "vertex_y_rel_error": catenary["vertex_y_rel_error"],
+        "how": "window means; _se: their standard errors, the samples' correlation "
+               "counted (integrated autocorrelation time); relation_miss = Tbar_0 - "
+               "Tbar_E - k (y_0 - y_E); not the step's error",
+    }
 
 
 def _window(sim, rec, t0: float, t1: float) -> _Window:

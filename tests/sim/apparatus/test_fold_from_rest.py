@@ -94,6 +94,10 @@ def test_what_a_gripped_fold_launches_is_the_papers_fountain(from_rest: dict) ->
     dy = -m["end"][1]  # the start is at the origin
     assert m["T0_bar"] - m["TE_bar"] == pytest.approx(m["k"] * dy, abs=0.06)
     assert abs(cat["vertex_y_rel_error"]) < 0.05
+    # summary.json's ``flight``: the same relation sample by sample, with its error bar
+    f = from_rest["report"]["flight"]
+    assert abs(f["relation_miss"]) < 0.06
+    assert 0.0 < f["relation_miss_se"] < 0.05 and 0.0 < f["T0_bar_se"] < 0.05
     lo, hi = from_rest["report"]["paper_ranges"]["T0_bar"]
     assert lo <= m["T0_bar"] < hi
 
