@@ -51,6 +51,10 @@ def test_designed_level_reproduces_target(tmp_path, capsys, l, h, H, v,  # noqa:
     ref = sim.reference
     assert s.stretch_max <= 1e-3
     assert s.speed_mean == pytest.approx(v, rel=1e-3)
+    # the fed fountains' criteria (tests/sim/test_feed.py, which leaves fountain D to this
+    # run): a uniform speed, and the tension along the chain as the paper's line
+    assert s.speed_uniformity < 0.01
+    assert s.tension_rms < 0.03 and s.extras["tension_bar"].min() > -0.03
     got = {"h": s.vertex_y / h - 1.0, "vertex_x": s.vertex_x / ref.x_rise - 1.0,
            "l": s.landing_x / l - 1.0}
     settings = out.get("level_settings")

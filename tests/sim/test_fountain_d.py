@@ -85,3 +85,6 @@ def test_fountain_d_kmax_shape(kmax_run) -> None:
     assert s.landing_x == pytest.approx(L_D, rel=0.02)
     assert s.speed_mean == pytest.approx(f.v, rel=0.005)
     assert s.stretch_max <= 1e-3
+    # the fed fountains' criteria (tests/sim/test_feed.py leaves fountain D to this run)
+    assert s.speed_uniformity < 0.01
+    assert s.tension_rms < 0.03 and s.extras["tension_bar"].min() > -0.03
