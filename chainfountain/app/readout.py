@@ -123,6 +123,16 @@ class History:
         }
 
 
+AVG_SPAN = 0.25
+"""Seconds of history the readout's speed and shape are averaged over: short enough to
+follow a slider."""
+TENSION_SPAN = 1.0
+"""Seconds of history its end tensions are averaged over: a contact machine's tensions
+scatter from sample to sample (the gripped folds' ``Tbar_E`` by 0.28 ``lambda v^2``, sd of
+10-ms samples over 9-25 s from rest); 0.25-s means of it scatter by 0.05-0.06, 1-s means
+by 0.02-0.03 (``Tbar_0``: 0.11-0.13, 0.02, 0.01), so the printed ones flicker less."""
+
+
 def _mean(a: np.ndarray) -> float:
     """Mean of the finite values of ``a``; nan (without numpy's warning) if none."""
     a = a[np.isfinite(a)]
@@ -139,7 +149,7 @@ def compute_readout(sim: Simulation, recorder: Recorder, history: History) -> Re
     r = Readout(t=sim.time, H=H, origin="pick-up" if sim.beaker is not None else "launch")
     hist = history.arrays()
     t = hist["t"]
-    avg_span = 0.25
+    avg_span = AVG_SPAN
     ox, oy = 0.0, 0.0  # the launch point: the origin, or a beaker's pick-up
     landed = sim.ends.absorbed > 0 or placement.floor(sim)[3] != "absorbing"
     if len(t) >= 3 and sim.n_free >= 8 and landed:
@@ -147,8 +157,9 @@ def compute_readout(sim: Simulation, recorder: Recorder, history: History) -> Re
         v = _mean(hist["speed"][sel])
         h = _mean(hist["vertex_y"][sel])
         lx = _mean(hist["landing_x"][sel])
-        r.T0_bar = _mean(hist["T0"][sel])
-        r.TE_bar = _mean(hist["TE"][sel])
+        tsel = t >= t[-1] - TENSION_SPAN
+        r.T0_bar = _mean(hist["T0"][tsel])
+        r.TE_bar = _mean(hist["TE"][tsel])
         r.measured = True
         r.measured_vertex = (float(recorder.samples[-1].vertex_x)
                              if recorder.samples else math.nan, h)
