@@ -177,6 +177,9 @@ class App(InputMixin, DrawMixin):
         self.ruler = Ruler()
         self.stopwatch = Stopwatch()
         self.rows: list[ControlRow] = []
+        self._specs_cache: dict[tuple, list] = {}
+        """:meth:`shown_specs`' last results, keyed by the view, the level and the level
+        as loaded."""
         self._events = 0
         """Events the present frame handled (the whole window is copied to the screen)."""
         self._gc_at = time.perf_counter()
@@ -297,7 +300,7 @@ class App(InputMixin, DrawMixin):
         or projector mode rebuilds the panel with the same spans."""
         level = self.session.level
         key = (self.expert, repr(level), repr(self.session.origin))
-        cache: dict = self.__dict__.setdefault("_specs_cache", {})
+        cache = self._specs_cache
         if key in cache:
             return list(cache[key])
         specs = control_fields(level.sim)

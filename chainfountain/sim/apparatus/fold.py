@@ -325,6 +325,8 @@ class FoldPart:
         if not len(idx):
             return -1, 0
         ip = int(idx[np.argmin(np.abs(position[idx, 0] - (x_lower - 6.0 * L)))])
+        if mouth is not None and ip < mouth <= len(position):
+            return ip, mouth
         on = np.zeros(len(position), dtype=bool)
         for e in self.guide[:-1]:
             on |= e.on(position, 0.004)
@@ -332,8 +334,6 @@ class FoldPart:
         on |= e0.on(position, self.capture[0])
         on |= (np.abs(position[:, 1] - y) < 2.0 * rho) & \
             (position[:, 0] > el.a[0] - 0.01)
-        if mouth is not None and ip < mouth <= len(position):
-            return ip, mouth
         off = np.flatnonzero(~on[ip:])
         k = ip + int(off[0]) if len(off) else len(position)
         return ip, k

@@ -295,8 +295,8 @@ def problem(cfg: SimConfig) -> tuple[str, str] | None:
     return ("apparatus.drop",
             f"{H!r} m is too {'short' if short else 'tall'} a drop for a gripped fold to "
             f"form from rest at apparatus.speed = {v:g} m/s ({why}); allowed: {drops} at "
-            f"this speed{other}, or initial.mode = 'catenary' (laid on its path); measured: "
-            f"Tbar_E + g*H/v^2 = {q:.3f} here, admitted {q_lo:.3f}-{q_hi:.3f}")
+            f"this speed{other}, or initial.mode = 'catenary' (laid on its path) "
+            f"(Tbar_E + g*H/v^2 = {q:.3f} here, admitted {q_lo:.3f}-{q_hi:.3f})")
 
 
 def _range_problem(cfg: SimConfig, ranges: dict[str, tuple[float, float]],
