@@ -145,6 +145,20 @@ def from_mapping(cls: type, data: Any, where: str, prefix: str = "", skip: froze
     return cls(**kwargs)
 
 
+def _with_kind_solver_defaults(data: dict[str, Any]) -> dict[str, Any]:
+    """``data`` with its kind's own ``[solver]`` defaults
+    (:attr:`~chainfountain.sim.kinds.base.Kind.solver_defaults`) where the file leaves
+    those fields out; as it is for a kind without any, or a ``kind`` or ``solver`` the
+    table check refuses anyway."""
+    from chainfountain.sim.kinds import REGISTRY
+
+    kind = REGISTRY.get(data.get("kind")) if isinstance(data.get("kind"), str) else None
+    solver = data.get("solver", {})
+    if kind is None or not kind.solver_defaults or not isinstance(solver, dict):
+        return data
+    return {**data, "solver": {**kind.solver_defaults, **solver}}
+
+
 def parse_level(data: dict[str, Any], where: str = "<level>") -> Level:
     """Validate a parsed TOML mapping and build a :class:`Level`."""
     if not isinstance(data, dict):
@@ -161,6 +175,7 @@ def parse_level(data: dict[str, Any], where: str = "<level>") -> Level:
     meta = from_mapping(Meta, meta_data, where, "meta.")
     if not meta.name.strip():
         _fail(where, "meta.name", "'' is not allowed; allowed: a non-empty name")
+    data = _with_kind_solver_defaults(data)
     sim = from_mapping(SimConfig, data, where, "", skip=_SKIP_TOP)
     sim = dataclasses.replace(sim, name=meta.name)
     level = Level(meta=meta, sim=sim)

@@ -227,11 +227,12 @@ class SolverConfig:
         "pymunk step is dt/substeps)", min=1e-6, max=0.02, min_inclusive=False
     )
     substeps: int = param(
-        1, unit="1", doc="pymunk steps per time step dt", min=1, max=64,
+        1, unit="1", doc="pymunk steps per time step dt (a scene's default: 8)", min=1,
+        max=64,
     )
     iterations: int = param(
-        25, unit="1", doc="Constraint solver iterations per pymunk step", min=1, max=1000,
-        live=True
+        25, unit="1", doc="Constraint solver iterations per pymunk step (a scene's default: "
+        "2)", min=1, max=1000, live=True
     )
     joint_error_bias: float = param(
         1e-10, unit="1", doc="Fraction of pivot-joint error left uncorrected after 1 s "

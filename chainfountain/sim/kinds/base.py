@@ -70,6 +70,10 @@ class Kind:
     window's sliders span that region."""
     seed_field: str = "initial.seed"
     """The field ``--seed`` sets."""
+    solver_defaults: Mapping[str, Any] = field(default_factory=dict)
+    """The kind's own defaults for ``[solver]`` fields a level file leaves out (measured
+    where the schema's, the fed fountains', are wrong for it); the level loader fills
+    them in before the table is read."""
     unseeded: Callable[[SimConfig], str | None] = lambda cfg: None
     """Why a seed has no effect on this level (``None``: it picks another run)."""
     sections: tuple[str, ...] = ()
