@@ -2,7 +2,9 @@
 within the accuracy ``design`` promises.
 
 Each target ``(l, h, H, v)`` goes through ``chainfountain design --out --json``; the written
-level is simulated from the catenary (settle 1.5 s, average 2 s). For a target inside the
+level is simulated from the catenary (settle 1.5 s, average 2 s; fountain D, at a 15-us step,
+settle 0.5 s and average 1 s as tests/sim/test_fountain_d.py runs its k_max twin). For a
+target inside the
 error model (:mod:`chainfountain.sim.accuracy`) the vertex height, vertex x and landing must
 lie within the bounds ``design`` prints for the level's settings (``level_settings``); the
 near-critical fountain D, outside the model, has height and landing within 3 %. The speed
@@ -19,6 +21,10 @@ from chainfountain.level import io
 from chainfountain.sim import Recorder, Simulation
 
 SETTLE, WINDOW = 1.5, 2.0
+NEAR_CRITICAL = (0.5, 1.0)
+"""Fountain D's settle and window (s): its 15-us step made 1.5 + 2 s the suite's costliest
+run (57-97 s). Measured: height +0.58 %, landing +0.10 % over 0.5-1.5 s; +1.22 % and
+-0.41 % over 1.5-3.5 s (the near-critical creep, docs/convergence.md); the bound is 3 %."""
 
 TARGETS = [
     # (l, h, H, v, --accuracy): admissible speeds from `chainfountain theory`
@@ -43,11 +49,12 @@ def test_designed_level_reproduces_target(tmp_path, capsys, l, h, H, v,  # noqa:
     assert out["level"] == str(path)
     level = io.load(path)
     level.sim.initial.mode = "catenary"
+    settle, window = NEAR_CRITICAL if h == 0.28 and H == 2.0 else (SETTLE, WINDOW)
     sim = Simulation(level.sim)
-    sim.advance(SETTLE)
+    sim.advance(settle)
     rec = Recorder(sim)
-    sim.advance(WINDOW)
-    s = rec.summary(window=WINDOW)
+    sim.advance(window)
+    s = rec.summary(window=window)
     ref = sim.reference
     assert s.stretch_max <= 1e-3
     assert s.speed_mean == pytest.approx(v, rel=1e-3)
