@@ -49,10 +49,10 @@ def apparatus_lines(ap: dict[str, Any], s: RunSummary) -> list[str]:
     f = ap.get("flight") or {}
     se = f.get("v_se")
     pm = f" +- {se:.3f}" if se is not None else ""
-    if v_sel:
-        lines.append(f"  over {w0:.1f}-{w1:.1f} s: speed {v_meas:.3f}{pm} m/s; the carts and "
-                     f"the brake select {v_sel:.3f} m/s by the paper's laws "
-                     f"({pct(v_meas / v_sel - 1.0)})")
+    if v_sel:  # two lines of at most 100 characters
+        lines += [f"  over {w0:.1f}-{w1:.1f} s: speed {v_meas:.3f}{pm} m/s;",
+                  f"    the carts and the brake select {v_sel:.3f} m/s by the paper's laws "
+                  f"({pct(v_meas / v_sel - 1.0)})"]
     if f.get("relation_miss") is not None and f.get("T0_bar") is not None:
         def bar(x: float | None) -> str:
             return f" +- {x:.3f}" if x is not None else ""
