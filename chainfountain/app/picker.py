@@ -101,6 +101,30 @@ def thumbnail(path: Path, size: tuple[int, int]) -> pygame.Surface:
     return surf
 
 
+_KEPT: dict[tuple, pygame.Surface] = {}
+"""Thumbnails already drawn in this program (:func:`_kept_thumbnail`)."""
+KEPT_MAX = 128
+"""At most this many kept (about 30 levels at two sizes and two text scales)."""
+
+
+def _kept_thumbnail(path: Path, size: tuple[int, int]) -> pygame.Surface:
+    """:func:`thumbnail`, drawn once per file state, size and text scale in this program:
+    each takes about 25 ms (a level loaded and built), and the picker draws every
+    visible one each time it opens."""
+    try:
+        stamp = path.stat().st_mtime_ns
+    except OSError:
+        stamp = None
+    key = (path, stamp, size, text.text_scale())
+    img = _KEPT.get(key)
+    if img is None:
+        img = thumbnail(path, size)
+        if len(_KEPT) >= KEPT_MAX:
+            _KEPT.pop(next(iter(_KEPT)))
+        _KEPT[key] = img
+    return img
+
+
 class LevelPicker:
     """The picker's state (rows, choice, scroll) and drawing."""
 
@@ -219,7 +243,7 @@ class LevelPicker:
         key = (path, size)
         img = self._thumbs.get(key)
         if img is None:
-            img = self._thumbs[key] = thumbnail(path, size)
+            img = self._thumbs[key] = _kept_thumbnail(path, size)
         return img
 
     def draw(self, surf: pygame.Surface, mouse: tuple[int, int] | None = None) -> None:
