@@ -47,15 +47,15 @@ def apparatus_lines(ap: dict[str, Any], s: RunSummary) -> list[str]:
     w0, w1 = ap["window"]
     lines = []
     f = ap.get("flight") or {}
-    se = f.get("v_se")
-    pm = f" +- {se:.3f}" if se is not None else ""
+
+    def bar(x: float | None) -> str:
+        return f" +- {x:.3f}" if x is not None else ""
+
     if v_sel:  # two lines of at most 100 characters
-        lines += [f"  over {w0:.1f}-{w1:.1f} s: speed {v_meas:.3f}{pm} m/s;",
+        lines += [f"  over {w0:.1f}-{w1:.1f} s: speed {v_meas:.3f}{bar(f.get('v_se'))} m/s;",
                   f"    the carts and the brake select {v_sel:.3f} m/s by the paper's laws "
                   f"({pct(v_meas / v_sel - 1.0)})"]
     if f.get("relation_miss") is not None and f.get("T0_bar") is not None:
-        def bar(x: float | None) -> str:
-            return f" +- {x:.3f}" if x is not None else ""
         vert = f.get("vertex_y_rel_error")
         lines += [  # two lines of at most 100 characters
             f"  the flight: Tbar_0 {f['T0_bar']:.3f}{bar(f.get('T0_bar_se'))}, Tbar_E "
