@@ -364,7 +364,7 @@ class DrawMixin:
         if self.expert:
             width = self.readout_rect.w - px(16)
             f = font(18)
-            for line, colour in ((ro.machine, "text"), (ro.note, "dim")):
+            for line, colour in ((ro.machine, "text"), (ro.bars, "dim"), (ro.note, "dim")):
                 parts = text.wrap(f, line, width) if line else []
                 if len(parts) > EXTRA_LINES:  # the rest of the sentence: cut, never dropped
                     parts = [*parts[:EXTRA_LINES - 1],

@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from chainfountain.app.error_bars import error_bars_line
 from chainfountain.sim import placement
 from chainfountain.sim.apparatus.laws import braked_fold_speed, floor_speeds
 from chainfountain.sim.machine_rules import keeps_any_speed
@@ -41,6 +42,9 @@ class Readout:
     note: str = ""
     machine: str = ""
     """An ideal machine's prediction by the paper's laws (speed, end tensions), or ''."""
+    bars: str = ""
+    """The expert view's line of discretisation error bars
+    (:func:`~chainfountain.app.error_bars.error_bars_line`), or ''."""
     curve: np.ndarray | None = None
     """Theory curve, launch frame, ``(n, 2)``."""
     vertex: tuple[float, float] | None = None
@@ -242,6 +246,7 @@ def compute_readout(sim: Simulation, recorder: Recorder, history: History) -> Re
         r.note = "solving the stiff-chain theory for these joints ..."
     r.steady = is_steady(sim, hist)
     r.machine = machine_line(sim)
+    r.bars = error_bars_line(sim)
     if sim.reference is not None:
         r.paper_h = float(sim.reference.h)
     return r

@@ -116,8 +116,9 @@ class AbsErrors(_Part):
     tension_rms: float | None
 
 
-THEORY_EXTRAS = ("joints", "catenary", "why_none")
-""":class:`Theory`'s fields written only when they hold something (a stiff chain's)."""
+THEORY_EXTRAS = ("joints", "catenary", "why_none", "at_speed")
+""":class:`Theory`'s fields written only when they hold something (a stiff chain's, a
+machine's that selects its speed)."""
 
 
 @dataclass
@@ -151,6 +152,15 @@ class Theory(_Part):
     ``rel_error`` (``h``, ``vertex_x``, ``l``) of the window against them."""
     why_none: str | None = None
     """Why a stiff chain's figures are ``None``: "no steady stiff fountain at ..."."""
+    at_speed: dict[str, Any] | None = None
+    """A machine that selects its speed (an ideal machine with ``summary.json``
+    ``machine = "selects"``): the paper's fountain at the window's own speed, with the
+    end tension the machine's lower half supplies there
+    (:meth:`~chainfountain.sim.reference.LaunchReference.at_speed`): ``v``, ``h``,
+    ``vertex_x``, ``l``, ``TE_bar`` and ``rel_error`` (``h``, ``vertex_x``, ``l``) of the
+    window against them. The figures above compare the window with the fountain at the
+    speed the laws select, so they carry the speed's error too (the vertex moves by
+    several times the speed's relative error); the error model bounds these."""
 
     def to_json(self) -> dict[str, Any]:
         d = super().to_json()

@@ -74,15 +74,24 @@ def beaker_lines(bk: dict[str, Any], s: RunSummary) -> list[str]:
     w0, w1 = bk["window_s"]
     lines = [
         f"  over {w0:.1f}-{w1:.1f} s: speed {bk['speed']:.3f} m/s (links the floor took), "
-        f"top {bk['rise_above_rim']:.3f} m above the rim, {bk['rise_above_pickup']:.3f} m "
-        f"above the pick-up, which is {bk['drop_from_pickup']:.3f} m above the floor",
+        f"top {bk['rise_above_rim']:.3f} m above the rim,",
+        f"    {bk['rise_above_pickup']:.3f} m above the pick-up, which is "
+        f"{bk['drop_from_pickup']:.3f} m above the floor",
         f"  the pile's push alpha (Biggins & Warner, beta = 0): {a['from_speed']:.3f} from "
-        f"the speed, {a['from_rise']:.3f} from the rise of a zero-width fountain"
+        f"the speed, {a['from_rise']:.3f} from the rise",
+        "    of a zero-width fountain"
         + (f", {a['from_paper_catenary']:.3f} from the paper's curve through the ends"
            if a.get("from_paper_catenary") is not None else "")]
-    how = (bk.get("error_bars") or {}).get("how")
-    if how:
-        lines.append(f"  discretisation error: {how}")
+    bars = bk.get("error_bars") or {}
+    low, zero = bars.get("shortfall") or {}, bars.get("zero_step") or {}
+    if "speed" in low and "rise_above_rim" in low:
+        lines += [f"  discretisation error (error model, first order in the step): speed "
+                  f"-0/+{100 * low['speed']:.0f} % ({zero['speed']:.2f} m/s at a zero step),",
+                  f"    top -0/+{100 * low['rise_above_rim']:.0f} % "
+                  f"({zero['rise_above_rim']:.2f} m), alpha from the speed "
+                  f"-0/+{100 * low['alpha_from_speed']:.0f} % ({zero['alpha_from_speed']:.3f})"]
+    elif bars.get("how"):
+        lines.append(f"  discretisation error: {bars['how']}")
     return lines
 
 
@@ -96,6 +105,14 @@ def theory_lines(th: Theory, s: RunSummary) -> list[str]:
     if th.stiff:
         return stiff_lines(th, f.h, f.l, f.v)
     err = th.rel_error
+    own = th.at_speed
+    if own and own.get("h") and own.get("l") and th.v and f.v:
+        oe = own["rel_error"]
+        return [f"  speed {f.v:.4f} m/s; the machine's laws select {th.v:.4f} m/s ({pct(err.v)})",
+                f"  vertex height {f.h:.4f} m, landing {f.l:.4f} m; the paper's fountain",
+                f"    at this speed:      {own['h']:.4f} m ({pct(oe['h'])}), "
+                f"{own['l']:.4f} m ({pct(oe['l'])})",
+                f"    at the laws' speed: {th.h:.4f} m ({pct(err.h)}), {th.l:.4f} m ({pct(err.l)})"]
     return [f"  vertex height {f.h:.4f} m (theory {th.h:.4f}, {pct(err.h)}), "
             f"landing {f.l:.4f} m (theory {th.l:.4f}, {pct(err.l)}), speed {f.v:.4f} m/s"
             + (f" (the machine's laws select {th.v:.4f}, {pct(err.v)})"
@@ -146,8 +163,9 @@ def error_model_lines(m: dict[str, Any], s: RunSummary) -> list[str]:
     """The error model's bounds for the level's settings, or why the solver is short."""
     if m.get("bounds"):
         b = m["bounds"]
-        return [f"  discretisation error (error model) at this link length, step and "
-                f"iterations: vertex height +-{100 * b['h']:.2f} %, vertex x "
+        at = "the flight at its speed: " if m.get("note", "").startswith("the flying") else ""
+        return ["  discretisation error (error model) at this link length, step and iterations:",
+                f"    {at}vertex height +-{100 * b['h']:.2f} %, vertex x "
                 f"+-{100 * b['vertex_x']:.2f} %, landing +-{100 * b['l']:.2f} %"]
     if m.get("solver_converged") is False:
         return [f"  WARNING: {m['why_none']}"]

@@ -1,7 +1,8 @@
 """The settings a level runs with: the named step between its checks and its run.
 
 A level with ``solver.accuracy`` above 0 asks for its link length, step and iterations to
-be chosen for that accuracy (:mod:`chainfountain.sim.accuracy`'s error model; joint springs
+be chosen for that accuracy (:mod:`chainfountain.sim.accuracy`'s error model, for a
+motor-fed fountain or an ideal machine's flight at the speed its laws select; joint springs
 and dampers are scaled to the chosen links so that the chain is the same,
 :func:`chainfountain.sim.joints.same_chain`, with the sub-steps their spring needs);
 :func:`resolve` returns the level with them, which is what runs and what is recorded.
@@ -31,10 +32,9 @@ def resolve(level: Level, where: str) -> tuple[Level, Estimate | None]:
         return level, None
     level = copy.deepcopy(level)
     sim = level.sim
-    f = sim.feed
-    ref = LaunchReference.of_feed(f, sim.gravity)
+    ref = LaunchReference.of_level(sim)  # an ideal machine's: at the speed its laws select
     try:
-        est = accuracy.choose(ref, acc, sim.chain)
+        est = accuracy.choose(ref, acc, sim.chain, machine=sim.feed.drive != "motor")
     except accuracy.OutOfReach as exc:
         least = (f"at least {math.ceil(exc.best * 1e4) / 1e4:g}, or 0" if math.isfinite(exc.best)
                  else "0")

@@ -107,7 +107,8 @@ def schema_markdown() -> str:
         "layouts and `scene.seed` without `scene.jitter`; `scene.closed_form` needs the scene "
         "its closed form describes (a folded chain hanging from a pinned point 0; a straight "
         "chain hanging just above a solid floor, no pins), without walls, starting at rest;",
-        "- `solver.accuracy` above 0 (motor-fed levels on an absorbing floor only) replaces "
+        "- `solver.accuracy` above 0 (fed levels on an absorbing floor only: motor-fed, or "
+        "an ideal machine, for its flight at the speed its laws select) replaces "
         "`chain.link_length`, `solver.dt` and `solver.iterations` with the cheapest settings "
         "whose error-model bounds are within it (`chainfountain.sim.accuracy`, "
         "`docs/convergence.md`); a level whose accuracy the model cannot reach, or whose "

@@ -45,6 +45,18 @@ inverted catenary (section "Inverted Catenary"). Its error at link length ``L``,
    :func:`chainfountain.theory.stiff.scaled_stiffness` and ``scaled_damping``), and only
    for a steady run: an undamped stiff fountain does not settle (docs/stiff_stability.md).
 
+4. **An ideal machine's flight** (``feed.drive`` not ``"motor"``), compared with the paper's
+   fountain at the speed the machine runs (``summary.json`` ``theory.at_speed``): the link
+   term above predicts it (at 62.5 us ``ideal_limit`` +0.48 % against +0.48 %,
+   ``ideal_fold`` +0.30 against +0.31 %), but the four presets' worst 10-s windows
+   (20-80 s, 250/125/62.5 us; ``python -m research.ideal_machine_holds --duration 80
+   --dt-factors 1 0.5 0.25``) leave the bound by up to 0.75 % in the vertex height at
+   250 us (``ideal_floor``; -0.04 % at 125 us), and by up to 0.59 % in the vertex's x at
+   every step (``ideal_floor``, not monotonic in the step). The bound of a machine's
+   flight adds :data:`IDEAL_STEP` (first order in the step) and :data:`IDEAL_MARGIN`,
+   1.25 times those. Its speed is not bounded here: it sits a few tenths of a per cent
+   off the laws' (the simulated chain's own imbalance over the bearing drag).
+
 The cost model (wall seconds per simulated second, ``(n*(C_LINK + C_ITER*iterations))/dt``)
 is the same grid's timing, two runs side by side on this 2-core machine; read it to +-50 %.
 Near-critical fountains (``k/q`` below :data:`MIN_KQ`, the paper's fountain D) are outside
@@ -84,6 +96,12 @@ coefficient that covers every converged run's miss beyond the margin (0.48 / 0.2
 STIFF_MARGIN = {"vertex_y": 0.0082, "vertex_x": 0.0076, "landing_x": 0.0070}
 """A stiff chain's margin: 1.25 times the largest miss beyond the link term of the 19
 steady stiff runs (0.66 / 0.61 / 0.56 %)."""
+IDEAL_STEP = {"vertex_y": 0.0094, "vertex_x": 0.0, "landing_x": 0.0}
+"""An ideal machine's flight: its added bound at :data:`DT0`, first order in the step
+(1.25 times ``ideal_floor``'s 0.75 % beyond the bound in the vertex height at 250 us)."""
+IDEAL_MARGIN = {"vertex_y": 0.0, "vertex_x": 0.0074, "landing_x": 0.0}
+"""An ideal machine's flight: its added margin at every step (1.25 times ``ideal_floor``'s
+0.59 % beyond the bound in the vertex's x; the landing never left it)."""
 STIFF_EQ2 = 0.018
 """Largest ``e q^2`` measured (0.017)."""
 STIFF_DQ3 = 1.6e-3
@@ -194,9 +212,11 @@ def iterations_needed(links: int, dt: float) -> int:
     return max(MIN_ITERATIONS, math.ceil(10.0 * (links / reach) ** 2))
 
 
-def estimate(ref: LaunchReference, s: Settings, chain: ChainConfig | None = None) -> Estimate:
+def estimate(ref: LaunchReference, s: Settings, chain: ChainConfig | None = None,
+             machine: bool = False) -> Estimate:
     """The model's errors, bounds and cost for fountain ``ref`` at settings ``s`` (with
-    ``chain``'s joints: a stiff chain's margin is :data:`STIFF_MARGIN`)."""
+    ``chain``'s joints: a stiff chain's margin is :data:`STIFF_MARGIN`; for an ideal
+    machine's flight, ``machine``, :data:`IDEAL_STEP` and :data:`IDEAL_MARGIN` besides)."""
     margin = STIFF_MARGIN if chain is not None and is_stiff(chain) else MARGIN
     n = links_in_flight(ref, s.link_length)
     conv = s.iterations >= iterations_needed(n, s.dt)
@@ -205,13 +225,17 @@ def estimate(ref: LaunchReference, s: Settings, chain: ChainConfig | None = None
     step = step_term(ref, s.dt)
     errors = {f: A_L[f] * qL + A_H[f] * Lh for f in FIGURES}
     bounds = {f: abs(errors[f]) + margin[f] + C_STEP[f] * step for f in FIGURES}
+    if machine:
+        bounds = {f: b + IDEAL_STEP[f] * s.dt / DT0 + IDEAL_MARGIN[f]
+                  for f, b in bounds.items()}
     return Estimate(settings=s, links=n, converged=conv, errors=errors, bounds=bounds,
                     cost=wall_cost(n, s.dt, s.iterations))
 
 
-def candidates(ref: LaunchReference, chain: ChainConfig | None = None) -> list[Estimate]:
+def candidates(ref: LaunchReference, chain: ChainConfig | None = None,
+               machine: bool = False) -> list[Estimate]:
     """Every candidate setting in the model's range, each at the fewest iterations that
-    converge (with ``chain``'s joints, :func:`estimate`)."""
+    converge (with ``chain``'s joints, an ideal machine's flight: :func:`estimate`)."""
     out = []
     for mm in LINKS_MM:
         L = mm / 1000.0
@@ -223,7 +247,7 @@ def candidates(ref: LaunchReference, chain: ChainConfig | None = None) -> list[E
             it = iterations_needed(n, dt)
             if it > MAX_ITERATIONS:
                 continue
-            out.append(estimate(ref, Settings(L, dt, it), chain))
+            out.append(estimate(ref, Settings(L, dt, it), chain, machine))
     return out
 
 
@@ -236,17 +260,17 @@ class OutOfReach(ValueError):
         self.best = best
 
 
-def choose(ref: LaunchReference, accuracy: float,
-           chain: ChainConfig | None = None) -> Estimate:
+def choose(ref: LaunchReference, accuracy: float, chain: ChainConfig | None = None,
+           machine: bool = False) -> Estimate:
     """The cheapest settings whose every bound is at most ``accuracy`` (relative), for a
-    chain with ``chain``'s joints.
+    chain with ``chain``'s joints (``machine``: an ideal machine's flight).
 
     Raises :class:`OutOfReach` (with the best reachable bound) when no candidate does, or
     when the fountain is outside the model's domain."""
     why = in_domain(ref, chain)
     if why is not None:
         raise OutOfReach(f"the error model does not apply: {why}")
-    cands = candidates(ref, chain)
+    cands = candidates(ref, chain, machine)
     ok = [e for e in cands if e.worst <= accuracy]
     if not ok:
         best = min((e.worst for e in cands), default=math.inf)

@@ -14,23 +14,21 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from chainfountain.sim import beaker_error
 from chainfountain.sim.beaker import Beaker
+from chainfountain.sim.config import ChainConfig, SolverConfig
 from chainfountain.theory import Fountain
 from chainfountain.theory.mould import alpha_from_rise, alpha_from_speed, bw_rise
 
-STEP_ERROR = ("not estimated in a run: python -m research.beaker_refinement --level LEVEL "
-              "refines the step and the iterations; the shipped beaker at its 250-us step "
-              "runs about 6 % slow with its top about 19 % low against a zero step "
-              "(first order in the step; docs/beaker.md)")
-"""What a beaker run says of its discretisation error (measured by refinement)."""
-
 
 def report(beaker: Beaker, vertex: tuple[float, float], landing_x: float, t0: float,
-           t1: float, g: float) -> dict[str, Any]:
+           t1: float, g: float, chain: ChainConfig, solver: SolverConfig) -> dict[str, Any]:
     """The ``beaker`` object for the window ``t0 .. t1`` (s): ``vertex`` and ``landing_x``
-    are the recorder's window means (rim frame, m). (The tension where the chain leaves
-    the pile is no reading of ``alpha``: the links there are still being accelerated, and
-    the recorder's launch tension, taken at the first link at rest, is about 0.)"""
+    are the recorder's window means (rim frame, m); ``error_bars`` the step's error
+    (:func:`~chainfountain.sim.beaker_error.error_bars`, at ``chain`` and ``solver``).
+    (The tension where the chain leaves the pile is no reading of ``alpha``: the links
+    there are still being accelerated, and the recorder's launch tension, taken at the
+    first link at rest, is about 0.)"""
     w = beaker.window(t0, t1)
     v, px, py = w["v"], w["pickup_x"], w["pickup_y"]
     H = py - beaker.floor_y  # pick-up to floor
@@ -48,11 +46,13 @@ def report(beaker: Beaker, vertex: tuple[float, float], landing_x: float, t0: fl
         "alpha": {},
         "biggins_warner": {},
         "paper": None,
-        "error_bars": {"method": None, "how": STEP_ERROR},
+        "error_bars": beaker_error.error_bars({}, chain, solver),
     }
     if not (math.isfinite(v) and v > 0 and H > 0 and math.isfinite(h)):
         return out
     a_v = alpha_from_speed(v, H, 0.0, g)
+    out["error_bars"] = beaker_error.error_bars(
+        {"speed": v, "rise_above_rim": vertex[1], "alpha_from_speed": a_v}, chain, solver)
     a_h = alpha_from_rise(h, H, 0.0)
     out["alpha"] = {"from_speed": a_v, "from_rise": a_h}
     out["biggins_warner"] = {

@@ -242,9 +242,10 @@ class SolverConfig:
         1e-4, unit="m", doc="Allowed contact overlap", min=0.0, max=0.01, live=True
     )
     accuracy: float = param(
-        0.0, unit="1", doc="Relative accuracy wanted of a motor-fed fountain on an absorbing "
-        "floor (e.g. 0.005): above 0, the cheapest link_length, dt and iterations within it are "
-        "chosen at load. 0: the level's own (see "
+        0.0, unit="1", doc="Relative accuracy wanted of a fed fountain on an absorbing floor, "
+        "motor-fed or an ideal machine's flight at its speed (e.g. 0.005): above 0, the "
+        "cheapest link_length, dt and iterations within it are chosen at load. 0: the level's "
+        "own (see "
         "docs/convergence.md#error-model-and-solveraccuracy)", min=0.0, max=0.1,
     )
     wave_damping: float = param(

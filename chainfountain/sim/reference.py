@@ -78,28 +78,44 @@ class LaunchReference:
         from chainfountain.theory.apparatus import (
             ideal_floor_speed,
             ideal_fold_speed,
-            ideal_fold_TE_bar,
             ideal_open_speed,
-            ideal_open_TE_bar,
         )
 
         f = config.feed
         lam, g = config.chain.linear_density, config.gravity
         v = f.speed if v is None else v
-        TE_bar = f.end_tension
         if f.drive == "ideal_floor":
             v = ideal_floor_speed(f.drop, f.xi2, f.cart_force, lam, g)
         elif f.drive == "ideal_open":
             v = ideal_open_speed(f.drop, f.xi2, f.cart_force, f.turn_drop, lam, g)
-            TE_bar = ideal_open_TE_bar(v, f.turn_drop, g) if math.isfinite(v) else 0.0
-        elif f.drive == "ideal_fold":
-            if f.bearing_drag > 0.0:
-                v = ideal_fold_speed(f.cart_force, f.lower_cart_force, f.xi2, f.xi3,
-                                     f.bearing_drag, lam, f.drop, g)
-            TE_bar = max(0.0, ideal_fold_TE_bar(v, f.xi3, f.lower_cart_force, lam, f.drop, g,
-                                                f.bearing_drag))
+        elif f.drive == "ideal_fold" and f.bearing_drag > 0.0:
+            v = ideal_fold_speed(f.cart_force, f.lower_cart_force, f.xi2, f.xi3,
+                                 f.bearing_drag, lam, f.drop, g)
         if not math.isfinite(v):
             raise ValueError("the machine selects no speed")
+        return cls.at_speed(config, v)
+
+    @classmethod
+    def at_speed(cls, config: SimConfig, v: float) -> LaunchReference:
+        """The paper's fountain for a fed level whose chain runs at ``v``, whatever speed
+        its machine selects: launched at ``v`` with the end tension the level's lower end
+        supplies at ``v`` (a motor feed's ``end_tension``; the full machine's put-down law,
+        ``ideal_fold_TE_bar``; the open arrangement's turn, ``k d``; none on the idealized
+        beaker's floor). For a machine that selects its speed this is the fountain it
+        flies at the speed it runs, beside :meth:`of_level`'s at the speed its laws
+        select; ``ValueError`` when there is no fountain."""
+        from chainfountain.theory.apparatus import ideal_fold_TE_bar, ideal_open_TE_bar
+
+        f = config.feed
+        lam, g = config.chain.linear_density, config.gravity
+        TE_bar = f.end_tension
+        if f.drive == "ideal_floor":
+            TE_bar = 0.0
+        elif f.drive == "ideal_open":
+            TE_bar = ideal_open_TE_bar(v, f.turn_drop, g)
+        elif f.drive == "ideal_fold":
+            TE_bar = max(0.0, ideal_fold_TE_bar(v, f.xi3, f.lower_cart_force, lam, f.drop, g,
+                                                f.bearing_drag))
         return cls.from_launch(v, f.launch_angle, f.drop, g, TE_bar=TE_bar)
 
     @property

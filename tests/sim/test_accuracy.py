@@ -77,6 +77,24 @@ def test_level_accuracy_sets_link_length_step_and_iterations():
             level.sim.solver.iterations) == (want.link_length, want.dt, want.iterations)
 
 
+def test_an_ideal_machines_accuracy_is_chosen_for_the_fountain_its_laws_select():
+    """An ideal machine's flight is a fed fountain at the speed it runs
+    (tests/sim/test_ideal_fold.py); ``solver.accuracy`` chooses for the laws' fountain."""
+    level = io.loads(_level_text("ideal_fold", "accuracy = 0.01"))
+    ref = LaunchReference.of_level(shipped.level("ideal_fold").sim)
+    assert ref.v == pytest.approx(5.0)
+    want = accuracy.choose(ref, 0.01, machine=True).settings
+    assert (level.sim.chain.link_length, level.sim.solver.dt,
+            level.sim.solver.iterations) == (want.link_length, want.dt, want.iterations)
+    # a machine's flight carries the margins measured on the ideal presets besides
+    s = accuracy.Settings(0.02, 2.5e-4, 10)
+    fed, flight = accuracy.estimate(ref, s), accuracy.estimate(ref, s, machine=True)
+    assert flight.bounds["vertex_y"] == pytest.approx(
+        fed.bounds["vertex_y"] + accuracy.IDEAL_STEP["vertex_y"])
+    assert flight.bounds["vertex_x"] == pytest.approx(
+        fed.bounds["vertex_x"] + accuracy.IDEAL_MARGIN["vertex_x"])
+
+
 @pytest.mark.parametrize("text, field, words", [
     (lambda: _level_text("wide_low", "").replace("accuracy = 0.005", "accuracy = 0.001"),
      "solver.accuracy", "at least 0.00"),

@@ -88,3 +88,15 @@ def test_free_pivots_barely_rise(tmp_path):
     lv = _beaker(**{"chain.bend_limit": 0.0})
     path, _ = run_and_record(lv, tmp_path, 4.0, progress=False, snapshot=False)
     assert json.loads(path.read_text())["beaker"]["rise_above_rim"] < 0.1
+
+
+def test_the_summary_gives_the_steps_error_bars(run):
+    """``beaker.error_bars``: the step error model's one-sided bars on the run's own
+    figures (:mod:`chainfountain.sim.beaker_error`), at the shipped settings."""
+    bars = run["beaker"]["error_bars"]
+    assert bars["method"] == "error model" and bars["one_sided"] is True
+    for name in ("speed", "rise_above_rim", "alpha_from_speed"):
+        have = run["beaker"]["alpha"]["from_speed"] if name == "alpha_from_speed" else \
+            run["beaker"][name]
+        assert bars["zero_step"][name] == pytest.approx(have * (1 + bars["shortfall"][name]))
+        assert bars["shortfall"][name] > 0.0

@@ -219,3 +219,52 @@ def test_the_starter_forms_the_fountain_and_hands_it_to_the_laws(level) -> None:
     v_s = ap.ideal_fold_speed(f.cart_force, 0.0, f.xi2, f.xi3, f.bearing_drag,
                               lvl.sim.chain.linear_density, f.drop, sim.g)
     assert _mean_speed(rec, 9.0, 12.0) == pytest.approx(v_s, rel=0.005)
+
+
+@pytest.mark.parametrize("name", ["ideal_floor", "ideal_fold", "ideal_special", "ideal_open"])
+def test_the_fountain_at_a_speed_carries_the_lower_halfs_law_there(name) -> None:
+    """``LaunchReference.at_speed``: at the laws' own speed it is the laws' fountain; at
+    another speed it is launched at that speed with the end tension the machine's lower
+    half supplies there (the put-down law, the turn's ``k d``, none on the floor)."""
+    from chainfountain.sim.reference import LaunchReference
+
+    cfg = shipped.level(name).sim
+    laws = LaunchReference.of_level(cfg)
+    same = LaunchReference.at_speed(cfg, laws.v)
+    assert (same.h, same.TE_bar) == pytest.approx((laws.h, laws.TE_bar), rel=1e-12)
+    v = 0.98 * laws.v
+    other = LaunchReference.at_speed(cfg, v)
+    f, lam, g = cfg.feed, cfg.chain.linear_density, cfg.gravity
+    te = {"ideal_floor": 0.0, "ideal_open": ap.ideal_open_TE_bar(v, f.turn_drop, g),
+          "ideal_fold": ap.ideal_fold_TE_bar(v, f.xi3, f.lower_cart_force, lam, f.drop, g,
+                                             f.bearing_drag),
+          "ideal_special": ap.ideal_fold_TE_bar(v, f.xi3, f.lower_cart_force, lam, f.drop, g,
+                                                f.bearing_drag)}[name]
+    assert other.v == v and other.TE_bar == pytest.approx(te, rel=1e-12)
+    assert other.h != pytest.approx(laws.h, rel=1e-3)  # the vertex moves with the speed
+
+
+@pytest.mark.slow
+def test_the_flight_at_its_own_speed_is_the_papers_fountain_within_the_error_model() -> None:
+    """A machine that selects its speed runs a little off it (the simulated chain's own
+    imbalance over the drag, docs/apparatus.md), and the vertex moves by several times
+    that: ``summary.json``'s ``theory`` compares the window with the laws' fountain, its
+    ``theory.at_speed`` with the fountain at the window's own speed, which the error
+    model bounds. ``ideal_fold`` from its fountain, 6-12 s."""
+    from chainfountain.headless.summary import summarize
+
+    lvl = shipped.level("ideal_fold")
+    lvl.sim.initial.mode, lvl.sim.feed.starter = "catenary", 0.0
+    sim = Simulation(lvl.sim)
+    rec = Recorder(sim, profiles=False)
+    sim.advance(12.0)
+    out = summarize(lvl, sim, rec, 12.0, 1.0)
+    th = out.sections["theory"]
+    own = th.at_speed
+    assert own is not None and own["v"] == pytest.approx(out.fountain.v, rel=1e-12)
+    bounds = out.sections["error_model"]["bounds"]
+    for fig in ("h", "vertex_x", "l"):
+        assert abs(own["rel_error"][fig]) <= bounds[fig], (fig, own, bounds)
+    # the laws' speed is a different fountain: the gap is the speed's error, amplified
+    v_err = th.rel_error.v
+    assert abs(th.rel_error.h - own["rel_error"]["h"]) > 2.0 * abs(v_err)

@@ -79,8 +79,9 @@ def _end_tension(sim: Any, index: int | None, v: float) -> None:
 
 
 def accuracy_refusal(cfg: SimConfig) -> str | None:
-    """``solver.accuracy``'s error model covers a motor-fed fountain on an absorbing floor,
-    without blocks in the scene or self-collision."""
+    """``solver.accuracy``'s error model covers a fed fountain on an absorbing floor (a
+    motor's, or an ideal machine's flight at its speed), without blocks in the scene or
+    self-collision."""
     if cfg.feed.floor != "absorbing":
         return f"feed.floor = {cfg.feed.floor!r}"
     if cfg.rollers or cfg.carts:

@@ -12,7 +12,7 @@ from typing import Any
 from chainfountain.sim.config import FeedConfig, SimConfig
 from chainfountain.sim.kinds.base import DEFAULT_DURATION, MACHINE_FORMING_DURATION, Kind
 from chainfountain.sim.kinds.fed import check_fed
-from chainfountain.sim.kinds.feed import feed_for, lay_chain, reach, speed_setter
+from chainfountain.sim.kinds.feed import accuracy_refusal, feed_for, lay_chain, reach, speed_setter
 from chainfountain.sim.kinds.ideal.checks import check_drive
 from chainfountain.sim.machine_rules import MACHINE_FIELDS
 from chainfountain.sim.piston import Piston
@@ -53,7 +53,7 @@ KIND = Kind(
     config=FeedConfig, name="ideal", table="feed", title="an ideal machine", check=check,
     default_duration=default_duration, reach=reach, build=build,
     live={"feed.speed": speed_setter, **{path: _machine for path in MACHINE_FIELDS}},
-    accuracy_refusal=lambda cfg: f"feed.drive = {cfg.feed.drive!r}",
+    accuracy_refusal=accuracy_refusal,
     style=lambda cfg: cfg.feed.drive,
     sections=("machine", "open", "error_bars", "error_model"), predicted=True,
 )

@@ -1,0 +1,48 @@
+"""The expert readout's line of discretisation error bars: what the running level's
+figures may be off by at its link length, step and iterations, and where that comes
+from. No pygame here.
+
+- A fed fountain (motor or ideal machine): the error model's bounds
+  (:func:`chainfountain.sim.accuracy.estimate`) on the vertex height and the landing,
+  for an ideal machine of its flight at the speed it runs (``summary.json``'s
+  ``theory.at_speed``; its speed wanders off the laws' by a few tenths of a per cent).
+- The beaker: the step error model's one-sided bars
+  (:mod:`chainfountain.sim.beaker_error`).
+- Elsewhere (the contact machines, scenes) nothing: their bars come from refinement
+  (``chainfountain converge``) and the run's report.
+"""
+
+from __future__ import annotations
+
+from chainfountain.sim import accuracy, beaker_error
+from chainfountain.sim.reference import LaunchReference
+from chainfountain.sim.world import Simulation
+
+
+def error_bars_line(sim: Simulation) -> str:
+    """One line for the expert readout, or '' where the level has no model of its
+    error."""
+    cfg = sim.config
+    sv = cfg.solver
+    dt = sv.dt / max(1, sv.substeps)
+    if sim.beaker is not None:
+        if beaker_error.applies(cfg.chain, sv) is not None:
+            return "the step's error: not measured at these settings"
+        low = beaker_error.shortfalls(dt)
+        return (f"the step's error: speed -0/+{100 * low['speed']:.0f} %, top "
+                f"-0/+{100 * low['rise_above_rim']:.0f} % (refined)")
+    if sim.feed is None or sim.apparatus is not None or cfg.kind != "feed":
+        return ""
+    ref = sim.catenary
+    if not isinstance(ref, LaunchReference) or cfg.feed.floor != "absorbing":
+        return ""
+    if accuracy.in_domain(ref, cfg.chain) is not None:
+        return "the error model does not cover this fountain (near-critical or too stiff)"
+    est = accuracy.estimate(ref, accuracy.Settings(cfg.chain.link_length, dt, sv.iterations),
+                            cfg.chain, machine=cfg.feed.drive != "motor")
+    if not est.converged:
+        return "the solver is short of iterations: the fountain may sit a few % low"
+    b = est.bounds
+    what = "the flight at its speed" if cfg.feed.drive != "motor" else "model"
+    return (f"error ({what}): top +-{100 * b['vertex_y']:.1f} %, landing "
+            f"+-{100 * b['landing_x']:.1f} %")

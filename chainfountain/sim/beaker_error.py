@@ -1,0 +1,77 @@
+"""The beaker's discretisation error: a first-order model in the time step, measured by
+refinement.
+
+A beaker's figures converge in the step at first order, and slowly
+(``python -m research.beaker_refinement``; docs/beaker.md, "Against Biggins and Warner,
+with error bars"): the shipped beaker (2-cm links, 6 iterations, one pymunk step a step;
+30 s from rest, the last 10 s averaged, three nudged starts) at 250, 125 and 62.5 us:
+
+==========================  =====  =====  =====  ==========  =====================
+figure                      250    125    62.5   zero step   ``SLOPE`` (per 250 us)
+==========================  =====  =====  =====  ==========  =====================
+speed (m/s)                 4.388  4.523  4.588  4.653       0.057
+top above the rim (m)       0.278  0.313  0.328  0.343       0.19
+``alpha`` from the speed    0.507  0.536  0.549  0.562       0.098
+==========================  =====  =====  =====  ==========  =====================
+
+Each halving moves a figure half as far as the one before (0.135 then 0.065 m/s, 0.035
+then 0.015 m), so the zero-step value is the last one plus the last move (Richardson at
+first order), and a run at step ``dt`` lies below it by ``SLOPE * dt / 250 us`` of it.
+Twice the iterations recover about a third of the speed's shortfall at 250 us; the model
+holds for the refined chain and solver only (:func:`applies`), and says so elsewhere.
+"""
+
+from __future__ import annotations
+
+from chainfountain.sim.config import ChainConfig, SolverConfig
+
+DT_REF = 2.5e-4
+"""Step (s) at which :data:`SLOPE` is the shortfall."""
+SLOPE = {"speed": 0.057, "rise_above_rim": 0.19, "alpha_from_speed": 0.098}
+"""Shortfall at :data:`DT_REF` of each figure below its zero-step value, as a fraction of
+that value (the module's table)."""
+REFINED = {"chain.link_length": 0.02, "solver.iterations": 6, "solver.substeps": 1}
+"""The settings the refinement measured, besides the step (the shipped beaker's)."""
+SOURCE = ("error model: first order in the step, measured by refining the shipped beaker "
+          "(python -m research.beaker_refinement; docs/beaker.md)")
+"""Where the bars come from."""
+
+
+def applies(chain: ChainConfig, solver: SolverConfig) -> str | None:
+    """Why the model does not apply to a beaker with ``chain`` and ``solver`` (``None``
+    when it does): it was measured at :data:`REFINED` only."""
+    have = {"chain.link_length": chain.link_length, "solver.iterations": solver.iterations,
+            "solver.substeps": solver.substeps}
+    off = [f"{k} = {have[k]:g} (refined at {v:g})" for k, v in REFINED.items()
+           if abs(have[k] - v) > 1e-9 * max(1.0, abs(v))]
+    if off:
+        return ("the step error was refined at the shipped beaker's settings only: "
+                + ", ".join(off) + "; python -m research.beaker_refinement --level LEVEL "
+                "refines this one")
+    return None
+
+
+def shortfalls(dt: float) -> dict[str, float]:
+    """Each figure's shortfall below its zero-step value at step ``dt`` (s), as a fraction
+    of the value measured (``measured * (1 + s)`` is the zero-step value)."""
+    out = {}
+    for name, slope in SLOPE.items():
+        below = slope * dt / DT_REF  # of the zero-step value
+        out[name] = below / (1.0 - below)
+    return out
+
+
+def error_bars(figures: dict[str, float], chain: ChainConfig,
+               solver: SolverConfig) -> dict[str, object]:
+    """``summary.json``'s ``beaker.error_bars`` for the measured ``figures`` (``speed``,
+    ``rise_above_rim``, ``alpha_from_speed``): each figure's shortfall below its zero-step
+    value (relative to the figure, one-sided: the step only lowers them) and that value,
+    or why the model does not apply."""
+    why = applies(chain, solver)
+    if why is not None:
+        return {"method": None, "how": why}
+    dt = solver.dt / max(1, solver.substeps)
+    rel = shortfalls(dt)
+    return {"method": "error model", "source": SOURCE, "dt": dt, "one_sided": True,
+            "shortfall": {k: rel[k] for k in figures},
+            "zero_step": {k: figures[k] * (1.0 + rel[k]) for k in figures}}
