@@ -123,3 +123,40 @@ def test_run_at_chosen_settings_is_within_the_bounds(ref, acc):
     for f in accuracy.FIGURES:
         assert abs(got[f]) <= est.bounds[f], (f, got[f], est.bounds[f])
     assert run.spread <= 0.002  # the converged solver's link-speed spread (issue 35)
+
+
+USER_PULL = """schema_version = 1
+kind = "feed"
+
+[meta]
+name = "user_pull"
+title = "a fed fountain with a floor pull, written without a [solver] table"
+
+[feed]
+speed = 4.6
+launch_angle = 1.2
+drop = 1.2
+end_tension = 0.15
+
+[initial]
+mode = "catenary"
+"""
+
+
+@pytest.mark.slow
+def test_a_level_without_solver_settings_lies_within_the_bounds_it_is_given():
+    """A user's fed fountain with a floor pull, unlike the shipped ones and with no
+    ``[solver]`` table, runs at the defaults (2-cm links, 250 us, 25 iterations); the bounds
+    ``summary.json`` and ``run`` give it (the model at those settings) hold, settled 1.5 s
+    and averaged 3 s as the model was fitted."""
+    level = io.loads(USER_PULL)
+    sim = level.sim
+    ref = LaunchReference.of_level(sim)
+    est = accuracy.estimate(ref, accuracy.Settings(sim.chain.link_length, sim.solver.dt,
+                                                   sim.solver.iterations), sim.chain)
+    assert est.converged and est.worst < 0.02
+    run = measure(sim, settle=1.5, window=3.0)
+    got = {"vertex_y": run.errors["h"], "vertex_x": run.errors["vertex_x"],
+           "landing_x": run.errors["l"]}
+    for f in accuracy.FIGURES:
+        assert abs(got[f]) <= est.bounds[f], (f, got[f], est.bounds[f])
