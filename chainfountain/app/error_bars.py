@@ -36,8 +36,9 @@ def error_bars_line(sim: Simulation) -> str:
     ref = sim.catenary
     if not isinstance(ref, LaunchReference) or cfg.feed.floor != "absorbing":
         return ""
-    if accuracy.in_domain(ref, cfg.chain) is not None:
-        return "the error model does not cover this fountain (near-critical or too stiff)"
+    why = accuracy.in_domain(ref, cfg.chain)
+    if why is not None:
+        return f"no error model: {why.split(' (')[0].split(', where')[0]}"
     est = accuracy.estimate(ref, accuracy.Settings(cfg.chain.link_length, dt, sv.iterations),
                             cfg.chain, machine=cfg.feed.drive != "motor")
     if not est.converged:

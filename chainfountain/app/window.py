@@ -264,7 +264,7 @@ class App(InputMixin, DrawMixin):
         lines = sum(len(text.wrap(f, r.text, room)) for r in rows)
         from chainfountain.app.draw import EXTRA_LINES
 
-        return lines + (2 * EXTRA_LINES if self.expert else 0)
+        return lines + (3 * EXTRA_LINES if self.expert else 0)  # machine, bars, note
 
     def _build_panel(self) -> None:
         self.buttons: dict[str, UIButton] = {}

@@ -86,10 +86,11 @@ def beaker_lines(bk: dict[str, Any], s: RunSummary) -> list[str]:
     low, zero = bars.get("shortfall") or {}, bars.get("zero_step") or {}
     if "speed" in low and "rise_above_rim" in low:
         lines += [f"  discretisation error (error model, first order in the step): speed "
-                  f"-0/+{100 * low['speed']:.0f} % ({zero['speed']:.2f} m/s at a zero step),",
-                  f"    top -0/+{100 * low['rise_above_rim']:.0f} % "
-                  f"({zero['rise_above_rim']:.2f} m), alpha from the speed "
-                  f"-0/+{100 * low['alpha_from_speed']:.0f} % ({zero['alpha_from_speed']:.3f})"]
+                  f"-0/+{100 * low['speed']:.0f} %,",
+                  f"    top -0/+{100 * low['rise_above_rim']:.0f} %, alpha from the speed "
+                  f"-0/+{100 * low['alpha_from_speed']:.0f} % (at a zero step: "
+                  f"{zero['speed']:.2f} m/s, {zero['rise_above_rim']:.2f} m, "
+                  f"{zero['alpha_from_speed']:.3f})"]
     elif bars.get("how"):
         lines.append(f"  discretisation error: {bars['how']}")
     return lines
@@ -163,7 +164,7 @@ def error_model_lines(m: dict[str, Any], s: RunSummary) -> list[str]:
     """The error model's bounds for the level's settings, or why the solver is short."""
     if m.get("bounds"):
         b = m["bounds"]
-        at = "the flight at its speed: " if m.get("note", "").startswith("the flying") else ""
+        at = "the flight at its speed: " if m.get("flight_at_speed") else ""
         return ["  discretisation error (error model) at this link length, step and iterations:",
                 f"    {at}vertex height +-{100 * b['h']:.2f} %, vertex x "
                 f"+-{100 * b['vertex_x']:.2f} %, landing +-{100 * b['l']:.2f} %"]

@@ -299,9 +299,11 @@ def model_error(level: Level) -> dict[str, Any]:
                            "use chainfountain converge LEVEL")
         return out
     if f.drive != "motor":
+        out["flight_at_speed"] = True
         out["note"] = ("the flying chain's error against the paper's fountain at the speed it "
-                       "runs (theory.at_speed); the speed sits a few tenths of a per cent off "
-                       "the laws' besides (research/ideal_machine_holds.py)")
+                       "runs (theory.at_speed; for a loss-free machine, theory itself); the "
+                       "speed sits a few tenths of a per cent off the laws' besides "
+                       "(research/ideal_machine_holds.py)")
     try:
         ref = LaunchReference.of_level(sim)
     except ValueError as exc:

@@ -47,9 +47,9 @@ inverted catenary (section "Inverted Catenary"). Its error at link length ``L``,
 
 4. **An ideal machine's flight** (``feed.drive`` not ``"motor"``), compared with the paper's
    fountain at the speed the machine runs (``summary.json`` ``theory.at_speed``): the link
-   term above predicts it (at 62.5 us ``ideal_limit`` +0.48 % against +0.48 %,
-   ``ideal_fold`` +0.30 against +0.31 %), but the four presets' worst 10-s windows
-   (20-80 s, 250/125/62.5 us; ``python -m research.ideal_machine_holds --duration 80
+   term above predicts it (window means at 62.5 us: ``ideal_limit`` +0.48 % against
+   +0.48 % predicted, ``ideal_fold`` +0.30 against +0.31 %), but the four presets' worst
+   10-s windows (20-80 s, 250/125/62.5 us; ``python -m research.ideal_machine_holds --duration 80
    --dt-factors 1 0.5 0.25``) leave the bound by up to 0.75 % in the vertex height at
    250 us (``ideal_floor``; -0.04 % at 125 us), and by up to 0.59 % in the vertex's x at
    every step (``ideal_floor``, not monotonic in the step). The bound of a machine's

@@ -39,11 +39,15 @@ SOURCE = ("error model: first order in the step, measured by refining the shippe
 
 def applies(chain: ChainConfig, solver: SolverConfig) -> str | None:
     """Why the model does not apply to a beaker with ``chain`` and ``solver`` (``None``
-    when it does): it was measured at :data:`REFINED` only."""
+    when it does): it was measured at :data:`REFINED` only, at steps up to
+    :data:`DT_REF` (a smaller step only brings the figures nearer their zero-step
+    values)."""
     have = {"chain.link_length": chain.link_length, "solver.iterations": solver.iterations,
             "solver.substeps": solver.substeps}
     off = [f"{k} = {have[k]:g} (refined at {v:g})" for k, v in REFINED.items()
            if abs(have[k] - v) > 1e-9 * max(1.0, abs(v))]
+    if solver.dt / max(1, solver.substeps) > DT_REF * (1.0 + 1e-9):
+        off.append(f"solver.dt = {solver.dt:g} s (refined at {DT_REF:g} s and below)")
     if off:
         return ("the step error was refined at the shipped beaker's settings only: "
                 + ", ".join(off) + "; python -m research.beaker_refinement --level LEVEL "
@@ -70,6 +74,9 @@ def error_bars(figures: dict[str, float], chain: ChainConfig,
     why = applies(chain, solver)
     if why is not None:
         return {"method": None, "how": why}
+    if not figures:
+        return {"method": None, "how": "no figures in the window: the chain has formed no "
+                "fountain there"}
     dt = solver.dt / max(1, solver.substeps)
     rel = shortfalls(dt)
     return {"method": "error model", "source": SOURCE, "dt": dt, "one_sided": True,

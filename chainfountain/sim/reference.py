@@ -106,6 +106,8 @@ class LaunchReference:
         select; ``ValueError`` when there is no fountain."""
         from chainfountain.theory.apparatus import ideal_fold_TE_bar, ideal_open_TE_bar
 
+        if not (math.isfinite(v) and v > 0.0):
+            raise ValueError(f"no fountain at a chain speed of {v:g} m/s")
         f = config.feed
         lam, g = config.chain.linear_density, config.gravity
         TE_bar = f.end_tension

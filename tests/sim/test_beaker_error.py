@@ -41,3 +41,7 @@ def test_the_shipped_beaker_gets_bars_and_another_chain_a_reason() -> None:
                                     SolverConfig(dt=2.5e-4, iterations=6))
     assert other["method"] is None and "chain.link_length = 0.01" in other["how"]
     assert "research.beaker_refinement" in other["how"]
+    # a longer step than refined: no extrapolation beyond the measured steps
+    longer = beaker_error.error_bars(figures, cfg.chain, SolverConfig(dt=5e-4, iterations=6))
+    assert longer["method"] is None and "solver.dt = 0.0005" in longer["how"]
+    assert beaker_error.error_bars({}, cfg.chain, cfg.solver)["method"] is None

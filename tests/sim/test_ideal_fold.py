@@ -242,6 +242,8 @@ def test_the_fountain_at_a_speed_carries_the_lower_halfs_law_there(name) -> None
                                                 f.bearing_drag)}[name]
     assert other.v == v and other.TE_bar == pytest.approx(te, rel=1e-12)
     assert other.h != pytest.approx(laws.h, rel=1e-3)  # the vertex moves with the speed
+    with pytest.raises(ValueError, match="no fountain"):
+        LaunchReference.at_speed(cfg, 0.0)  # a stopped chain: no fountain, no division
 
 
 @pytest.mark.slow
