@@ -63,6 +63,11 @@ def apparatus_lines(ap: dict[str, Any], s: RunSummary) -> list[str]:
             f"{f['relation_miss']:+.3f}{bar(f.get('relation_miss_se'))}",
             f"    (k H {f['kH']:.3f}); vertex {pct(vert)} off the catenary through the ends "
             "(+-: statistical, not the step's)"]
+        moves = (f.get("step") or {}).get("moves")
+        if moves:
+            lines.append(f"  halving the step moved them by up to {moves['T0_bar']:.3f}, "
+                         f"{moves['TE_bar']:.3f}, {moves['relation_miss']:.3f} and "
+                         f"{100 * moves['vertex_y_rel_error']:.1f} % (refined at the presets)")
     return lines
 
 

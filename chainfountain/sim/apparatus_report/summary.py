@@ -23,6 +23,7 @@ from chainfountain.sim.apparatus import (
     selected_speed,
 )
 from chainfountain.sim.apparatus_report.sample import ApparatusSample
+from chainfountain.sim.apparatus_report.step_change import step_section
 from chainfountain.theory.design import MEASURED_CART_GAIN
 
 
@@ -84,6 +85,7 @@ def report(sim, rec, t0: float, t1: float) -> dict:
                  "measured": _measured(app, w)}
     out["catenary"], out["paper_ranges"] = _catenary_and_ranges(app, w)
     out["flight"] = _flight(w, out["catenary"])
+    out["flight"]["step"] = step_section(sim.config)
     paper, law = _predictions(app, w)
     if app.variant == "floor":
         out["speed_selection"] = _speed_selection(app, w, paper, law)
@@ -174,7 +176,7 @@ def _flight(w: _Window, catenary: dict) -> dict:
     ``lambda g y``; the ends' measured heights, the start at ``y = 0``), with the
     standard errors of their means (:func:`mean_se`), and the vertex against the
     catenary through the measured ends. The step's error is not in these bars: halving
-    the step moves them by more on the contact machines (docs/apparatus.md)."""
+    the step moves them by more (``flight.step``, :mod:`.step_change`)."""
     S = w.S
     T0 = np.array([s.T0_bar for s in S], dtype=float)
     TE = np.array([s.TE_bar for s in S], dtype=float)

@@ -134,3 +134,20 @@ def test_the_head_is_pinned_under_the_folding_roller_not_on_top() -> None:
     pin_y = app.grip._table_pin.anchor_a.y  # on the static body: world coordinates
     assert pin_y < roller.position.y - 0.9 * R
     sim.advance(1.0)  # and the fold goes on (raises RunEnded if it collapsed)
+
+
+@pytest.mark.parametrize("name, changes, has_moves", [
+    ("apparatus_fold_gripped", {}, True),
+    ("apparatus_special_gripped", {}, True),
+    ("apparatus_fold_gripped", {"solver.dt": 5e-4}, False),
+    ("apparatus_special", {}, False),
+])
+def test_the_flights_step_moves_apply_where_they_were_refined(level, name, changes,
+                                                              has_moves) -> None:
+    from chainfountain.sim.apparatus_report.step_change import step_section
+
+    lv = with_changes(level(name), changes) if changes else level(name)
+    sec = step_section(lv.sim)
+    assert (sec["moves"] is not None) == has_moves, sec
+    if not has_moves:
+        assert sec["how"]
