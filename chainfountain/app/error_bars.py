@@ -15,6 +15,7 @@ from. No pygame here.
 from __future__ import annotations
 
 from chainfountain.sim import accuracy, beaker_error
+from chainfountain.sim.kinds import kind_of
 from chainfountain.sim.reference import LaunchReference
 from chainfountain.sim.world import Simulation
 
@@ -31,7 +32,7 @@ def error_bars_line(sim: Simulation) -> str:
         low = beaker_error.shortfalls(dt)
         return (f"the step's error: speed -0/+{100 * low['speed']:.0f} %, top "
                 f"-0/+{100 * low['rise_above_rim']:.0f} % (refined)")
-    if sim.feed is None or sim.apparatus is not None or cfg.kind != "feed":
+    if sim.feed is None or not kind_of(cfg).predicted:
         return ""
     ref = sim.catenary
     if not isinstance(ref, LaunchReference) or cfg.feed.floor != "absorbing":
