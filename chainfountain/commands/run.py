@@ -63,8 +63,10 @@ def run(args: argparse.Namespace) -> int:
         exit_status,
         prepare_out_dir,
         run_level,
+        scene_refine,
     )
     from chainfountain.level import io, library
+    from chainfountain.sim.kinds import kind_of
 
     level = overridden(io.load(library.resolve(args.level)), args.overrides)
     check_run(level, args.duration, args.seed, names=("argument --duration", "argument --seed"))
@@ -85,10 +87,13 @@ def run(args: argparse.Namespace) -> int:
         bars = refine(level.sim, level.meta.name, progress=None if args.quiet else (
             lambda m: print("  " + m, file=sys.stderr, flush=True))).as_dict()
     duration = args.duration or default_duration(level)
-    print(f"running {level.meta.name} headless for {duration:g} simulated s ...",
+    again = ""
+    if not kind_of(level.sim).fountain and scene_refine.refusal(level) is None:
+        again = ", then again at half its step for the figures' step error"
+    print(f"running {level.meta.name} headless for {duration:g} simulated s{again} ...",
           file=sys.stderr)
     path = run_level(level, out, duration, seed=args.seed, progress=not args.quiet,
-                     error_bars=bars)
+                     error_bars=bars, refine_scene=True)
     summary = RunSummary.load(path)
     print(describe_outputs(path, summary))
     return exit_status(summary)

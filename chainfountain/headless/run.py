@@ -113,7 +113,7 @@ def prepare_out_dir(out_dir: Path, option: str = "--out") -> Path:
 
 def run_level(level: Level, out_dir: Path, duration: float | None = None, *,
               seed: int | None = None, progress: bool = True,
-              error_bars: dict | None = None) -> Path:
+              error_bars: dict | None = None, refine_scene: bool = False) -> Path:
     """Run ``level`` headless and write the outputs into ``out_dir``; returns summary.json.
 
     Raw outputs (the CSVs) are written before the analyses that could fail (figures,
@@ -122,15 +122,17 @@ def run_level(level: Level, out_dir: Path, duration: float | None = None, *,
     stopped machine: its part is written completely (a second signal while writing is
     noted, not obeyed). :func:`exit_status` gives the command's status. Raises
     :class:`OutputError` when ``summary.json`` itself cannot be written. ``error_bars``
-    (:meth:`chainfountain.refine.Refinement.as_dict`) goes into ``summary.json`` as is."""
+    (:meth:`chainfountain.refine.Refinement.as_dict`) goes into ``summary.json`` as is.
+    ``refine_scene``: a scene is also run at half its step for its figures' step error
+    (:mod:`chainfountain.headless.scene_refine`; ``chainfountain run`` does)."""
     return run_and_record(level, out_dir, duration, seed=seed, progress=progress,
-                          error_bars=error_bars)[0]
+                          error_bars=error_bars, refine_scene=refine_scene)[0]
 
 
 def run_and_record(level: Level, out_dir: Path, duration: float | None = None, *,
                    seed: int | None = None, progress: bool = True,
-                   error_bars: dict | None = None,
-                   snapshot: bool = True) -> tuple[Path, Recorder | SceneRun]:
+                   error_bars: dict | None = None, snapshot: bool = True,
+                   refine_scene: bool = False) -> tuple[Path, Recorder | SceneRun]:
     """:func:`run_level`, also returning the run's recorder (its time series in memory;
     a scene level's :class:`~chainfountain.headless.scene.SceneRun`);
     ``snapshot=False`` leaves out ``snapshot.png`` (drawing it is most of a short run's
@@ -139,7 +141,7 @@ def run_and_record(level: Level, out_dir: Path, duration: float | None = None, *
     out_dir = prepare_out_dir(out_dir)
     if not kind_of(level.sim).fountain:
         return run_scene(level, out_dir, duration, seed=seed, progress=progress,
-                         snapshot=snapshot)
+                         snapshot=snapshot, refine=refine_scene)
     sim, rec, wall, ended = simulate(level, duration, seed=seed, progress=progress)
     received: list[int] = []
     with _signals_deferred(received):

@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 
 from chainfountain import atomic
-from chainfountain.headless import files, scene_compare
+from chainfountain.headless import files, scene_compare, scene_refine
 from chainfountain.headless.report import Ended, RunSummary, SceneFigures
 from chainfountain.headless.section_text import pct
 from chainfountain.headless.stepper import SceneRun, Stepper
@@ -29,7 +29,7 @@ SHAPES = 6
 
 
 def simulate_scene(level: Level, duration: float, *, seed: int | None = None,
-                   progress: bool = True) -> SceneRun:
+                   progress: bool = True, label: str | None = None) -> SceneRun:
     """Build the scene and step it for ``duration`` simulated seconds, sampling every
     ``recording.sample_interval``, or less often to keep at most
     :data:`~chainfountain.headless.stepping.MAX_SAMPLES` per probe (``summary.json``
@@ -38,19 +38,30 @@ def simulate_scene(level: Level, duration: float, *, seed: int | None = None,
     run = Stepper(level, seed=seed, duration=duration)
     n_steps = int(round(duration / run.dt))
     run.shape_at = set(np.linspace(0, n_steps, SHAPES).round().astype(int).tolist())
-    with _progress(duration, progress, level.meta.name) as bar, _signals_raise():
+    with _progress(duration, progress, label or level.meta.name) as bar, _signals_raise():
         run.advance(duration, bar)
     return run.scene_run()
 
 
 def run_scene(level: Level, out_dir: Path, duration: float, *, seed: int | None = None,
-              progress: bool = True, snapshot: bool = True) -> tuple[Path, SceneRun]:
+              progress: bool = True, snapshot: bool = True,
+              refine: bool = False) -> tuple[Path, SceneRun]:
     """Run a scene level into ``out_dir`` (which exists and is writable); returns the path
     of ``summary.json`` and the run. Probe files first, then the summary, the picture
-    last; a signal while writing is noted, not obeyed."""
+    last; a signal while writing is noted, not obeyed. ``refine``: also run it at half
+    the step and give the closed form's figures their step's error
+    (:mod:`~chainfountain.headless.scene_refine`, ``summary.json``'s
+    ``closed_form_step``), where the scene has a closed form and no jitter."""
     run = simulate_scene(level, duration, seed=seed, progress=progress)
+    half: SceneRun | str | None = None
+    if refine:
+        half = scene_refine.refusal(level) or (
+            f"the run ended early ({run.ended.reason})" if run.ended is not None else None)
+        if half is None:
+            half = simulate_scene(scene_refine.halved(level), duration, seed=seed,
+                                  progress=progress, label=f"{level.meta.name} at dt/2")
     with _signals_deferred([]):
-        path = _write(level, out_dir, duration, run, snapshot)
+        path = _write(level, out_dir, duration, run, snapshot, half)
     return path, run
 
 
@@ -68,8 +79,23 @@ def _stats(values: np.ndarray) -> dict[str, Any]:
             "final": _f(values[-1])}
 
 
+def _step_section(level: Level, form: dict[str, Any] | None,
+                  half: SceneRun | str) -> dict[str, Any]:
+    """``closed_form_step``: the refinement of ``form`` by the run at half the step, or
+    why there is none."""
+    if isinstance(half, str):
+        return scene_refine.skipped(half)
+    if half.ended is not None:
+        return scene_refine.skipped(f"the run at half the step ended early "
+                                    f"({half.ended.reason})")
+    fine = scene_compare.compare(half.sim.config, half.log, half.start)
+    if form is None or fine is None:
+        return scene_refine.skipped("no closed-form figures to refine")
+    return scene_refine.step_error(form, fine, level.sim.solver.dt)
+
+
 def _write(level: Level, out_dir: Path, duration: float, run: SceneRun,
-           snapshot: bool) -> Path:
+           snapshot: bool, half: SceneRun | str | None = None) -> Path:
     cfg = level.sim
     sim, log = run.sim, run.log
     written: list[str] = []
@@ -96,6 +122,10 @@ def _write(level: Level, out_dir: Path, duration: float, run: SceneRun,
                            jitter=cfg.scene.jitter, probes=probes),
         sections={"closed_form": _attempt(failed, "closed form", scene_compare.compare, cfg,
                                           log, run.start)})
+    if half is not None:
+        summary.sections["closed_form_step"] = _attempt(
+            failed, "closed form's step refinement", _step_section, level,
+            summary.sections["closed_form"], half)
     if run.ended is not None:
         summary.ended_early = Ended(
             t_s=_f(sim.time), cause=run.ended.cause, reason=run.ended.reason,
@@ -194,5 +224,37 @@ def describe_scene(s: RunSummary, out: Path) -> str:
                      f"{100 * form['landed_share'][1]:.0f} % of the chain has landed: reads "
                      f"{pct(form['force_rel_error'])} against 3 lambda g y (Hamm-Geminard)"
                      + ("; a pile of jittered links is chaotic: compare the mean over seeds "
-                        "(chainfountain sweep with seeds)" if sc.jitter else ""))
+                        "(chainfountain sweep with seeds)"
+                        if sc.jitter and "closed_form_step" not in s.sections else ""))
+    lines.extend(_step_lines(s.sections.get("closed_form_step"), form))
     return "\n".join(lines)
+
+
+def _step_lines(step: dict[str, Any] | None, form: dict[str, Any]) -> list[str]:
+    """The closed form's figures at zero step and the step's error, from
+    ``closed_form_step``."""
+    if not step or not form.get("name"):
+        return []
+    if step.get("skipped"):
+        import textwrap
+
+        return textwrap.wrap(f"the step's error: not refined: {step['skipped']}", 96,
+                             initial_indent="  ", subsequent_indent="    ")
+
+    def row(key: str) -> tuple[str, str] | None:
+        zero, err = step[key]["zero_step"], step[key]["step_error"]
+        zero, err = (zero, err) if isinstance(zero, list) else ([zero], [err])
+        if all(z is None for z in zero):
+            return None
+        return ("/".join("n/a" if z is None else f"{100 * z:+.2f}" for z in zero) + " %",
+                "/".join("n/a" if e is None else f"{100 * e:.2f}" for e in err) + " %")
+
+    names = {"speed_rel_error": "free end's speed", "force_rel_error": "fixed end's force"
+             if form["name"] == "folded_fall" else "scale"}
+    out = [f"  halving the step ({step['dt'] * 1e6:g} -> {step['half_dt'] * 1e6:g} us, first "
+           "order) gives the figures above at zero step, and their step's error:"]
+    for key, name in names.items():
+        r = row(key) if key in step else None
+        if r is not None:
+            out.append(f"    {name}: {r[0]} at zero step; the step's error +-{r[1]}")
+    return out
