@@ -36,7 +36,7 @@ from chainfountain.app.readout import (
 )
 from chainfountain.errors import RunEnded, UserError
 from chainfountain.fields import get_value, set_value
-from chainfountain.level import io, library
+from chainfountain.level import io, library, resolve
 from chainfountain.level.io import Level, LevelError
 from chainfountain.sim.config import SimConfig
 from chainfountain.sim.live import plan
@@ -79,8 +79,7 @@ def paused_message(reason: str) -> str:
     return f"{reason.rstrip('.')}; paused: press R to start again"
 
 
-HAND_SETTINGS = frozenset({"chain.link_length", "solver.dt", "solver.iterations",
-                           "solver.substeps"})
+HAND_SETTINGS = resolve.CHOSEN
 """Fields ``solver.accuracy`` chooses; setting one by hand turns the accuracy off."""
 
 

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from chainfountain.fields import tuple_item_type
-from chainfountain.level import io
+from chainfountain.level import io, resolve
 from chainfountain.level.io import _allowed_for
 from chainfountain.level.model import Level, LevelError, Meta, _hints, _is_dataclass_type
 from chainfountain.sim.config import SimConfig
@@ -207,4 +207,29 @@ def changed(level: Level, changes: Mapping[str, Any], where: str = "change") -> 
     for path, value in changes.items():
         check_type(path, value, where)
         set_in(data, path, value, where)
+    _hand_over(level, changes, data, where)
     return io.parse_level(data, where)
+
+
+def taken_over(level: Level, changes: Mapping[str, Any]) -> list[str]:
+    """The fields of ``changes`` that ``level``'s ``solver.accuracy`` would choose and that
+    they set to another value (:data:`chainfountain.level.resolve.CHOSEN`)."""
+    if level.sim.solver.accuracy == 0.0:
+        return []
+    return [p for p, v in changes.items()
+            if p in resolve.CHOSEN and v != get(level, p)]
+
+
+def _hand_over(level: Level, changes: Mapping[str, Any], data: dict[str, Any],
+               where: str) -> None:
+    """A change of a field ``solver.accuracy`` chooses turns the accuracy off, as the
+    window's slider does; together with an accuracy of its own it is refused."""
+    mine = taken_over(level, changes)
+    if not mine:
+        return
+    acc = changes.get("solver.accuracy")
+    if acc is not None and acc != 0.0:
+        raise LevelError(f"{where}: {mine[0]}: {changes[mine[0]]!r} together with "
+                         f"solver.accuracy = {acc!r}, which chooses it; allowed: one of "
+                         "them (solver.accuracy = 0 to set the settings by hand)")
+    data.setdefault("solver", {})["accuracy"] = 0.0

@@ -19,6 +19,13 @@ from chainfountain.sim.accuracy import Estimate
 from chainfountain.sim.kinds import kind_of
 from chainfountain.sim.reference import LaunchReference
 
+CHOSEN = frozenset({"chain.link_length", "solver.dt", "solver.iterations",
+                    "solver.substeps"})
+"""The fields ``solver.accuracy`` chooses. A change that sets one of them to another value
+(the window's slider, a sweep's grid, ``FIELD=VALUE``) takes it over: the accuracy is
+turned off for that level (:func:`chainfountain.level.paths.changed`), since otherwise
+the accuracy would choose it again and the change would silently do nothing."""
+
 
 def resolve(level: Level, where: str) -> tuple[Level, Estimate | None]:
     """The level that runs: ``level`` itself when ``solver.accuracy`` is 0, else a copy

@@ -8,7 +8,8 @@ from pathlib import Path
 
 import pytest
 
-from chainfountain.level import io, library
+from chainfountain.level import io, library, paths
+from chainfountain.level.model import LevelError
 from tests import shipped
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -163,3 +164,25 @@ def test_apparatus_bad_files_one_clear_line(tmp_path, key, new, field, shown, al
         io.load(bad)
     msg = str(exc.value)
     assert f"{field}: {shown}" in msg and allowed in msg and "\n" not in msg
+
+
+def test_a_change_of_a_field_the_accuracy_chooses_takes_it_over():
+    """``classroom`` has ``solver.accuracy``: a change of its link length or step (a
+    sweep's grid, ``FIELD=VALUE``) is run as given with the accuracy off, instead of being
+    chosen again (a sweep over ``chain.link_length`` ran every point at the accuracy's
+    5 cm); the same value keeps the accuracy; both at once are refused in one line."""
+    from chainfountain.study import with_changes
+
+    lvl = shipped.level("classroom")
+    acc, own = lvl.sim.solver.accuracy, lvl.sim.chain.link_length
+    assert acc > 0
+    for path, value in (("chain.link_length", own / 2), ("solver.dt", 1e-4),
+                        ("solver.iterations", 30)):
+        changed = with_changes(lvl, {path: value})
+        assert changed.sim.solver.accuracy == 0.0
+        assert paths.get(changed, path) == value, path
+    assert with_changes(lvl, {"chain.link_length": own}).sim.solver.accuracy == acc
+    assert with_changes(lvl, {"feed.speed": 6.5}).sim.solver.accuracy == acc
+    with pytest.raises(LevelError, match=r"^change: chain\.link_length: 0\.01 together with "
+                       r"solver\.accuracy = 0\.01, which chooses it; allowed: one of them"):
+        with_changes(lvl, {"chain.link_length": 0.01, "solver.accuracy": 0.01})
