@@ -170,11 +170,16 @@ def error_model_lines(m: dict[str, Any], s: RunSummary) -> list[str]:
     if m.get("bounds"):
         b = m["bounds"]
         at = "the flight at its speed: " if m.get("flight_at_speed") else ""
-        return ["  discretisation error (error model) at this link length, step and iterations:",
+        chose = (f"the settings solver.accuracy = {100 * m['accuracy']:g} % chose "
+                 f"({1000 * s.link_length:g}-mm links, {1e6 * s.dt:g}-us step)"
+                 if m.get("accuracy") else "this link length, step and iterations")
+        return [f"  discretisation error (error model) at {chose}:",
                 f"    {at}vertex height +-{100 * b['h']:.2f} %, vertex x "
                 f"+-{100 * b['vertex_x']:.2f} %, landing +-{100 * b['l']:.2f} %"]
     if m.get("solver_converged") is False:
         return [f"  WARNING: {m['why_none']}"]
+    if m.get("why_none"):
+        return [f"  discretisation error: no error model here: {m['why_none']}"]
     return []
 
 

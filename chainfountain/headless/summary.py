@@ -292,7 +292,8 @@ def model_error(level: Level) -> dict[str, Any]:
 
     sim = level.sim
     out: dict[str, Any] = {"source": "error model (chainfountain.sim.accuracy, fitted by "
-                           "research/error_model.py)", "bounds": None}
+                           "research/error_model.py)", "bounds": None,
+                           "accuracy": sim.solver.accuracy or None}
     f = sim.feed
     if f.floor != "absorbing" or sim.rollers or sim.carts:
         out["why_none"] = ("the model covers fed fountains on an absorbing floor only; "

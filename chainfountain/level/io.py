@@ -44,7 +44,7 @@ from chainfountain.level.model import (
     _hints,
     _is_dataclass_type,
 )
-from chainfountain.level.resolve import resolve
+from chainfountain.level.resolve import CHOSEN, resolve
 from chainfountain.level.schema_doc import field_meta, schema_markdown
 from chainfountain.sim.config import KINDS, SimConfig
 
@@ -159,6 +159,39 @@ def _with_kind_solver_defaults(data: dict[str, Any]) -> dict[str, Any]:
     return {**data, "solver": {**kind.solver_defaults, **solver}}
 
 
+def _sets_settings(data: dict[str, Any]) -> bool:
+    """Whether a level file sets ``solver.accuracy`` or a field it chooses
+    (:data:`chainfountain.level.resolve.CHOSEN`)."""
+    for path in ("solver.accuracy", *CHOSEN):
+        table, _, key = path.partition(".")
+        node = data.get(table)
+        if isinstance(node, dict) and key in node:
+            return True
+    return False
+
+
+def _with_default_accuracy(level: Level, where: str) -> Level:
+    """``level`` at its kind's default accuracy
+    (:attr:`~chainfountain.sim.kinds.base.Kind.default_accuracy`) where the error model
+    reaches it and the settings it chooses pass the level's checks; else ``level`` as it
+    is (its run then states the bound the model gives its settings, or why none)."""
+    from chainfountain.sim.kinds import kind_of
+
+    kind = kind_of(level.sim)
+    if kind.default_accuracy <= 0.0 or kind.accuracy_refusal(level.sim) is not None:
+        return level
+    trial = dataclasses.replace(level, sim=dataclasses.replace(
+        level.sim, solver=dataclasses.replace(level.sim.solver,
+                                              accuracy=kind.default_accuracy)))
+    try:
+        check_consistency(trial, where)
+        chosen, _ = resolve(trial, where)
+        check_consistency(chosen, where)
+    except LevelError:
+        return level
+    return trial
+
+
 def parse_level(data: dict[str, Any], where: str = "<level>") -> Level:
     """Validate a parsed TOML mapping and build a :class:`Level`."""
     if not isinstance(data, dict):
@@ -175,11 +208,14 @@ def parse_level(data: dict[str, Any], where: str = "<level>") -> Level:
     meta = from_mapping(Meta, meta_data, where, "meta.")
     if not meta.name.strip():
         _fail(where, "meta.name", "'' is not allowed; allowed: a non-empty name")
+    given = _sets_settings(data)
     data = _with_kind_solver_defaults(data)
     sim = from_mapping(SimConfig, data, where, "", skip=_SKIP_TOP)
     sim = dataclasses.replace(sim, name=meta.name)
     level = Level(meta=meta, sim=sim)
     check_consistency(level, where)
+    if not given:
+        level = _with_default_accuracy(level, where)
     level, estimate = resolve(level, where)
     if estimate is not None:
         check_consistency(level, where)  # the chosen settings, as any level's

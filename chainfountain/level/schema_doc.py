@@ -112,7 +112,13 @@ def schema_markdown() -> str:
         "`chain.link_length`, `solver.dt` and `solver.iterations` with the cheapest settings "
         "whose error-model bounds are within it (`chainfountain.sim.accuracy`, "
         "`docs/convergence.md`); a level whose accuracy the model cannot reach, or whose "
-        "fountain is near-critical (`k/q < 0.06`), is refused with the best bound it reaches.",
+        "fountain is near-critical (`k/q < 0.06`), is refused with the best bound it reaches. "
+        "A fed level file that sets none of `solver.accuracy`, `chain.link_length`, "
+        "`solver.dt`, `solver.iterations` and `solver.substeps` gets its kind's default "
+        "accuracy: 1 % motor-fed, 2 % an ideal machine (where the model reaches it; else the "
+        "defaults below, and `run` says which bound they have or why there is none). A "
+        "change that sets a field the accuracy chooses (a sweep's grid, `FIELD=VALUE`, a "
+        "slider) turns the accuracy off for it.",
         "",
         "| key | unit | default | allowed | live | meaning |",
         "|---|---|---|---|---|---|",

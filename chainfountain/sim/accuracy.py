@@ -106,6 +106,10 @@ STIFF_EQ2 = 0.018
 """Largest ``e q^2`` measured (0.017)."""
 STIFF_DQ3 = 1.6e-3
 """Largest ``delta q^3`` measured (1.57e-3)."""
+MACHINE_MAX_LINK = 0.02
+"""An ideal machine's longest links chosen (m): the presets' 2 cm, where
+:data:`IDEAL_STEP` and :data:`IDEAL_MARGIN` were measured; its flight with coarser links
+was not."""
 MIN_KQ = 0.06
 """Smallest ``k/q`` measured; nearer criticality the model does not apply."""
 MAX_QL = 0.12
@@ -235,11 +239,12 @@ def estimate(ref: LaunchReference, s: Settings, chain: ChainConfig | None = None
 def candidates(ref: LaunchReference, chain: ChainConfig | None = None,
                machine: bool = False) -> list[Estimate]:
     """Every candidate setting in the model's range, each at the fewest iterations that
-    converge (with ``chain``'s joints, an ideal machine's flight: :func:`estimate`)."""
+    converge (with ``chain``'s joints, an ideal machine's flight: :func:`estimate`; an
+    ideal machine's links no longer than :data:`MACHINE_MAX_LINK`)."""
     out = []
     for mm in LINKS_MM:
         L = mm / 1000.0
-        if ref.q * L > MAX_QL:
+        if ref.q * L > MAX_QL or (machine and L > MACHINE_MAX_LINK + 1e-12):
             continue
         n = links_in_flight(ref, L)
         for us in STEPS_US:

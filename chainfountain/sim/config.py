@@ -245,7 +245,8 @@ class SolverConfig:
         0.0, unit="1", doc="Relative accuracy wanted of a fed fountain on an absorbing floor, "
         "motor-fed or an ideal machine's flight at its speed (e.g. 0.005): above 0, the "
         "cheapest link_length, dt and iterations within it are chosen at load. 0: the level's "
-        "own (see "
+        "own. A fed file that sets none of the settings gets 0.01 (motor) or 0.02 (ideal "
+        "machine) (see "
         "docs/convergence.md#error-model-and-solveraccuracy)", min=0.0, max=0.1,
     )
     wave_damping: float = param(

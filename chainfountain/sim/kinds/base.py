@@ -61,6 +61,12 @@ class Kind:
     setters; the fields every fountain shares are :data:`chainfountain.sim.live.COMMON`."""
     accuracy_refusal: Callable[[SimConfig], str | None] = lambda cfg: f"kind = {cfg.kind!r}"
     """Why ``solver.accuracy`` cannot choose this level's settings (``None``: it can)."""
+    default_accuracy: float = 0.0
+    """The ``solver.accuracy`` a level file of this kind gets when it sets none of the
+    fields the accuracy chooses (``chain.link_length``, ``solver.dt``,
+    ``solver.iterations``, ``solver.substeps``) nor the accuracy itself, where the error
+    model reaches it (else the schema's settings, with the bound the model gives them or
+    why it gives none); 0: none."""
     style: Callable[[SimConfig], str] = lambda cfg: ""
     """The finer style of the kind a level has (a feed's drive, an apparatus's variant),
     for the window's defaults."""

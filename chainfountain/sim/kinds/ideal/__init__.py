@@ -49,11 +49,19 @@ def _machine(sim: Any, index: int | None, v: float) -> None:
     sim.machine_changed()
 
 
+DEFAULT_ACCURACY = 0.02
+"""An ideal machine's level file that sets no settings runs at 2 %
+(:attr:`Kind.default_accuracy`): the machines' flight carries a step term of 0.94 % at
+250 us and a margin of 0.74 % in the vertex's x beyond the motor-fed model
+(:data:`chainfountain.sim.accuracy.IDEAL_STEP`, ``IDEAL_MARGIN``), so 1 % takes a
+31-62.5-us step (0.1-0.3x real time) where 2 % is reached at 125-250 us."""
+
+
 KIND = Kind(
     config=FeedConfig, name="ideal", table="feed", title="an ideal machine", check=check,
     default_duration=default_duration, reach=reach, build=build,
     live={"feed.speed": speed_setter, **{path: _machine for path in MACHINE_FIELDS}},
-    accuracy_refusal=accuracy_refusal,
+    accuracy_refusal=accuracy_refusal, default_accuracy=DEFAULT_ACCURACY,
     style=lambda cfg: cfg.feed.drive,
     sections=("machine", "open", "error_bars", "error_model"), predicted=True,
 )
