@@ -90,6 +90,9 @@ def beaker_lines(bk: dict[str, Any], s: RunSummary) -> list[str]:
     bars = bk.get("error_bars") or {}
     low, zero = bars.get("shortfall") or {}, bars.get("zero_step") or {}
     if "speed" in low and "rise_above_rim" in low:
+        if bars.get("accuracy"):
+            lines.append(f"  solver.accuracy = {100 * bars['accuracy']:g} % chose a "
+                         f"{1e6 * bars['dt']:.3g}-us step")
         lines += [f"  discretisation error (error model, first order in the step): speed "
                   f"-0/+{100 * low['speed']:.0f} %,",
                   f"    top -0/+{100 * low['rise_above_rim']:.0f} %, alpha from the speed "

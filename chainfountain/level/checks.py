@@ -104,12 +104,13 @@ def _check_accuracy_scope(sim: SimConfig, where: str) -> None:
     """``solver.accuracy`` only where its error model was measured
     (:attr:`~chainfountain.sim.kinds.base.Kind.accuracy_refusal`: a fed fountain, motor-fed
     or an ideal machine's, landing on an absorbing floor, without blocks in the scene or
-    self-collision)."""
+    self-collision; a beaker at the chain and solver its step error was refined at)."""
     if sim.solver.accuracy == 0.0:
         return
     why = kind_of(sim).accuracy_refusal(sim)
     if why is not None:
         _fail(where, "solver.accuracy",
-              f"{sim.solver.accuracy!r} with {why}: the error model covers fed fountains "
-              "(motor-fed or ideal machines) on an absorbing floor only; allowed: 0 (use the "
-              "level's own link length, step and iterations)")
+              f"{sim.solver.accuracy!r} with {why}: no error model chooses the settings there "
+              "(solver.accuracy covers fed fountains, motor-fed or ideal machines, on an "
+              "absorbing floor, and the beaker at its refined chain and solver); allowed: 0 "
+              "(use the level's own link length, step and iterations)")

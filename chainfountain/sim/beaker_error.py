@@ -23,10 +23,15 @@ holds for the refined chain and solver only (:func:`applies`), and says so elsew
 
 from __future__ import annotations
 
-from chainfountain.sim.config import ChainConfig, SolverConfig
+import copy
+import math
+
+from chainfountain.sim.config import ChainConfig, SimConfig, SolverConfig
 
 DT_REF = 2.5e-4
 """Step (s) at which :data:`SLOPE` is the shortfall."""
+DT_MIN = 6.25e-5
+"""The smallest step refined (s): ``solver.accuracy`` chooses no step below it."""
 SLOPE = {"speed": 0.057, "rise_above_rim": 0.19, "alpha_from_speed": 0.098}
 """Shortfall at :data:`DT_REF` of each figure below its zero-step value, as a fraction of
 that value (the module's table)."""
@@ -80,5 +85,41 @@ def error_bars(figures: dict[str, float], chain: ChainConfig,
     dt = solver.dt / max(1, solver.substeps)
     rel = shortfalls(dt)
     return {"method": "error model", "source": SOURCE, "dt": dt, "one_sided": True,
+            "accuracy": solver.accuracy or None,
             "shortfall": {k: rel[k] for k in figures},
             "zero_step": {k: figures[k] * (1.0 + rel[k]) for k in figures}}
+
+
+def accuracy_refusal(cfg: SimConfig) -> str | None:
+    """Why ``solver.accuracy`` cannot choose a beaker's step (``None``: it can): the step
+    model holds at the refined chain and solver only (:data:`REFINED`)."""
+    have = {"chain.link_length": cfg.chain.link_length,
+            "solver.iterations": cfg.solver.iterations, "solver.substeps": cfg.solver.substeps}
+    off = [f"{k} = {have[k]:g}" for k, v in REFINED.items()
+           if abs(have[k] - v) > 1e-9 * max(1.0, abs(v))]
+    if not off:
+        return None
+    return (", ".join(off) + " (the beaker's step error was refined at "
+            + ", ".join(f"{k} = {v:g}" for k, v in REFINED.items()) + ")")
+
+
+def choose_settings(cfg: SimConfig, accuracy: float) -> SimConfig:
+    """A copy of the beaker ``cfg`` at the longest step, to three digits, whose every
+    figure's shortfall (:func:`shortfalls`; the top's is the largest) is within
+    ``accuracy``; raises :class:`~chainfountain.sim.accuracy.OutOfReach` below what the
+    smallest refined step, :data:`DT_MIN`, reaches."""
+    from chainfountain.sim.accuracy import OutOfReach
+
+    below = accuracy / (1.0 + accuracy)  # the shortfall b/(1 - b) within the accuracy
+    dt = min(DT_REF, DT_REF * below / max(SLOPE.values()))
+    if dt < DT_MIN * (1.0 - 1e-9):
+        best = max(shortfalls(DT_MIN).values())
+        raise OutOfReach(f"the beaker's step model reaches {100 * best:.2f} % at its smallest "
+                         f"refined step, {DT_MIN * 1e6:g} us", best)
+    unit = 10.0 ** (math.floor(math.log10(dt)) - 2)
+    dt = float(f"{math.floor(dt / unit) * unit:.3g}")
+    if max(shortfalls(dt).values()) > accuracy:  # rounding noise
+        dt = float(f"{dt - unit:.3g}")
+    out = copy.deepcopy(cfg)
+    out.solver.dt = dt
+    return out

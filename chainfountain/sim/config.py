@@ -242,12 +242,10 @@ class SolverConfig:
         1e-4, unit="m", doc="Allowed contact overlap", min=0.0, max=0.01, live=True
     )
     accuracy: float = param(
-        0.0, unit="1", doc="Relative accuracy wanted of a fed fountain on an absorbing floor, "
-        "motor-fed or an ideal machine's flight at its speed (e.g. 0.005): above 0, the "
-        "cheapest link_length, dt and iterations within it are chosen at load. 0: the level's "
-        "own. A fed file that sets none of the settings gets 0.01 (motor) or 0.02 (ideal "
-        "machine) (see "
-        "docs/convergence.md#error-model-and-solveraccuracy)", min=0.0, max=0.1,
+        0.0, unit="1", doc="Relative accuracy wanted (e.g. 0.005) of a fed fountain on an "
+        "absorbing floor or a beaker: above 0, the cheapest link_length, dt and iterations "
+        "within it are chosen at load; 0: the level's own. A fed file that sets none of them "
+        "gets 0.01 (0.02 an ideal machine) (docs/accuracy.md)", min=0.0, max=0.1,
     )
     wave_damping: float = param(
         1e-3, unit="1", doc="Damping D of link-scale bending waves: a rotary damper "

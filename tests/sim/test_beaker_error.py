@@ -45,3 +45,25 @@ def test_the_shipped_beaker_gets_bars_and_another_chain_a_reason() -> None:
     longer = beaker_error.error_bars(figures, cfg.chain, SolverConfig(dt=5e-4, iterations=6))
     assert longer["method"] is None and "solver.dt = 0.0005" in longer["how"]
     assert beaker_error.error_bars({}, cfg.chain, cfg.solver)["method"] is None
+
+
+def test_solver_accuracy_chooses_a_beaker_s_step_from_the_model() -> None:
+    """``solver.accuracy`` on a beaker chooses the longest step (to three digits) whose
+    every shortfall is within it (the top's, 0.19 per 250 us, is the largest), refuses an
+    accuracy the smallest refined step (62.5 us, 4.99 %) does not reach with the best it
+    reaches, and a chain unlike the refined one in one line naming the field."""
+    from chainfountain.level.model import LevelError
+    from chainfountain.study import with_changes
+
+    lvl = shipped.level("beaker")
+    for acc in (0.1, 0.06, 0.05):
+        dt = with_changes(lvl, {"solver.accuracy": acc}).sim.solver.dt
+        assert max(beaker_error.shortfalls(dt).values()) <= acc
+        assert max(beaker_error.shortfalls(dt * 1.01).values()) > acc  # the longest
+    with pytest.raises(LevelError, match=r"solver\.accuracy: 0\.04: the beaker's step model "
+                       r"reaches 4\.99 % .*allowed: at least 0\.0499, or 0"):
+        with_changes(lvl, {"solver.accuracy": 0.04})
+    with pytest.raises(LevelError, match=r"solver\.accuracy: 0\.1 with chain\.link_length = "
+                       r"0\.01 \(the beaker's step error was refined at chain\.link_length = "
+                       r"0\.02"):
+        with_changes(lvl, {"solver.accuracy": 0.1, "chain.link_length": 0.01})

@@ -61,6 +61,11 @@ class Kind:
     setters; the fields every fountain shares are :data:`chainfountain.sim.live.COMMON`."""
     accuracy_refusal: Callable[[SimConfig], str | None] = lambda cfg: f"kind = {cfg.kind!r}"
     """Why ``solver.accuracy`` cannot choose this level's settings (``None``: it can)."""
+    choose_settings: Callable[[SimConfig, float], SimConfig] | None = None
+    """The settings ``solver.accuracy`` chooses (``choose_settings(config, accuracy)``: a
+    copy of the configuration at the cheapest settings the kind's error model gives for
+    the accuracy; raises :class:`~chainfountain.sim.accuracy.OutOfReach` with the best
+    bound it reaches); ``None``: the kind has no such model."""
     default_accuracy: float = 0.0
     """The ``solver.accuracy`` a level file of this kind gets when it sets none of the
     fields the accuracy chooses (``chain.link_length``, ``solver.dt``,

@@ -7,6 +7,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from chainfountain.sim import beaker_error
 from chainfountain.sim.beaker import Beaker
 from chainfountain.sim.bodies import nudge_bodies
 from chainfountain.sim.chain import Chain
@@ -39,4 +40,5 @@ KIND = Kind(
     check=lambda cfg, where: check_beaker(cfg, where, MAX_LINKS),
     default_duration=lambda cfg: float(cfg.beaker.duration), reach=reach, build=build,
     style=lambda cfg: "beaker", sections=("beaker",), paper_curve=False,
+    accuracy_refusal=beaker_error.accuracy_refusal, choose_settings=beaker_error.choose_settings,
 )

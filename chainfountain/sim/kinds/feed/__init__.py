@@ -10,6 +10,7 @@ from chainfountain.sim.bodies import Cart, Floor, Roller
 from chainfountain.sim.chain import Chain
 from chainfountain.sim.config import FeedConfig, SimConfig
 from chainfountain.sim.feed import Feed
+from chainfountain.sim.kinds import fed_accuracy
 from chainfountain.sim.kinds.base import (
     DEFAULT_DURATION,
     FORMING_DURATION,
@@ -102,6 +103,7 @@ KIND = Kind(
     config=FeedConfig, name="feed", table="feed", title="a motor-fed fountain", check=check,
     default_duration=default_duration, reach=reach, build=build,
     live={"feed.speed": speed_setter, "feed.end_tension": _end_tension},
-    accuracy_refusal=accuracy_refusal, default_accuracy=DEFAULT_ACCURACY, style=lambda cfg: "motor",
+    accuracy_refusal=accuracy_refusal, default_accuracy=DEFAULT_ACCURACY,
+    choose_settings=fed_accuracy.choose_settings, style=lambda cfg: "motor",
     sections=("error_bars", "error_model"), predicted=True, stiff_theory=True,
 )

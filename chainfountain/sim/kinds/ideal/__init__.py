@@ -10,6 +10,7 @@ from __future__ import annotations
 from typing import Any
 
 from chainfountain.sim.config import FeedConfig, SimConfig
+from chainfountain.sim.kinds import fed_accuracy
 from chainfountain.sim.kinds.base import DEFAULT_DURATION, MACHINE_FORMING_DURATION, Kind
 from chainfountain.sim.kinds.fed import check_fed
 from chainfountain.sim.kinds.feed import accuracy_refusal, feed_for, lay_chain, reach, speed_setter
@@ -62,6 +63,7 @@ KIND = Kind(
     default_duration=default_duration, reach=reach, build=build,
     live={"feed.speed": speed_setter, **{path: _machine for path in MACHINE_FIELDS}},
     accuracy_refusal=accuracy_refusal, default_accuracy=DEFAULT_ACCURACY,
+    choose_settings=fed_accuracy.choose_settings,
     style=lambda cfg: cfg.feed.drive,
     sections=("machine", "open", "error_bars", "error_model"), predicted=True,
 )
