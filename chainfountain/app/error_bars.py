@@ -27,7 +27,7 @@ def error_bars_line(sim: Simulation) -> str:
     sv = cfg.solver
     dt = sv.dt / max(1, sv.substeps)
     if sim.beaker is not None:
-        if beaker_error.applies(cfg.chain, sv) is not None:
+        if beaker_error.applies(cfg.chain, sv, cfg.beaker) is not None:
             return "the step's error: not measured at these settings"
         low = beaker_error.shortfalls(dt)
         return (f"the step's error: speed -0/+{100 * low['speed']:.0f} %, top "

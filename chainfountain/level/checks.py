@@ -112,5 +112,5 @@ def _check_accuracy_scope(sim: SimConfig, where: str) -> None:
         _fail(where, "solver.accuracy",
               f"{sim.solver.accuracy!r} with {why}: no error model chooses the settings there "
               "(solver.accuracy covers fed fountains, motor-fed or ideal machines, on an "
-              "absorbing floor, and the beaker at its refined chain and solver); allowed: 0 "
+              "absorbing floor, and the shipped beaker, whose step error was refined); allowed: 0 "
               "(use the level's own link length, step and iterations)")

@@ -46,13 +46,14 @@ def report(beaker: Beaker, vertex: tuple[float, float], landing_x: float, t0: fl
         "alpha": {},
         "biggins_warner": {},
         "paper": None,
-        "error_bars": beaker_error.error_bars({}, chain, solver),
+        "error_bars": beaker_error.error_bars({}, chain, solver, beaker.cfg),
     }
     if not (math.isfinite(v) and v > 0 and H > 0 and math.isfinite(h)):
         return out
     a_v = alpha_from_speed(v, H, 0.0, g)
     out["error_bars"] = beaker_error.error_bars(
-        {"speed": v, "rise_above_rim": vertex[1], "alpha_from_speed": a_v}, chain, solver)
+        {"speed": v, "rise_above_rim": vertex[1], "alpha_from_speed": a_v}, chain, solver,
+        beaker.cfg)
     a_h = alpha_from_rise(h, H, 0.0)
     out["alpha"] = {"from_speed": a_v, "from_rise": a_h}
     out["biggins_warner"] = {

@@ -3,6 +3,8 @@ refinement it was fitted on, and where it does not apply."""
 
 from __future__ import annotations
 
+import dataclasses
+
 import pytest
 
 from chainfountain.sim import beaker_error
@@ -33,18 +35,23 @@ def test_the_model_reproduces_the_refinement_it_was_measured_by(figure) -> None:
 def test_the_shipped_beaker_gets_bars_and_another_chain_a_reason() -> None:
     cfg = shipped.level("beaker").sim
     figures = {"speed": 4.39, "rise_above_rim": 0.28, "alpha_from_speed": 0.507}
-    bars = beaker_error.error_bars(figures, cfg.chain, cfg.solver)
+    bars = beaker_error.error_bars(figures, cfg.chain, cfg.solver, cfg.beaker)
     assert bars["method"] == "error model" and bars["one_sided"] is True
     assert bars["shortfall"]["speed"] == pytest.approx(0.06, abs=0.005)
     assert bars["zero_step"]["rise_above_rim"] == pytest.approx(0.34, abs=0.01)
     other = beaker_error.error_bars(figures, ChainConfig(link_length=0.01),
-                                    SolverConfig(dt=2.5e-4, iterations=6))
+                                    SolverConfig(dt=2.5e-4, iterations=6), cfg.beaker)
     assert other["method"] is None and "chain.link_length = 0.01" in other["how"]
     assert "research.beaker_refinement" in other["how"]
     # a longer step than refined: no extrapolation beyond the measured steps
-    longer = beaker_error.error_bars(figures, cfg.chain, SolverConfig(dt=5e-4, iterations=6))
+    longer = beaker_error.error_bars(figures, cfg.chain, SolverConfig(dt=5e-4, iterations=6),
+                                     cfg.beaker)
     assert longer["method"] is None and "solver.dt = 0.0005" in longer["how"]
-    assert beaker_error.error_bars({}, cfg.chain, cfg.solver)["method"] is None
+    assert beaker_error.error_bars({}, cfg.chain, cfg.solver, cfg.beaker)["method"] is None
+    # another drop: the shortfall was measured to differ (REFINED_BEAKER's docstring)
+    taller = dataclasses.replace(cfg.beaker, drop=1.5)
+    far = beaker_error.error_bars(figures, cfg.chain, cfg.solver, taller)
+    assert far["method"] is None and "beaker.drop = 1.5 (refined at 1)" in far["how"]
 
 
 def test_solver_accuracy_chooses_a_beaker_s_step_from_the_model() -> None:
@@ -64,6 +71,7 @@ def test_solver_accuracy_chooses_a_beaker_s_step_from_the_model() -> None:
                        r"reaches 4\.99 % .*allowed: at least 0\.0499, or 0"):
         with_changes(lvl, {"solver.accuracy": 0.04})
     with pytest.raises(LevelError, match=r"solver\.accuracy: 0\.1 with chain\.link_length = "
-                       r"0\.01 \(the beaker's step error was refined at chain\.link_length = "
-                       r"0\.02"):
+                       r"0\.01 \(the beaker's step error was refined at 0\.02\)"):
         with_changes(lvl, {"solver.accuracy": 0.1, "chain.link_length": 0.01})
+    with pytest.raises(LevelError, match=r"with beaker\.drop = 1\.5 \(the beaker's step "):
+        with_changes(lvl, {"solver.accuracy": 0.1, "beaker.drop": 1.5})
