@@ -87,13 +87,13 @@ def _sweep(args: argparse.Namespace) -> int:
               + f"{done - refused} recorded before, {len(todo)} to run "
               + (f"on the Dask cluster at {args.dask}" if args.dask else
                  f"on {min(jobs, max(1, len(todo)))} processes"), file=sys.stderr)
-        taken = sorted({p for p in spec.grid if p in resolve.CHOSEN}
-                       if spec.base.sim.solver.accuracy > 0 else set())
-        if taken and "solver.accuracy" not in spec.grid:
-            print(f"  the grid sets {', '.join(taken)}, which {spec.base_name}'s "
-                  f"solver.accuracy = {spec.base.sim.solver.accuracy:g} chooses: the points "
-                  "that change it run with the accuracy off, at the settings given",
-                  file=sys.stderr)
+        set_here = {**spec.changes, **{p: None for p in spec.grid}}
+        taken = sorted(p for p in set_here if p in resolve.CHOSEN)
+        acc = spec.changes.get("solver.accuracy", spec.base.sim.solver.accuracy)
+        if taken and acc and "solver.accuracy" not in spec.grid:
+            print(f"  the sweep sets {', '.join(taken)}, which solver.accuracy = {acc:g} "
+                  "chooses: a point where it differs from the accuracy's choice runs with "
+                  "the accuracy off, at the value given", file=sys.stderr)
         bar = None
         if not args.quiet and todo:
             from tqdm import tqdm

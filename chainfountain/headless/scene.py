@@ -6,6 +6,7 @@ time)."""
 from __future__ import annotations
 
 import io as _io
+import signal
 from pathlib import Path
 from typing import Any
 
@@ -17,6 +18,8 @@ from chainfountain.headless.report import Ended, RunSummary, SceneFigures
 from chainfountain.headless.section_text import pct
 from chainfountain.headless.stepper import SceneRun, Stepper
 from chainfountain.headless.stepping import (
+    Ending,
+    Interrupted,
     _progress,
     _signals_deferred,
     _signals_raise,
@@ -53,16 +56,33 @@ def run_scene(level: Level, out_dir: Path, duration: float, *, seed: int | None 
     (:mod:`~chainfountain.headless.scene_refine`, ``summary.json``'s
     ``closed_form_step``), where the scene has a closed form and no jitter."""
     run = simulate_scene(level, duration, seed=seed, progress=progress)
-    half: SceneRun | str | None = None
-    if refine:
-        half = scene_refine.refusal(level) or (
-            f"the run ended early ({run.ended.reason})" if run.ended is not None else None)
-        if half is None:
-            half = simulate_scene(scene_refine.halved(level), duration, seed=seed,
-                                  progress=progress, label=f"{level.meta.name} at dt/2")
+    half = _refined(level, run, duration, seed, progress) if refine else None
     with _signals_deferred([]):
         path = _write(level, out_dir, duration, run, snapshot, half)
     return path, run
+
+
+def _refined(level: Level, run: SceneRun, duration: float, seed: int | None,
+             progress: bool) -> SceneRun | Ending | str:
+    """The scene run again at half its step, why it is not (a sentence), or how a signal
+    ended it (its :class:`~chainfountain.headless.stepping.Ending`)."""
+    why = scene_refine.refusal(level)
+    if why is not None:
+        return why
+    if run.ended is not None:
+        return f"the run ended early ({run.ended.reason})"
+    if not scene_refine.has_figures(scene_compare.compare(level.sim, run.log, run.start)):
+        return "the run reached none of the closed form's marks"
+    try:
+        with _signals_raise():
+            half = simulate_scene(scene_refine.halved(level), duration, seed=seed,
+                                  progress=progress, label=f"{level.meta.name} at dt/2")
+    except (Interrupted, KeyboardInterrupt) as exc:
+        signum = exc.signum if isinstance(exc, Interrupted) else signal.SIGINT
+        return Ending("interrupted", f"interrupted by {signal.Signals(signum).name}", signum)
+    if half.ended is not None and half.ended.cause == "interrupted":
+        return half.ended
+    return half
 
 
 def _probe_csv(path: Path, columns: dict[str, np.ndarray]) -> None:
@@ -80,11 +100,13 @@ def _stats(values: np.ndarray) -> dict[str, Any]:
 
 
 def _step_section(level: Level, form: dict[str, Any] | None,
-                  half: SceneRun | str) -> dict[str, Any]:
+                  half: SceneRun | Ending | str) -> dict[str, Any]:
     """``closed_form_step``: the refinement of ``form`` by the run at half the step, or
     why there is none."""
     if isinstance(half, str):
         return scene_refine.skipped(half)
+    if isinstance(half, Ending):
+        return scene_refine.skipped(f"{half.reason} while running again at half the step")
     if half.ended is not None:
         return scene_refine.skipped(f"the run at half the step ended early "
                                     f"({half.ended.reason})")
@@ -95,7 +117,7 @@ def _step_section(level: Level, form: dict[str, Any] | None,
 
 
 def _write(level: Level, out_dir: Path, duration: float, run: SceneRun,
-           snapshot: bool, half: SceneRun | str | None = None) -> Path:
+           snapshot: bool, half: SceneRun | Ending | str | None = None) -> Path:
     cfg = level.sim
     sim, log = run.sim, run.log
     written: list[str] = []
@@ -130,6 +152,11 @@ def _write(level: Level, out_dir: Path, duration: float, run: SceneRun,
         summary.ended_early = Ended(
             t_s=_f(sim.time), cause=run.ended.cause, reason=run.ended.reason,
             signal_number=int(run.ended.signum) if run.ended.signum is not None else None)
+    elif isinstance(half, Ending):  # the command was stopped: it says so and exits so
+        summary.ended_early = Ended(
+            t_s=_f(sim.time), cause=half.cause, signal_number=int(half.signum or 2),
+            reason=f"{half.reason} while running again at half the step: the run's own "
+            "figures are complete, their step's error is not given")
     if snapshot:
         try:
             _figure(out_dir / "scene.png", level, run, summary)
@@ -226,13 +253,14 @@ def describe_scene(s: RunSummary, out: Path) -> str:
                      + ("; a pile of jittered links is chaotic: compare the mean over seeds "
                         "(chainfountain sweep with seeds)"
                         if sc.jitter and "closed_form_step" not in s.sections else ""))
-    lines.extend(_step_lines(s.sections.get("closed_form_step"), form))
+    lines.extend(_step_lines(s.sections.get("closed_form_step"), form, sc.pymunk_step))
     return "\n".join(lines)
 
 
-def _step_lines(step: dict[str, Any] | None, form: dict[str, Any]) -> list[str]:
-    """The closed form's figures at zero step and the step's error, from
-    ``closed_form_step``."""
+def _step_lines(step: dict[str, Any] | None, form: dict[str, Any],
+                pymunk_step: float) -> list[str]:
+    """The closed form's figures at half the step with their bars (Roache's index) and at
+    zero step, from ``closed_form_step``."""
     if not step or not form.get("name"):
         return []
     if step.get("skipped"):
@@ -241,20 +269,23 @@ def _step_lines(step: dict[str, Any] | None, form: dict[str, Any]) -> list[str]:
         return textwrap.wrap(f"the step's error: not refined: {step['skipped']}", 96,
                              initial_indent="  ", subsequent_indent="    ")
 
-    def row(key: str) -> tuple[str, str] | None:
-        zero, err = step[key]["zero_step"], step[key]["step_error"]
-        zero, err = (zero, err) if isinstance(zero, list) else ([zero], [err])
+    def row(key: str) -> str | None:
+        half, bar, zero = (step[key][k] for k in ("half_step", "gci", "zero_step"))
+        if not isinstance(half, list):
+            half, bar, zero = [half], [bar], [zero]
         if all(z is None for z in zero):
             return None
-        return ("/".join("n/a" if z is None else f"{100 * z:+.2f}" for z in zero) + " %",
-                "/".join("n/a" if e is None else f"{100 * e:.2f}" for e in err) + " %")
+        shown = ", ".join("n/a" if h is None or b is None else f"{100 * h:+.2f} +- {100 * b:.2f}"
+                          for h, b in zip(half, bar, strict=True))
+        at_zero = "/".join("n/a" if z is None else f"{100 * z:+.2f}" for z in zero)
+        return f"{shown} % (at zero step {at_zero} %)"
 
     names = {"speed_rel_error": "free end's speed", "force_rel_error": "fixed end's force"
              if form["name"] == "folded_fall" else "scale"}
-    out = [f"  halving the step ({step['dt'] * 1e6:g} -> {step['half_dt'] * 1e6:g} us, first "
-           "order) gives the figures above at zero step, and their step's error:"]
-    for key, name in names.items():
-        r = row(key) if key in step else None
-        if r is not None:
-            out.append(f"    {name}: {r[0]} at zero step; the step's error +-{r[1]}")
-    return out
+    rows = [(name, row(key)) for key, name in names.items() if key in step]
+    rows = [(name, r) for name, r in rows if r is not None]
+    if not rows:
+        return []
+    return [f"  at half the step ({step['half_dt'] * 1e6:g} us, pymunk steps of "
+            f"{pymunk_step / 2 * 1e6:.3g} us), each with its bar (Roache's index):",
+            *(f"    {name}: {r}" for name, r in rows)]

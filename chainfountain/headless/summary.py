@@ -295,9 +295,15 @@ def model_error(level: Level) -> dict[str, Any]:
                            "research/error_model.py)", "bounds": None,
                            "accuracy": sim.solver.accuracy or None}
     f = sim.feed
-    if f.floor != "absorbing" or sim.rollers or sim.carts:
-        out["why_none"] = ("the model covers fed fountains on an absorbing floor only; "
-                           "use chainfountain converge LEVEL")
+    refused = kind_of(sim).accuracy_refusal(sim)
+    if refused is not None:
+        out["why_none"] = (f"{refused}: the model covers fed fountains on an absorbing floor"
+                           ", without blocks or self-collision; chainfountain converge LEVEL "
+                           "refines this one")
+        return out
+    if f.drive != "motor" and sim.chain.link_length > accuracy.MACHINE_MAX_LINK + 1e-12:
+        out["why_none"] = (f"chain.link_length = {sim.chain.link_length:g}: an ideal machine's "
+                           f"flight was measured at links up to {accuracy.MACHINE_MAX_LINK:g} m")
         return out
     if f.drive != "motor":
         out["flight_at_speed"] = True

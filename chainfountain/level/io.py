@@ -170,16 +170,18 @@ def _sets_settings(data: dict[str, Any]) -> bool:
     return False
 
 
-def _with_default_accuracy(level: Level, where: str) -> Level:
+def _with_default_accuracy(level: Level, where: str) -> Level | None:
     """``level`` at its kind's default accuracy
-    (:attr:`~chainfountain.sim.kinds.base.Kind.default_accuracy`) where the error model
-    reaches it and the settings it chooses pass the level's checks; else ``level`` as it
-    is (its run then states the bound the model gives its settings, or why none)."""
+    (:attr:`~chainfountain.sim.kinds.base.Kind.default_accuracy`), its settings chosen,
+    where the error model reaches it, the settings pass the level's checks and the choice
+    changes no field but those it chooses (a link radius too thick for the chosen links is
+    the file's); else ``None``: ``level`` runs as it is, and its run states the bound the
+    model gives its settings, or why none."""
     from chainfountain.sim.kinds import kind_of
 
     kind = kind_of(level.sim)
     if kind.default_accuracy <= 0.0 or kind.accuracy_refusal(level.sim) is not None:
-        return level
+        return None
     trial = dataclasses.replace(level, sim=dataclasses.replace(
         level.sim, solver=dataclasses.replace(level.sim.solver,
                                               accuracy=kind.default_accuracy)))
@@ -188,8 +190,10 @@ def _with_default_accuracy(level: Level, where: str) -> Level:
         chosen, _ = resolve(trial, where)
         check_consistency(chosen, where)
     except LevelError:
-        return level
-    return trial
+        return None
+    if chosen.sim.chain.link_radius != level.sim.chain.link_radius:
+        return None
+    return chosen
 
 
 def parse_level(data: dict[str, Any], where: str = "<level>") -> Level:
@@ -214,10 +218,11 @@ def parse_level(data: dict[str, Any], where: str = "<level>") -> Level:
     sim = dataclasses.replace(sim, name=meta.name)
     level = Level(meta=meta, sim=sim)
     check_consistency(level, where)
-    if not given:
-        level = _with_default_accuracy(level, where)
-    level, estimate = resolve(level, where)
-    if estimate is not None:
+    default = None if given else _with_default_accuracy(level, where)
+    if default is not None:
+        return default
+    level, chosen = resolve(level, where)
+    if chosen:
         check_consistency(level, where)  # the chosen settings, as any level's
     return level
 

@@ -207,29 +207,25 @@ def changed(level: Level, changes: Mapping[str, Any], where: str = "change") -> 
     for path, value in changes.items():
         check_type(path, value, where)
         set_in(data, path, value, where)
-    _hand_over(level, changes, data, where)
+    new = io.parse_level(data, where)
+    mine = taken_over(new, changes)
+    if not mine:
+        return new
+    acc = changes.get("solver.accuracy")
+    if acc is not None and acc != 0.0:
+        raise LevelError(f"{where}: {mine[0]}: {changes[mine[0]]!r} together with "
+                         f"solver.accuracy = {acc!r}, which chooses {get(new, mine[0])!r}; "
+                         "allowed: one of them (solver.accuracy = 0 to set the settings by "
+                         "hand)")
+    data.setdefault("solver", {})["accuracy"] = 0.0  # the change takes over, as a slider's
     return io.parse_level(data, where)
 
 
 def taken_over(level: Level, changes: Mapping[str, Any]) -> list[str]:
-    """The fields of ``changes`` that ``level``'s ``solver.accuracy`` would choose and that
-    they set to another value (:data:`chainfountain.level.resolve.CHOSEN`)."""
+    """The fields of ``changes`` that ``level``'s ``solver.accuracy`` chose otherwise
+    (:data:`chainfountain.level.resolve.CHOSEN`); ``level`` is the changed level as
+    loaded, its accuracy applied."""
     if level.sim.solver.accuracy == 0.0:
         return []
     return [p for p, v in changes.items()
             if p in resolve.CHOSEN and v != get(level, p)]
-
-
-def _hand_over(level: Level, changes: Mapping[str, Any], data: dict[str, Any],
-               where: str) -> None:
-    """A change of a field ``solver.accuracy`` chooses turns the accuracy off, as the
-    window's slider does; together with an accuracy of its own it is refused."""
-    mine = taken_over(level, changes)
-    if not mine:
-        return
-    acc = changes.get("solver.accuracy")
-    if acc is not None and acc != 0.0:
-        raise LevelError(f"{where}: {mine[0]}: {changes[mine[0]]!r} together with "
-                         f"solver.accuracy = {acc!r}, which chooses it; allowed: one of "
-                         "them (solver.accuracy = 0 to set the settings by hand)")
-    data.setdefault("solver", {})["accuracy"] = 0.0

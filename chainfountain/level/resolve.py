@@ -35,13 +35,15 @@ def resolve(level: Level, where: str) -> tuple[Level, bool]:
     can reach (:class:`chainfountain.sim.accuracy.OutOfReach`)."""
     acc = level.sim.solver.accuracy
     kind = kind_of(level.sim)
-    if acc == 0.0 or kind.choose_settings is None or kind.accuracy_refusal(level.sim):
+    if acc == 0.0 or kind.choose_settings is None \
+            or kind.accuracy_refusal(level.sim) is not None:
         return level, False
     try:
         sim = kind.choose_settings(level.sim, acc)
     except accuracy.OutOfReach as exc:
         least = (f"at least {math.ceil(exc.best * 1e4) / 1e4:g}, or 0" if math.isfinite(exc.best)
                  else "0")
-        _fail(where, "solver.accuracy", f"{acc!r}: {exc}; allowed: {least} (0: the level's own "
-              "settings, with `chainfountain converge LEVEL` for their error)")
+        hint = " (0: the level's own settings" + (
+            ", with `chainfountain converge LEVEL` for their error)" if kind.predicted else ")")
+        _fail(where, "solver.accuracy", f"{acc!r}: {exc}; allowed: {least}{hint}")
     return dataclasses.replace(level, meta=copy.deepcopy(level.meta), sim=sim), True

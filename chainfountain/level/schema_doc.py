@@ -113,7 +113,7 @@ def schema_markdown() -> str:
         "`chain.link_length`, `solver.dt` and `solver.iterations` with the cheapest settings "
         "whose error-model bounds are within it (`chainfountain.sim.accuracy`, "
         "`docs/convergence.md`; a beaker's step only, from `chainfountain.sim.beaker_error`, "
-        "its top's shortfall the largest: 62.5-250 us for 5-19 %); a level whose accuracy "
+        "its top's shortfall the largest: 62.5-119 us for 5-10 %); a level whose accuracy "
         "the model cannot reach, or whose "
         "fountain is near-critical (`k/q < 0.06`), is refused with the best bound it reaches. "
         "A fed level file that sets none of `solver.accuracy`, `chain.link_length`, "

@@ -183,6 +183,16 @@ def test_a_change_of_a_field_the_accuracy_chooses_takes_it_over():
         assert paths.get(changed, path) == value, path
     assert with_changes(lvl, {"chain.link_length": own}).sim.solver.accuracy == acc
     assert with_changes(lvl, {"feed.speed": 6.5}).sim.solver.accuracy == acc
+    # the base's link length, where the change of speed has the accuracy choose another
+    faster = with_changes(lvl, {"feed.speed": 6.0})
+    assert faster.sim.chain.link_length != own
+    both = with_changes(lvl, {"feed.speed": 6.0, "chain.link_length": own})
+    assert both.sim.chain.link_length == own and both.sim.solver.accuracy == 0.0
     with pytest.raises(LevelError, match=r"^change: chain\.link_length: 0\.01 together with "
-                       r"solver\.accuracy = 0\.01, which chooses it; allowed: one of them"):
+                       r"solver\.accuracy = 0\.01, which chooses 0\.05; allowed: one of them"):
         with_changes(lvl, {"chain.link_length": 0.01, "solver.accuracy": 0.01})
+    # an accuracy set by the change itself on a level without one
+    manual = with_changes(lvl, {"solver.accuracy": 0.0})
+    with pytest.raises(LevelError, match=r"^change: solver\.dt: 0\.0001 together with "
+                       r"solver\.accuracy = 0\.005, which chooses 0\.00025"):
+        with_changes(manual, {"solver.accuracy": 0.005, "solver.dt": 1e-4})

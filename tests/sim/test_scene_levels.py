@@ -304,27 +304,34 @@ def test_a_folded_fall_written_without_a_solver_table_follows_calkin_and_march(
 def test_a_scene_s_step_error_bars_cover_a_further_halving_and_its_zero_step(
         tmp_path) -> None:
     """``chainfountain run`` refines a scene at half its step
-    (:mod:`chainfountain.headless.scene_refine`). ``falling_chain``'s figures at 250 us,
-    each run again at 62.5 us, moved by no more than the bar the 125-us run gave them
-    (measured: the speed at 75 % by 0.96 against 1.89 points, the force at 50 % by 1.80
-    against 4.09, at 75 % by 3.20 against 6.42; first order predicts three quarters of
-    Richardson's bar, half the index's), and the speed at zero step lies within 0.5 % of
-    Calkin and March's (measured -0.20 / -0.10 / -0.24 %: the 1-cm links' own error)."""
+    (:mod:`chainfountain.headless.scene_refine`). ``falling_chain``'s figures at 125 us,
+    run again at 62.5 us, moved by no more than their bars, Roache's index from the
+    250/125-us pair (measured: the speed at 75 % by 0.33 against 1.89 points, the force
+    at 50 % by 0.44 against 4.09, at 75 % by 1.06 against 6.42), and the speed at zero
+    step lies within 0.5 % of Calkin and March's (measured -0.20 / -0.10 / -0.24 %: the
+    1-cm links' own error). The lines ``run`` prints give the bars."""
     import json
+
+    from chainfountain.headless import RunSummary, describe_outputs
 
     level = _level("falling_chain")
     path, _ = run_and_record(level, tmp_path / "run", None, progress=False, snapshot=False,
                              refine_scene=True)
     s = json.loads(path.read_text())
-    form, step = s["closed_form"], s["closed_form_step"]
+    step = s["closed_form_step"]
     quarter = with_changes(level, {"solver.dt": level.sim.solver.dt / 4})
     path4, _ = run_and_record(quarter, tmp_path / "quarter", None, progress=False,
                               snapshot=False)
     finer = json.loads(path4.read_text())["closed_form"]
     for key in ("speed_rel_error", "force_rel_error"):
-        for a, a4, bar in zip(form[key], finer[key], step[key]["step_error"], strict=True):
-            assert abs(a - a4) <= bar, (key, form[key], finer[key], step[key])
+        for b, b4, bar in zip(step[key]["half_step"], finer[key], step[key]["gci"],
+                              strict=True):
+            assert abs(b - b4) <= bar, (key, step[key], finer[key])
     assert all(abs(z) < 0.005 for z in step["speed_rel_error"]["zero_step"]), step
+    text = describe_outputs(path, RunSummary.load(path))
+    bar = 100 * step["speed_rel_error"]["gci"][2]
+    assert "at half the step (125 us, pymunk steps of 15.6 us)" in text
+    assert f"+- {bar:.2f} % (at zero step" in text, text
 
 
 def test_a_jittered_scene_is_not_refined_and_says_why() -> None:
@@ -335,3 +342,33 @@ def test_a_jittered_scene_is_not_refined_and_says_why() -> None:
     assert why is not None and "scene.jitter = 0.05" in why and "over seeds" in why
     plain = with_changes(_level("falling_chain"), {"scene.closed_form": "none"})
     assert scene_refine.refusal(plain) == "no closed form to compare with"
+    assert not scene_refine.has_figures({"speed_rel_error": [None, None, None],
+                                         "force_rel_error": [None, None, None]})
+    assert scene_refine.has_figures({"force_rel_error": 0.01})
+
+
+def test_a_scene_stopped_by_a_signal_while_refining_writes_its_run_and_says_so(
+        tmp_path, monkeypatch) -> None:
+    """Ctrl-C during the run at half the step: the run's own outputs are written, the
+    summary says it was interrupted there and ``run`` exits 130."""
+    import json
+
+    from chainfountain.headless import exit_status, scene
+    from chainfountain.headless.stepping import Interrupted
+
+    real = scene.simulate_scene
+
+    def stopped(level, duration, **kw):
+        if kw.get("label", "").endswith("at dt/2"):
+            raise Interrupted(2)
+        return real(level, duration, **kw)
+
+    monkeypatch.setattr(scene, "simulate_scene", stopped)
+    path, _ = run_and_record(_level("falling_chain"), tmp_path, None, progress=False,
+                             snapshot=False, refine_scene=True)
+    s = json.loads(path.read_text())
+    assert s["closed_form"]["speed_rel_error"][0] is not None
+    assert "while running again at half the step" in s["closed_form_step"]["skipped"]
+    assert s["ended_early"]["cause"] == "interrupted"
+    assert "the run's own figures are complete" in s["ended_early"]["reason"]
+    assert exit_status(s) == 130

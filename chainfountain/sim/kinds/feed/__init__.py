@@ -93,10 +93,11 @@ def accuracy_refusal(cfg: SimConfig) -> str | None:
 
 
 DEFAULT_ACCURACY = 0.01
-"""A motor-fed level file that sets no settings runs at 1 % (:attr:`Kind.default_accuracy`):
-the error model reaches it at 250 us and 10 iterations for the fountains it covers (a
-floor-pull fountain of 4.6 m/s launched at 1.2 rad: 1.5-cm links, bound 0.94 % in the
-vertex height; at the schema's 2-cm links and 25 iterations 1.02 %)."""
+"""A motor-fed level file that sets no settings runs at 1 % (:attr:`Kind.default_accuracy`),
+whose settings depend on the fountain: a floor-pull fountain of 4.6 m/s launched at
+1.2 rad gets 1.5-cm links, 250 us and 10 iterations (bound 0.94 % in the vertex height;
+at the schema's 2-cm links and 25 iterations 1.02 %), the same at 12 m/s 5-cm links,
+125 us and 30 iterations."""
 
 
 KIND = Kind(
