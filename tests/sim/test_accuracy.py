@@ -164,3 +164,48 @@ def test_a_level_without_solver_settings_lies_within_the_bounds_it_is_given():
            "landing_x": run.errors["l"]}
     for f in accuracy.FIGURES:
         assert abs(got[f]) <= est.bounds[f], (f, got[f], est.bounds[f])
+
+
+def test_a_fed_file_without_settings_gets_its_kind_s_default_accuracy_where_it_applies():
+    """No settings in the file: the motor-fed default (1 %) chooses them and the run says
+    so; a file that sets one of them, a solid floor, a link radius too thick for the
+    chosen links or a near-critical fountain keeps the schema's settings (and the reason
+    is printed by run); the level round-trips exactly."""
+    from chainfountain.headless.section_text import error_model_lines
+    from chainfountain.headless.summary import model_error
+    from chainfountain.sim.config import SimConfig
+    from chainfountain.sim.kinds.feed import DEFAULT_ACCURACY
+
+    plain = io.loads(USER_PULL)
+    assert plain.sim.solver.accuracy == DEFAULT_ACCURACY
+    assert io.dumps(io.loads(io.dumps(plain))) == io.dumps(plain)
+    schema = SimConfig().solver
+    kept = {
+        "a step": USER_PULL.replace("[initial]", "[solver]\ndt = 0.00025\n\n[initial]"),
+        "a solid floor": USER_PULL.replace("end_tension = 0.15", "floor = \"solid\""),
+        "a thick link": USER_PULL.replace("[initial]", "[chain]\nlink_radius = 0.008\n\n"
+                                          "[initial]"),
+    }
+    for why, text in kept.items():
+        sim = io.loads(text).sim
+        assert sim.solver.accuracy == 0.0, why
+        assert (sim.solver.dt, sim.solver.iterations) == (schema.dt, schema.iterations), why
+    m = model_error(plain)
+    assert m["accuracy"] == DEFAULT_ACCURACY
+    lines = error_model_lines(m, type("S", (), {"link_length": 0.015, "dt": 2.5e-4})())
+    assert "solver.accuracy = 1 % chose (15-mm links, 250-us step)" in lines[0]
+    solid = model_error(io.loads(kept["a solid floor"]))
+    assert solid["bounds"] is None and "feed.floor = 'solid'" in solid["why_none"]
+    assert error_model_lines(solid, None)[0].startswith(
+        "  discretisation error: no error model here: feed.floor = 'solid'")
+
+
+def test_an_ideal_machine_s_links_are_chosen_no_longer_than_measured():
+    """The ideal machines' margins were measured at 2-cm links: no coarser links are
+    chosen for them (a motor-fed fountain of the same flight gets 4-5 cm at 3 %)."""
+    lvl = shipped.level("ideal_special")
+    ref = LaunchReference.of_level(lvl.sim)
+    machine = [e.settings.link_length for e in accuracy.candidates(ref, lvl.sim.chain, True)]
+    motor = [e.settings.link_length for e in accuracy.candidates(ref, lvl.sim.chain)]
+    assert max(machine) == accuracy.MACHINE_MAX_LINK < max(motor)
+    assert accuracy.choose(ref, 0.03, lvl.sim.chain, machine=True).settings.link_length <= 0.02
