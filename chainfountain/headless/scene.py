@@ -210,6 +210,14 @@ def _figure(path: Path, level: Level, run: SceneRun, summary: RunSummary) -> Non
         errs = form.get("speed_rel_error") or [form.get("force_rel_error")]
         shown = ", ".join("n/a" if e is None else f"{100 * e:+.1f} %" for e in errs)
         note += f"; against {form['name']}: {shown}"
+        step = summary.sections.get("closed_form_step") or {}
+        key = "speed_rel_error" if form.get("speed_rel_error") else "force_rel_error"
+        if key in step:
+            half, bar = step[key]["half_step"], step[key]["gci"]
+            half, bar = (half, bar) if isinstance(half, list) else ([half], [bar])
+            note += f"\nat half the step ({step['half_dt'] * 1e6:g} us): " + ", ".join(
+                "n/a" if h is None or b is None else f"{100 * h:+.1f} +- {100 * b:.1f} %"
+                for h, b in zip(half, bar, strict=True)) + " (Roache's index)"
     fig.suptitle(note, fontsize=9)
     fig.tight_layout()
     with atomic.atomic_path(path) as tmp:
