@@ -2,7 +2,7 @@
 
 Draws ``--n`` settings of a gripped-fold or floor preset uniformly inside its admissible
 region (:mod:`chainfountain.sim.apparatus.region`, which the level check reads): every
-field the region ranges over (``region.FROM_REST_RANGE``, ``FLOOR_FROM_REST_RANGE``: the
+field the region ranges over (``region.Bands.other_ranges``, ``FLOOR_FROM_REST_RANGE``: the
 chain's links, friction and joints, the rollers, the treadmill), the upper cart and its
 track, and for a gripped fold the lower cart and, where its tables' bands do not fix
 them (``region.bands``), the drop, start speed and launch angle; for the floor machine
@@ -56,7 +56,7 @@ def draw(name: str, n: int, seed: int) -> list[dict[str, float]]:
     floor = base.sim.apparatus.variant == "floor"
     band = None if floor else region.bands(base.sim)  # the bands at the preset's tables
     assert floor or band is not None, f"{name}: no start region at its table offsets"
-    ranges = region.FLOOR_FROM_REST_RANGE if floor else region.FROM_REST_RANGE
+    ranges = region.FLOOR_FROM_REST_RANGE if floor else band.other_ranges()
     m_up = base.sim.carts[0].mass
     out: list[dict[str, float]] = []
     while len(out) < n:

@@ -102,7 +102,8 @@ def test_level_tables_from_rest_admit_only_their_shipped_geometry_and_other_tabl
 
 
 _RANGES = [("apparatus_fold_gripped", p, r) for p, r in region.FROM_REST_RANGE.items()] + \
-    [("apparatus_floor", p, r) for p, r in region.FLOOR_FROM_REST_RANGE.items()]
+    [("apparatus_floor", p, r) for p, r in region.FLOOR_FROM_REST_RANGE.items()] + \
+    [("apparatus_special_gripped", "chain.link_length", region.SPECIAL_LINKS)]
 
 
 @pytest.mark.parametrize("name, path, band", _RANGES, ids=[f"{n}:{p}" for n, p, _ in _RANGES])
@@ -180,6 +181,7 @@ def test_a_floor_machine_whose_cart_would_stop_it_is_refused() -> None:
     ("apparatus_fold_gripped", "apparatus.launch_angle"),
     ("apparatus_floor", "apparatus.drop"),
     ("apparatus_special_gripped", "apparatus.swing_damper"),
+    ("apparatus_special_gripped", "chain.link_length"),
 ])
 def test_the_sliders_span_the_admitted_range(name: str, path: str) -> None:
     level = shipped.level(name)
