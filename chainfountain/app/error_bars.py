@@ -49,5 +49,7 @@ def error_bars_line(sim: Simulation) -> str:
         return "the solver is short of iterations: the fountain may sit a few % low"
     b = est.bounds
     what = "the flight at its speed" if cfg.feed.drive != "motor" else "model"
+    if sv.accuracy > 0:
+        what += f", solver.accuracy {100 * sv.accuracy:g} %"
     return (f"error ({what}): top +-{100 * b['vertex_y']:.1f} %, landing "
             f"+-{100 * b['landing_x']:.1f} %")
