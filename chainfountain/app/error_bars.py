@@ -37,10 +37,7 @@ def error_bars_line(sim: Simulation) -> str:
     ref = sim.catenary
     if not isinstance(ref, LaunchReference) or cfg.feed.floor != "absorbing":
         return ""
-    why = accuracy.in_domain(ref, cfg.chain)
-    if why is None and cfg.feed.drive != "motor" \
-            and cfg.chain.link_length > accuracy.MACHINE_MAX_LINK + 1e-12:
-        why = f"a machine's flight was measured at links up to {accuracy.MACHINE_MAX_LINK:g} m"
+    why = accuracy.in_domain(ref, cfg.chain, machine=cfg.feed.drive != "motor")
     if why is not None:
         return f"no error model: {why.split(' (')[0].split(', where')[0]}"
     est = accuracy.estimate(ref, accuracy.Settings(cfg.chain.link_length, dt, sv.iterations),

@@ -155,9 +155,14 @@ class Estimate:
         return max(self.bounds.values()) if self.converged else math.inf
 
 
-def in_domain(ref: LaunchReference, chain: ChainConfig | None = None) -> str | None:
+def in_domain(ref: LaunchReference, chain: ChainConfig | None = None,
+              machine: bool = False) -> str | None:
     """Why the model does not apply to ``ref`` with ``chain``'s joints (``None`` when it
-    does)."""
+    does); ``machine``: an ideal machine's flight with ``chain``'s own links, measured no
+    longer than :data:`MACHINE_MAX_LINK`."""
+    if machine and chain is not None and chain.link_length > MACHINE_MAX_LINK + 1e-12:
+        return (f"chain.link_length = {chain.link_length:g}: an ideal machine's flight was "
+                f"measured at links up to {MACHINE_MAX_LINK:g} m")
     kq = ref.k / ref.q
     if kq < MIN_KQ:
         return (f"the fountain is near-critical (k/q = {kq:.3f} below {MIN_KQ}), where the "

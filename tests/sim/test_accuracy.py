@@ -10,6 +10,7 @@ error on these runs is 0.01-0.04 % (four block means), far below the bounds' mar
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import pytest
@@ -209,3 +210,6 @@ def test_an_ideal_machine_s_links_are_chosen_no_longer_than_measured():
     motor = [e.settings.link_length for e in accuracy.candidates(ref, lvl.sim.chain)]
     assert max(machine) == accuracy.MACHINE_MAX_LINK < max(motor)
     assert accuracy.choose(ref, 0.03, lvl.sim.chain, machine=True).settings.link_length <= 0.02
+    coarse = dataclasses.replace(lvl.sim.chain, link_length=0.03)
+    assert accuracy.in_domain(ref, coarse) is None
+    assert "measured at links up to 0.02 m" in accuracy.in_domain(ref, coarse, machine=True)
