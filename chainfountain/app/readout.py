@@ -143,8 +143,11 @@ def _mean(a: np.ndarray) -> float:
     return float(a.mean()) if len(a) else math.nan
 
 
-def compute_readout(sim: Simulation, recorder: Recorder, history: History) -> Readout:
-    """The numbers and theory overlay the readout shows, from the recorded history."""
+def compute_readout(sim: Simulation, recorder: Recorder, history: History,
+                    asked_accuracy: float = 0.0) -> Readout:
+    """The numbers and theory overlay the readout shows, from the recorded history
+    (``asked_accuracy``: the level's ``solver.accuracy`` where the window runs the
+    settings of a coarser one, :mod:`chainfountain.app.interactive`)."""
     from chainfountain.theory import Fountain
 
     cfg = sim.config
@@ -246,7 +249,7 @@ def compute_readout(sim: Simulation, recorder: Recorder, history: History) -> Re
         r.note = "solving the stiff-chain theory for these joints ..."
     r.steady = is_steady(sim, hist)
     r.machine = machine_line(sim)
-    r.bars = error_bars_line(sim)
+    r.bars = error_bars_line(sim, asked_accuracy)
     if sim.reference is not None:
         r.paper_h = float(sim.reference.h)
     return r

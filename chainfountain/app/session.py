@@ -27,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-from chainfountain.app import cost, paths
+from chainfountain.app import cost, interactive, paths
 from chainfountain.app.controls import FieldSpec, spec_for
 from chainfountain.app.readout import (
     History,
@@ -194,7 +194,10 @@ class Session:
 
     # ------------------------------------------------------------------ building
     def _build(self) -> None:
-        self.sim = Simulation(self.level.sim, defer_theory=True)  # see refresh_theory
+        self.runs_at = interactive.window_settings(self.level.sim)
+        """The settings the window runs (the level's, or a coarser accuracy's to keep real
+        time: :mod:`chainfountain.app.interactive`)."""
+        self.sim = Simulation(self.runs_at.config, defer_theory=True)  # see refresh_theory
         self._theory_at = -math.inf
         self._solving: _TheoryJob | None = None
         self.theory_solve_s: float | None = None
@@ -208,6 +211,8 @@ class Session:
         self._drag_target = self._drag_prev = None
         self._readout_key = ()
         self.stopped = None
+        if self.runs_at.coarsened:
+            self.say(interactive.coarsened_message(self.runs_at))
 
     @property
     def name(self) -> str:
@@ -360,7 +365,7 @@ class Session:
         except LevelError as exc:
             msg = str(exc).removeprefix("setting: ")
             return Applied(path, old, False, False, self.say(f"refused: {msg}"))
-        why = cost.over_budget(cand, self._origin.sim)
+        why = interactive.over_budget(cand, self._origin.sim)
         if why is not None and path == "feed.speed" and v > old:
             fast = cost.fastest_feed(self.level.sim, self._origin.sim, v)
             if fast is not None and fast > old:
@@ -644,7 +649,8 @@ class Session:
             self._readout.t = self.sim.time
             return self._readout
         self._readout_key = key
-        self._readout = compute_readout(self.sim, self.recorder, self.history)
+        self._readout = compute_readout(self.sim, self.recorder, self.history,
+                                        self.runs_at.asked)
         return self._readout
 
     def setup_copy(self) -> Level:

@@ -29,7 +29,7 @@ import copy
 import dataclasses
 from collections.abc import Callable
 
-from chainfountain.app import cost
+from chainfountain.app import interactive
 from chainfountain.app.controls import FieldSpec
 from chainfountain.fields import get_value, set_value
 from chainfountain.level import io
@@ -98,7 +98,8 @@ def _accepts(level: Level, path: str, origin: SimConfig | None,
             io.check_consistency(Level(meta=level.meta, sim=cand), "span")
         except LevelError:
             return False
-        return origin is None or cost.over_budget(cand, origin) is None
+        return origin is None or \
+            interactive.over_budget(cand, origin) is None
     return ok
 
 
