@@ -49,8 +49,16 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="also estimate the discretisation error (kind 'feed': two short runs "
                    "from the catenary at the level's link length and step and at half of "
                    "both, as 'chainfountain converge'; into summary.json's error_bars)")
+    p.add_argument("--no-refine", action="store_true",
+                   help="a scene with a closed form: skip its second run at half the step "
+                   "(most of the command's time); its figures then carry no step error bar, "
+                   "and summary.json's closed_form_step says why")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=run)
+
+
+NO_REFINE = "chainfountain run --no-refine skipped the run at half the step"
+"""Why a scene's figures have no step error bar when ``--no-refine`` is given."""
 
 
 def run(args: argparse.Namespace) -> int:
@@ -88,12 +96,14 @@ def run(args: argparse.Namespace) -> int:
             lambda m: print("  " + m, file=sys.stderr, flush=True))).as_dict()
     duration = args.duration or default_duration(level)
     again = ""
-    if not kind_of(level.sim).fountain and scene_refine.refusal(level) is None:
+    if not kind_of(level.sim).fountain and scene_refine.refusal(level) is None \
+            and not args.no_refine:
         again = ", then again at half its step for the figures' step error"
     print(f"running {level.meta.name} headless for {duration:g} simulated s{again} ...",
           file=sys.stderr)
     path = run_level(level, out, duration, seed=args.seed, progress=not args.quiet,
-                     error_bars=bars, refine_scene=True)
+                     error_bars=bars,
+                     refine_scene=NO_REFINE if args.no_refine else True)
     summary = RunSummary.load(path)
     print(describe_outputs(path, summary))
     return exit_status(summary)

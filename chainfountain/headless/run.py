@@ -113,7 +113,7 @@ def prepare_out_dir(out_dir: Path, option: str = "--out") -> Path:
 
 def run_level(level: Level, out_dir: Path, duration: float | None = None, *,
               seed: int | None = None, progress: bool = True,
-              error_bars: dict | None = None, refine_scene: bool = False) -> Path:
+              error_bars: dict | None = None, refine_scene: bool | str = False) -> Path:
     """Run ``level`` headless and write the outputs into ``out_dir``; returns summary.json.
 
     Raw outputs (the CSVs) are written before the analyses that could fail (figures,
@@ -124,7 +124,8 @@ def run_level(level: Level, out_dir: Path, duration: float | None = None, *,
     :class:`OutputError` when ``summary.json`` itself cannot be written. ``error_bars``
     (:meth:`chainfountain.refine.Refinement.as_dict`) goes into ``summary.json`` as is.
     ``refine_scene``: a scene is also run at half its step for its figures' step error
-    (:mod:`chainfountain.headless.scene_refine`; ``chainfountain run`` does)."""
+    (:mod:`chainfountain.headless.scene_refine`; ``chainfountain run`` does); a sentence:
+    not, and ``summary.json`` says why (``chainfountain run --no-refine``)."""
     return run_and_record(level, out_dir, duration, seed=seed, progress=progress,
                           error_bars=error_bars, refine_scene=refine_scene)[0]
 
@@ -132,7 +133,7 @@ def run_level(level: Level, out_dir: Path, duration: float | None = None, *,
 def run_and_record(level: Level, out_dir: Path, duration: float | None = None, *,
                    seed: int | None = None, progress: bool = True,
                    error_bars: dict | None = None, snapshot: bool = True,
-                   refine_scene: bool = False) -> tuple[Path, Recorder | SceneRun]:
+                   refine_scene: bool | str = False) -> tuple[Path, Recorder | SceneRun]:
     """:func:`run_level`, also returning the run's recorder (its time series in memory;
     a scene level's :class:`~chainfountain.headless.scene.SceneRun`);
     ``snapshot=False`` leaves out ``snapshot.png`` (drawing it is most of a short run's

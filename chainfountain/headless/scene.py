@@ -48,15 +48,17 @@ def simulate_scene(level: Level, duration: float, *, seed: int | None = None,
 
 def run_scene(level: Level, out_dir: Path, duration: float, *, seed: int | None = None,
               progress: bool = True, snapshot: bool = True,
-              refine: bool = False) -> tuple[Path, SceneRun]:
+              refine: bool | str = False) -> tuple[Path, SceneRun]:
     """Run a scene level into ``out_dir`` (which exists and is writable); returns the path
     of ``summary.json`` and the run. Probe files first, then the summary, the picture
     last; a signal while writing is noted, not obeyed. ``refine``: also run it at half
     the step and give the closed form's figures their step's error
     (:mod:`~chainfountain.headless.scene_refine`, ``summary.json``'s
-    ``closed_form_step``), where the scene has a closed form and no jitter."""
+    ``closed_form_step``), where the scene has a closed form and no jitter; a sentence:
+    not, for that reason (``closed_form_step`` gives it)."""
     run = simulate_scene(level, duration, seed=seed, progress=progress)
-    half = _refined(level, run, duration, seed, progress) if refine else None
+    half = refine if isinstance(refine, str) else (
+        _refined(level, run, duration, seed, progress) if refine else None)
     with _signals_deferred([]):
         path = _write(level, out_dir, duration, run, snapshot, half)
     return path, run

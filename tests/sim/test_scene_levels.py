@@ -372,3 +372,21 @@ def test_a_scene_stopped_by_a_signal_while_refining_writes_its_run_and_says_so(
     assert s["ended_early"]["cause"] == "interrupted"
     assert "the run's own figures are complete" in s["ended_early"]["reason"]
     assert exit_status(s) == 130
+
+
+def test_run_no_refine_skips_the_half_step_run_and_says_so(tmp_path, capsys) -> None:
+    """``chainfountain run SCENE --no-refine``: one run only; summary.json's
+    ``closed_form_step`` and the terminal say the figures carry no step bar and why."""
+    import json
+
+    from chainfountain.cli import main
+    from chainfountain.commands.run import NO_REFINE
+
+    assert main(["run", "falling_chain", "--no-refine", "--quiet", "--out",
+                 str(tmp_path / "o")]) == 0
+    out = capsys.readouterr()
+    s = json.loads((tmp_path / "o" / "summary.json").read_text())
+    assert s["closed_form_step"]["skipped"] == NO_REFINE
+    assert s["closed_form"]["speed_rel_error"][2] is not None
+    assert "then again at half its step" not in out.err
+    assert f"not refined: {NO_REFINE}" in out.out
