@@ -48,7 +48,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--error-bars", action="store_true",
                    help="also estimate the discretisation error (kind 'feed': two short runs "
                    "from the catenary at the level's link length and step and at half of "
-                   "both, as 'chainfountain converge'; into summary.json's error_bars)")
+                   "both, as 'chainfountain converge'; into summary.json's error_bars. Kind "
+                   "'apparatus': the level again at half its step, how far that moves the "
+                   "speed and the flight's figures; into apparatus.flight.step)")
     p.add_argument("--no-refine", action="store_true",
                    help="a scene with a closed form: skip its second run at half the step "
                    "(most of the command's time); its figures then carry no step error bar, "
@@ -64,6 +66,7 @@ NO_REFINE = "chainfountain run --no-refine skipped the run at half the step"
 def run(args: argparse.Namespace) -> int:
     from chainfountain.headless import (
         RunSummary,
+        apparatus_refine,
         check_run,
         default_duration,
         default_out_dir,
@@ -74,20 +77,32 @@ def run(args: argparse.Namespace) -> int:
         scene_refine,
     )
     from chainfountain.level import io, library
+    from chainfountain.level.io import LevelError
     from chainfountain.sim.kinds import kind_of
 
     level = overridden(io.load(library.resolve(args.level)), args.overrides)
     check_run(level, args.duration, args.seed, names=("argument --duration", "argument --seed"))
-    if args.error_bars:
+    kind = kind_of(level.sim)
+    rerun = args.error_bars and kind.half_step_bars  # no error model: again at dt/2
+    if args.error_bars and not rerun:
         from chainfountain.refine import refined_config
 
         try:  # the refinement's checks, before anything is written
             refined_config(level.sim, 2, level.meta.name)
         except UserError as exc:
+            raise UserError(f"argument --error-bars: {exc}; a contact machine (kind "
+                            "'apparatus') is run again at half its step") from None
+    if rerun:
+        if args.no_refine:
+            raise UserError("argument --no-refine: not allowed with --error-bars, which "
+                            "runs this level again at half its step")
+        try:
+            io.check_consistency(apparatus_refine.halved(level), "at half the step")
+        except LevelError as exc:
             raise UserError(f"argument --error-bars: {exc}") from None
     out = prepare_out_dir(args.out or default_out_dir(level))
     bars = None
-    if args.error_bars:
+    if args.error_bars and not rerun:
         from chainfountain.refine import refine
 
         print("estimating the discretisation error (chainfountain converge) ...",
@@ -95,15 +110,17 @@ def run(args: argparse.Namespace) -> int:
         bars = refine(level.sim, level.meta.name, progress=None if args.quiet else (
             lambda m: print("  " + m, file=sys.stderr, flush=True))).as_dict()
     duration = args.duration or default_duration(level)
+    scene_again = not kind.fountain and scene_refine.refusal(level) is None
     again = ""
-    if not kind_of(level.sim).fountain and scene_refine.refusal(level) is None \
-            and not args.no_refine:
+    if rerun or (scene_again and not args.no_refine):
         again = ", then again at half its step for the figures' step error"
     print(f"running {level.meta.name} headless for {duration:g} simulated s{again} ...",
           file=sys.stderr)
+    half: bool | str = rerun
+    if not kind.fountain:
+        half = NO_REFINE if args.no_refine else True
     path = run_level(level, out, duration, seed=args.seed, progress=not args.quiet,
-                     error_bars=bars,
-                     refine_scene=NO_REFINE if args.no_refine else True)
+                     error_bars=bars, half_step=half)
     summary = RunSummary.load(path)
     print(describe_outputs(path, summary))
     return exit_status(summary)

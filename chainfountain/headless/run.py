@@ -13,7 +13,7 @@ from typing import Any
 from chainfountain import atomic
 from chainfountain.errors import UserError
 from chainfountain.exits import ENDED_EARLY, EXIT_STATUS, WRITE_FAILED
-from chainfountain.headless import files
+from chainfountain.headless import apparatus_refine, files
 from chainfountain.headless.report import Ended, RunSummary, json_safe
 from chainfountain.headless.scene import _write, describe_scene, run_scene
 from chainfountain.headless.section_text import section_lines, steadiness
@@ -113,7 +113,7 @@ def prepare_out_dir(out_dir: Path, option: str = "--out") -> Path:
 
 def run_level(level: Level, out_dir: Path, duration: float | None = None, *,
               seed: int | None = None, progress: bool = True,
-              error_bars: dict | None = None, refine_scene: bool | str = False) -> Path:
+              error_bars: dict | None = None, half_step: bool | str = False) -> Path:
     """Run ``level`` headless and write the outputs into ``out_dir``; returns summary.json.
 
     Raw outputs (the CSVs) are written before the analyses that could fail (figures,
@@ -123,17 +123,19 @@ def run_level(level: Level, out_dir: Path, duration: float | None = None, *,
     noted, not obeyed). :func:`exit_status` gives the command's status. Raises
     :class:`OutputError` when ``summary.json`` itself cannot be written. ``error_bars``
     (:meth:`chainfountain.refine.Refinement.as_dict`) goes into ``summary.json`` as is.
-    ``refine_scene``: a scene is also run at half its step for its figures' step error
-    (:mod:`chainfountain.headless.scene_refine`; ``chainfountain run`` does); a sentence:
+    ``half_step``: the level is also run at half its step for its figures' step error:
+    a scene's closed-form figures (:mod:`chainfountain.headless.scene_refine`;
+    ``chainfountain run`` does), a contact machine's flight
+    (:mod:`chainfountain.headless.apparatus_refine`; ``run --error-bars``); a sentence:
     not, and ``summary.json`` says why (``chainfountain run --no-refine``)."""
     return run_and_record(level, out_dir, duration, seed=seed, progress=progress,
-                          error_bars=error_bars, refine_scene=refine_scene)[0]
+                          error_bars=error_bars, half_step=half_step)[0]
 
 
 def run_and_record(level: Level, out_dir: Path, duration: float | None = None, *,
                    seed: int | None = None, progress: bool = True,
                    error_bars: dict | None = None, snapshot: bool = True,
-                   refine_scene: bool | str = False) -> tuple[Path, Recorder | SceneRun]:
+                   half_step: bool | str = False) -> tuple[Path, Recorder | SceneRun]:
     """:func:`run_level`, also returning the run's recorder (its time series in memory;
     a scene level's :class:`~chainfountain.headless.scene.SceneRun`);
     ``snapshot=False`` leaves out ``snapshot.png`` (drawing it is most of a short run's
@@ -142,12 +144,18 @@ def run_and_record(level: Level, out_dir: Path, duration: float | None = None, *
     out_dir = prepare_out_dir(out_dir)
     if not kind_of(level.sim).fountain:
         return run_scene(level, out_dir, duration, seed=seed, progress=progress,
-                         snapshot=snapshot, refine=refine_scene)
+                         snapshot=snapshot, refine=half_step)
     sim, rec, wall, ended = simulate(level, duration, seed=seed, progress=progress)
+    half = None
+    if half_step and sim.apparatus is not None:
+        half = half_step if isinstance(half_step, str) else (
+            f"the run ended early ({ended.reason})" if ended is not None else
+            simulate(apparatus_refine.halved(level), duration, seed=seed, progress=progress,
+                     label=f"{level.meta.name} at dt/2"))
     received: list[int] = []
     with _signals_deferred(received):
         path = _write_outputs(level, out_dir, duration, sim, rec, wall, ended, error_bars,
-                              snapshot)
+                              snapshot, half)
     return path, rec
 
 
@@ -168,8 +176,10 @@ def write_outputs(run: Stepper, out_dir: Path, duration: float | None = None, *,
 
 def _write_outputs(level: Level, out_dir: Path, duration: float, sim: Simulation,
                    rec: Recorder, wall: float, ended: Ending | None,
-                   error_bars: dict | None = None, snapshot: bool = True) -> Path:
-    """Every output of a finished (or stopped) run, raw data first; see :func:`run_level`."""
+                   error_bars: dict | None = None, snapshot: bool = True,
+                   half: tuple | str | None = None) -> Path:
+    """Every output of a finished (or stopped) run, raw data first; see :func:`run_level`
+    (``half``: the run at half the step, :func:`simulate`'s tuple, or why there is none)."""
     lam = level.sim.chain.linear_density
     app = sim.apparatus
     written: list[str] = []
@@ -194,6 +204,11 @@ def _write_outputs(level: Level, out_dir: Path, duration: float, sim: Simulation
     summary = summarize(level, sim, rec, duration, wall)
     if error_bars is not None and "error_bars" in summary.sections:
         summary.sections["error_bars"] = json_safe(error_bars)
+    if half is not None and "apparatus" in summary.sections:
+        summary.sections["apparatus"]["flight"]["step"] = _attempt(
+            analysis_failed, "the step's refinement", _apparatus_step, level, duration,
+            summary.sections["apparatus"], half)
+    half_end = half[3] if isinstance(half, tuple) else None
     if ended is not None:
         summary.ended_early = Ended(
             t_s=_f(sim.time), cause=ended.cause, reason=ended.reason,
@@ -202,6 +217,11 @@ def _write_outputs(level: Level, out_dir: Path, duration: float, sim: Simulation
             # when the fountain last landed in the end guide's mouth (a lost catch comes
             # about 1 s before the fold's collapse)
             summary.ended_early.last_mouth_entry_s = _f(app.last_mouth_entry)
+    elif half_end is not None and half_end.cause == "interrupted":  # the command stopped
+        summary.ended_early = Ended(
+            t_s=_f(sim.time), cause=half_end.cause, signal_number=int(half_end.signum or 2),
+            reason=f"{half_end.reason} while running again at half the step: the run's own "
+            "figures are complete, their step's error is not given")
     beaker = summary.sections.get("beaker") or {}
     v = beaker.get("speed") or summary.fountain.v or 0
     title = (f"{level.meta.name}: t = {sim.time:.2f} s, v = {v:.3f} m/s"
@@ -218,6 +238,20 @@ def _write_outputs(level: Level, out_dir: Path, duration: float, sim: Simulation
     summary.outputs = sorted(["summary.json", *written], key=order.index)
     summary.write_failed = write_failed
     return files.write_summary(out_dir, summary, written)
+
+
+def _apparatus_step(level: Level, duration: float, coarse: dict[str, Any],
+                    half: tuple | str) -> dict[str, Any]:
+    """``apparatus.flight.step`` from the run at half the step, or why there is none."""
+    if isinstance(half, str):
+        return apparatus_refine.skipped(half)
+    sim, rec, wall, ended = half
+    if ended is not None:
+        return apparatus_refine.skipped(f"the run at half the step ended early "
+                                        f"({ended.reason})")
+    fine = summarize(apparatus_refine.halved(level), sim, rec, duration, wall)
+    return apparatus_refine.step_section(coarse, fine.sections["apparatus"],
+                                         level.sim.solver.dt)
 
 
 def describe_outputs(summary_path: Path, summary: RunSummary | None = None) -> str:

@@ -5,6 +5,7 @@
 
 from __future__ import annotations
 
+import textwrap
 from collections.abc import Callable
 from typing import Any
 
@@ -42,8 +43,10 @@ def apparatus_lines(ap: dict[str, Any], s: RunSummary) -> list[str]:
     catenary through its ends, with the means' standard errors)."""
     v_sel = (ap.get("predicted_paper") or {}).get("v_steady")
     v_meas = (ap.get("measured") or {}).get("v")
-    if ap.get("variant") != "fold" or not v_meas:
+    if not v_meas:
         return []
+    if ap.get("variant") != "fold":
+        return step_lines(((ap.get("flight") or {}).get("step")) or {})
     w0, w1 = ap["window"]
     lines = []
     f = ap.get("flight") or {}
@@ -63,12 +66,31 @@ def apparatus_lines(ap: dict[str, Any], s: RunSummary) -> list[str]:
             f"{f['relation_miss']:+.3f}{bar(f.get('relation_miss_se'))}",
             f"    (k H {f['kH']:.3f}); vertex {pct(vert)} off the catenary through the ends "
             "(+-: statistical, not the step's)"]
-        moves = (f.get("step") or {}).get("moves")
-        if moves:
-            lines.append(f"  halving the step moved them by up to {moves['T0_bar']:.3f}, "
-                         f"{moves['TE_bar']:.3f}, {moves['relation_miss']:.3f} and "
-                         f"{100 * moves['vertex_y_rel_error']:.1f} % (refined at the presets)")
-    return lines
+    return lines + step_lines(f.get("step") or {})
+
+
+def step_lines(step: dict[str, Any]) -> list[str]:
+    """How far halving the step moved the flight's figures: this run's refinement
+    (``run --error-bars``) or the presets' measured moves; or why neither."""
+    moves = step.get("moves")
+    if not moves:
+        return textwrap.wrap(f"the step's error: {step['how']}", 96, initial_indent="  ",
+                             subsequent_indent="    ", break_on_hyphens=False) \
+            if step.get("how") else []
+
+    def move(key: str, scale: float = 1.0, fmt: str = ".3f") -> str:
+        m = moves.get(key)
+        return "n/a" if m is None else f"{scale * m:{fmt}}"
+
+    if "half_dt" not in step:
+        return [f"  halving the step moved them by up to {move('T0_bar')}, "
+                f"{move('TE_bar')}, {move('relation_miss')} and "
+                f"{move('vertex_y_rel_error', 100, '.1f')} % (refined at the presets)"]
+    return [f"  again at half the step ({1e6 * step['half_dt']:g} us), the speed moved "
+            f"{move('v_rel', 100, '.2f')} %, Tbar_0 {move('T0_bar')}, Tbar_E {move('TE_bar')},",
+            f"    the relation {move('relation_miss')}, the vertex "
+            f"{move('vertex_y_rel_error', 100, '.1f')} % (one run each: step and "
+            "statistics together)"]
 
 
 def beaker_lines(bk: dict[str, Any], s: RunSummary) -> list[str]:

@@ -358,7 +358,8 @@ class SceneBody:
 
 
 def simulate(level: Level, duration: float, *, seed: int | None = None,
-             progress: bool = True) -> tuple[Any, Recorder, float, Ending | None]:
+             progress: bool = True, label: str | None = None
+             ) -> tuple[Any, Recorder, float, Ending | None]:
     """Build and run a level for ``duration`` simulated seconds (a :class:`Stepper`,
     with a progress display, SIGINT and SIGTERM ending it early).
 
@@ -366,6 +367,6 @@ def simulate(level: Level, duration: float, *, seed: int | None = None,
     :class:`~chainfountain.errors.RunEnded`: a table used up, the fold collapsed, the
     watchdog; or SIGINT/SIGTERM), or None if it ran for the whole ``duration``."""
     run = Stepper(level, seed=seed)
-    with _progress(duration, progress, level.meta.name) as bar, _signals_raise():
+    with _progress(duration, progress, label or level.meta.name) as bar, _signals_raise():
         run.advance(duration, bar)
     return run.sim, run.recorder, run.wall, run.ended

@@ -74,9 +74,15 @@ def test_converge_below_the_smallest_link_is_refused(level) -> None:
     assert r.returncode == 2 and "--refinements" in r.stderr
 
 
-def test_run_error_bars_only_on_fed_levels() -> None:
-    r = _cli("run", "apparatus_floor", "--error-bars", "--duration", "0.1")
-    assert r.returncode == 2 and "--error-bars" in r.stderr and "Traceback" not in r.stderr
+def test_run_error_bars_only_on_fed_levels_and_contact_machines() -> None:
+    """A beaker has a step model of its own and no refinement: refused in one line, which
+    names the kinds that have one (a contact machine: tests/sim/apparatus/
+    test_step_refine.py)."""
+    r = _cli("run", "beaker", "--error-bars", "--duration", "0.1")
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1
+    for words in ("--error-bars", "kind = 'beaker'", "kind 'apparatus'", "half its step"):
+        assert words in r.stderr, (words, r.stderr)
 
 
 @pytest.mark.slow

@@ -316,7 +316,7 @@ def test_a_scene_s_step_error_bars_cover_a_further_halving_and_its_zero_step(
 
     level = _level("falling_chain")
     path, _ = run_and_record(level, tmp_path / "run", None, progress=False, snapshot=False,
-                             refine_scene=True)
+                             half_step=True)
     s = json.loads(path.read_text())
     step = s["closed_form_step"]
     quarter = with_changes(level, {"solver.dt": level.sim.solver.dt / 4})
@@ -365,7 +365,7 @@ def test_a_scene_stopped_by_a_signal_while_refining_writes_its_run_and_says_so(
 
     monkeypatch.setattr(scene, "simulate_scene", stopped)
     path, _ = run_and_record(_level("falling_chain"), tmp_path, None, progress=False,
-                             snapshot=False, refine_scene=True)
+                             snapshot=False, half_step=True)
     s = json.loads(path.read_text())
     assert s["closed_form"]["speed_rel_error"][0] is not None
     assert "while running again at half the step" in s["closed_form_step"]["skipped"]

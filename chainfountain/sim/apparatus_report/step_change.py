@@ -42,13 +42,14 @@ def applies(cfg: SimConfig) -> str | None:
     fold at the settings the refinement ran at."""
     a = cfg.apparatus
     if a.variant != "fold" or a.fold_roller != "gripped":
-        return "the step's error of this arrangement's flight is not measured"
+        return ("not measured for this arrangement's flight: chainfountain run LEVEL "
+                "--error-bars refines it")
     have = {"solver.dt": cfg.solver.dt, "solver.substeps": cfg.solver.substeps,
             "chain.link_length": cfg.chain.link_length}
     off = [f"{k} = {have[k]:g}" for k, v in REFINED.items() if abs(have[k] - v) > 1e-9 * v]
     if off:
-        return (f"the step's error was refined at the gripped presets' settings only (here "
-                f"{', '.join(off)}): chainfountain converge LEVEL refines this one")
+        return (f"refined at the gripped presets' settings only (here "
+                f"{', '.join(off)}): chainfountain run LEVEL --error-bars refines this one")
     return None
 
 

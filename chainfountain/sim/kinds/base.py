@@ -93,6 +93,10 @@ class Kind:
     predicted: bool = False
     """Whether the paper predicts the fountain from the level's settings (a fed level):
     its runs are compared with that prediction and can be refined."""
+    half_step_bars: bool = False
+    """Whether ``run --error-bars`` gives the step's error of its figures by running it
+    again at half its step (:mod:`chainfountain.headless.apparatus_refine`: a kind with
+    no error model whose fountain the paper does not predict from its settings)."""
     paper_curve: bool = True
     """Whether the window draws the paper's curve when the level opens."""
     stiff_theory: bool = False

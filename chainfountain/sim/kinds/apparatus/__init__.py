@@ -71,5 +71,5 @@ KIND = Kind(
           "apparatus.fold_brake": _losses, "apparatus.swing_damper": _losses},
     style=lambda cfg: cfg.apparatus.variant, sections=("apparatus",),
     start_region=region.from_rest,
-    study_start=study_start,
+    study_start=study_start, half_step_bars=True,
 )
