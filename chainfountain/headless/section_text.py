@@ -45,9 +45,10 @@ def apparatus_lines(ap: dict[str, Any], s: RunSummary) -> list[str]:
     v_meas = (ap.get("measured") or {}).get("v")
     if not v_meas:
         return []
-    if ap.get("variant") != "fold":
-        return step_lines(((ap.get("flight") or {}).get("step")) or {})
     w0, w1 = ap["window"]
+    if ap.get("variant") != "fold":
+        return _floor_lines(ap, w0, w1) + step_lines(((ap.get("flight") or {}).get("step"))
+                                                     or {})
     lines = []
     f = ap.get("flight") or {}
 
@@ -67,6 +68,19 @@ def apparatus_lines(ap: dict[str, Any], s: RunSummary) -> list[str]:
             f"    (k H {f['kH']:.3f}); vertex {pct(vert)} off the catenary through the ends "
             "(+-: statistical, not the step's)"]
     return lines + step_lines(f.get("step") or {})
+
+
+def _floor_lines(ap: dict[str, Any], w0: float, w1: float) -> list[str]:
+    """A floor machine selects its speed by its pick-up: the measured against this model's
+    pick-up law and the paper's (``speed_selection``)."""
+    sel = ap.get("speed_selection") or {}
+    v, rig, paper = sel.get("v_measured"), sel.get("v_rig_2cm"), sel.get("v_paper_p_half")
+    if not (v and rig and paper):
+        return []
+    return [f"  over {w0:.1f}-{w1:.1f} s: speed {v:.3f} m/s; its cart selects {rig:.3f} m/s by "
+            f"this model's pick-up ({pct(v / rig - 1.0)}),",
+            f"    {paper:.3f} m/s by the paper's ({pct(v / paper - 1.0)}: docs/apparatus.md, "
+            "\"Pick-up force\")"]
 
 
 def step_lines(step: dict[str, Any]) -> list[str]:

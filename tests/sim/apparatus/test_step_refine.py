@@ -37,6 +37,7 @@ def test_run_error_bars_runs_a_contact_machine_again_at_half_its_step(tmp_path, 
     assert step["half_step"]["v"] > 0 and "v" in step["half_step_se"]  # None: too short
     assert "then again at half its step" in said.err
     assert f"again at half the step ({1e6 * dt / 2:g} us), the speed moved" in said.out
+    assert "its cart selects" in said.out and "by this model's pick-up" in said.out
 
 
 def test_without_error_bars_a_contact_machine_says_how_to_refine_it(tmp_path, capsys) -> None:
