@@ -13,7 +13,6 @@ what it would run. No pygame here.
 
 from __future__ import annotations
 
-import copy
 from dataclasses import dataclass
 
 from chainfountain.app import cost
@@ -71,8 +70,7 @@ def window_settings(sim: SimConfig) -> WindowSettings:
             continue
         c = cost.cost(trial)
         if c is not None and c[1] <= cost.WINDOW_COST:
-            trial = copy.deepcopy(trial)
-            trial.solver.accuracy = acc
+            trial.solver.accuracy = acc  # choose_settings gave a copy
             return WindowSettings(trial, asked, own[1])
     return WindowSettings(sim, asked)
 
