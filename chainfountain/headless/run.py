@@ -147,7 +147,7 @@ def run_and_record(level: Level, out_dir: Path, duration: float | None = None, *
                          snapshot=snapshot, refine=half_step)
     sim, rec, wall, ended = simulate(level, duration, seed=seed, progress=progress)
     half = None
-    if half_step and sim.apparatus is not None:
+    if half_step and kind_of(level.sim).half_step_bars:
         half = half_step if isinstance(half_step, str) else (
             f"the run ended early ({ended.reason})" if ended is not None else
             simulate(apparatus_refine.halved(level), duration, seed=seed, progress=progress,
