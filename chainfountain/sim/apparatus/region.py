@@ -227,6 +227,24 @@ the chain back harder than the pick-up pulls), none of the 137 below 77 deg: the
 stops at 75."""
 
 
+FLOOR_START_Q = 0.97
+"""The largest ``Tbar_E + g (H + floor_depth)/v0**2`` at the start speed ``v0``
+(``apparatus.speed``: the fountain the starter launches, near critical as it nears 1)
+admitted for the floor machine from rest. ``apparatus_floor_heavy`` (15-g cart, 0.5 m),
+30 s from rest: at the level check's edge, 1 - 1e-9 (``v0 = sqrt(g H)``, the start-speed
+slider's bottom before this band), it stopped 5 s in, three starts of three in a real
+window; at 0.990 (2.226 m/s) two of three stopped at 5.1 s; at 0.969 (2.25 m/s) seeds 0-5
+all held, and at 0.927 (2.3 m/s) seeds 0-5. The lighter carts hold nearer: with every
+field drawn at once (the 300 draws of seeds 303 and 404, upper carts of 2.7-13.5 g) starts
+held up to 0.9991."""
+
+FLOOR_XI2_MIN = 0.1
+"""The least upper table offset ``xi2`` admitted for the floor machine from rest (its
+largest is where :func:`~chainfountain.sim.apparatus.laws.floor_runs_on` holds). Measured:
+0.1 held (``research/contact_region/floor_xi2.toml``, two starts), and every draw at
+0.100-0.440 (seeds 303 and 404); at 0, in a real window, the chain ran on but never rose
+above the launch point, so no fountain formed."""
+
 FLOOR_FROM_REST_RANGE: dict[str, tuple[float, float]] = {
     "chain.link_length": (0.015, 0.025), "apparatus.roller_radius": (0.03, 0.045),
     "apparatus.plate_links": (20, 40), "chain.bending_stiffness": (0.0, 1e-4),
@@ -485,7 +503,8 @@ def floor_problem(cfg: SimConfig) -> tuple[str, str] | None:
             or a.start_region == "unchecked"):
         return None
     found = (off_build(cfg) or _range_problem(cfg, FLOOR_FROM_REST_RANGE, "the floor machine")
-             or _angle_problem(a.launch_angle, FLOOR_ANGLE, "the floor machine", "run on"))
+             or _angle_problem(a.launch_angle, FLOOR_ANGLE, "the floor machine", "run on")
+             or _floor_start_problem(cfg))
     if found is not None:
         return found
     if floor_runs_on(cfg, FLOOR_FROM_REST_KH):
@@ -506,6 +525,29 @@ def floor_problem(cfg: SimConfig) -> tuple[str, str] | None:
             f"{kh:.3g}, and above {FLOOR_FROM_REST_KH:g} a start from rest slows and may "
             "stop (measured); "
             f"allowed: {cart}{drop}")
+
+
+def _floor_start_problem(cfg: SimConfig) -> tuple[str, str] | None:
+    """``(field, message)`` when a floor machine from rest starts too slow for its drop
+    (:data:`FLOOR_START_Q`) or with its upper table too near the launch
+    (:data:`FLOOR_XI2_MIN`)."""
+    a = cfg.apparatus
+    if a.xi2 < FLOOR_XI2_MIN - 1e-12:
+        return ("apparatus.xi2", f"{a.xi2!r} puts the upper table too near the launch for the "
+                "floor machine to form a fountain from rest (measured: at 0 the chain never "
+                f"rose above the launch); allowed: at least {FLOOR_XI2_MIN:g}, or "
+                "initial.mode = 'catenary' (laid on its path)")
+    g, fall = float(cfg.gravity), float(a.drop) + float(a.floor_depth)
+    q = float(a.end_tension) + g * fall / float(a.speed) ** 2
+    if q <= FLOOR_START_Q + 1e-12:
+        return None
+    least = math.sqrt(g * fall / (FLOOR_START_Q - float(a.end_tension)))
+    return ("apparatus.speed",
+            f"{a.speed!r} m/s is too slow a start for the floor machine to form from rest "
+            f"over a drop of {a.drop:g} m (Tbar_E + g*(H + floor_depth)/v0^2 = {q:.4g}, "
+            f"near critical; measured to hold up to {FLOOR_START_Q:g}); allowed: a start "
+            f"speed of at least {least:.4g} m/s, or initial.mode = 'catenary' (laid on its "
+            "path)")
 
 
 def _edge(cfg: SimConfig, what: str, far: float) -> float | None:

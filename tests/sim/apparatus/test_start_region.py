@@ -175,6 +175,28 @@ def test_a_floor_machine_whose_cart_would_stop_it_is_refused() -> None:
         assert "apparatus.launch_angle" in msg and "30-75 deg" in msg
 
 
+@pytest.mark.parametrize("name", ["apparatus_floor", "apparatus_floor_heavy"])
+def test_a_floor_machine_started_near_critical_or_with_no_upper_table_is_refused(
+        name: str) -> None:
+    """The start speed's slider stopped at the level check's edge, sqrt(g H), where the
+    heavy preset stopped 5 s in every time; from rest it now stops where every measured
+    start held (``region.FLOOR_START_Q``), and the upper table's offset where one rose."""
+    g, H = 9.81, 0.5
+    least = math.sqrt(g * H / region.FLOOR_START_Q)
+    msg = _refused(name, {"apparatus.speed": 0.999 * least})
+    assert msg.count("apparatus.speed") == 1 and f"at least {least:.4g} m/s" in msg
+    with_changes(shipped.level(name), {"apparatus.speed": 1.0001 * least})
+    assert 1.0001 * least < 2.25  # the measured start, inside the band
+    msg = _refused(name, {"apparatus.xi2": 0.0})
+    assert "apparatus.xi2" in msg and f"at least {region.FLOOR_XI2_MIN:g}" in msg
+    with_changes(shipped.level(name), {"apparatus.xi2": region.FLOOR_XI2_MIN})
+    lvl = shipped.level(name)
+    lo, _ = spans.admissible(lvl, spec_for(lvl.sim, "apparatus.speed"), lvl.sim)
+    assert lo == pytest.approx(least, rel=1e-6)
+    lo, _ = spans.admissible(lvl, spec_for(lvl.sim, "apparatus.xi2"), lvl.sim)
+    assert lo == pytest.approx(region.FLOOR_XI2_MIN, rel=1e-6)
+
+
 @pytest.mark.parametrize("name, path", [
     ("apparatus_fold_gripped", "apparatus.drop"),
     ("apparatus_fold_gripped", "apparatus.speed"),
