@@ -648,9 +648,10 @@ class Session:
         if key == self._readout_key:
             self._readout.t = self.sim.time
             return self._readout
+        was = self._readout.steady and self._readout_key[:1] == key[:1]  # the same run
         self._readout_key = key
         self._readout = compute_readout(self.sim, self.recorder, self.history,
-                                        self.runs_at.asked)
+                                        self.runs_at.asked, was_steady=was)
         return self._readout
 
     def setup_copy(self) -> Level:
