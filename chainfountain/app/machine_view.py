@@ -656,7 +656,8 @@ def cart_reach(scale: float | None = None) -> tuple[float, float]:
 
 def machine_bounds(sim, scale: float | None = None) -> list[tuple[float, float]]:
     """World points the view must show to show the machine: the rollers with their carts
-    (:func:`cart_reach` at ``scale``), the pot, an ideal machine's drawn parts."""
+    (:func:`cart_reach` at ``scale``), a contact machine's end and floor (``floor_depth``
+    below the end), the pot, an ideal machine's drawn parts."""
     pts: list[tuple[float, float]] = []
     cfg = sim.config
     reach, high = cart_reach(scale)
@@ -667,6 +668,7 @@ def machine_bounds(sim, scale: float | None = None) -> list[tuple[float, float]]
                 d = 1.0 if u.direction >= 0 else -1.0
                 pts += [(x + d * (u.radius + reach), y + high), (x - d * u.radius, y)]
         pts.append(tuple(sim.apparatus.end))
+        pts.append((float(sim.apparatus.end[0]), sim.apparatus.floor_y - 0.05))  # the floor
     elif sim.beaker is not None:
         outline = placement.vessel(sim)[0]
         pts += [(float(outline[:, 0].min()) - 0.15, float(outline[:, 1].min()) - 0.05)]
