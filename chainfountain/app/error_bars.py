@@ -8,13 +8,16 @@ from. No pygame here.
   ``theory.at_speed``; its speed wanders off the laws' by a few tenths of a per cent).
 - The beaker: the step error model's one-sided bars
   (:mod:`chainfountain.sim.beaker_error`).
-- Elsewhere (the contact machines, scenes) nothing: their bars come from refinement
-  (``chainfountain converge``) and the run's report.
+- A contact machine: how far halving the step moved the gripped presets' flight
+  (:mod:`chainfountain.sim.apparatus_report.step_change`), or that its step's error is
+  not refined here and how to refine it (``chainfountain run LEVEL --error-bars``).
+- Elsewhere (scenes, which run headless) nothing.
 """
 
 from __future__ import annotations
 
 from chainfountain.sim import accuracy, beaker_error
+from chainfountain.sim.apparatus_report import step_change
 from chainfountain.sim.kinds import kind_of
 from chainfountain.sim.reference import LaunchReference
 from chainfountain.sim.world import Simulation
@@ -33,6 +36,8 @@ def error_bars_line(sim: Simulation, asked_accuracy: float = 0.0) -> str:
         low = beaker_error.shortfalls(dt)
         return (f"the step's error: speed -0/+{100 * low['speed']:.0f} %, top "
                 f"-0/+{100 * low['rise_above_rim']:.0f} % (refined)")
+    if sim.apparatus is not None:
+        return _apparatus_line(cfg)
     if sim.feed is None or not kind_of(cfg).predicted:
         return ""
     ref = sim.catenary
@@ -54,3 +59,14 @@ def error_bars_line(sim: Simulation, asked_accuracy: float = 0.0) -> str:
         what += f", solver.accuracy {100 * sv.accuracy:g} %"
     return (f"error: top +-{100 * b['vertex_y']:.1f} %, landing "  # figures first: a
             f"+-{100 * b['landing_x']:.1f} % ({what})")  # narrow panel cuts the source
+
+
+def _apparatus_line(cfg) -> str:
+    """The step's error of a contact machine's flight: the presets' measured moves, or
+    how to measure them."""
+    step = step_change.step_section(cfg)
+    m = step["moves"]
+    if m is None:
+        return "the step's error: not refined here (chainfountain run LEVEL --error-bars)"
+    return (f"the step's error (refined at the presets): Tbar_0 +-{m['T0_bar']:.3f}, Tbar_E "
+            f"+-{m['TE_bar']:.3f}, vertex +-{100 * m['vertex_y_rel_error']:.1f} %")
