@@ -130,6 +130,10 @@ def main(argv: list[str] | None = None) -> int:
             delayed(run_one)(a.preset, c, a.seconds, Path(tmp) / f"p{i}")
             for i, c in enumerate(settings))
     wall = time.perf_counter() - t0
+    if a.save is not None:  # first: the runs are what took the time
+        a.save.parent.mkdir(parents=True, exist_ok=True)
+        a.save.write_text(json.dumps({"preset": a.preset, "seconds": a.seconds,
+                                      "rows": rows}, indent=1))
     base = load(resolve(a.preset))
     held = 0
     for r in rows:
@@ -146,13 +150,9 @@ def main(argv: list[str] | None = None) -> int:
         which = "this model's pick-up law" if sim.apparatus.variant == "floor" else \
             "the laws with the brake"
         shown = " ".join(f"{k.split('.')[-1]}={val:.4g}" for k, val in sorted(c.items())
-                         if k in r["changes"])
+                         if k in r["changes"] and not isinstance(val, str))
         print(f"{state}  v={v if v else float('nan'):.3f} ({off} of {which})  {shown}  "
               f"{r['ended'] or r['refused']}")
-    if a.save is not None:
-        a.save.parent.mkdir(parents=True, exist_ok=True)
-        a.save.write_text(json.dumps({"preset": a.preset, "seconds": a.seconds,
-                                      "rows": rows}, indent=1))
     print(f"{a.preset}: {held} of {len(rows)} held {a.seconds:g} s from rest "
           f"({wall:.0f} s wall on {a.jobs} processes)")
     return 0 if held == len(rows) else 1
