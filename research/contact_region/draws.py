@@ -4,8 +4,8 @@ Draws ``--n`` settings of a gripped-fold or floor preset uniformly inside its ad
 region (:mod:`chainfountain.sim.apparatus.region`, which the level check reads): every
 field the region ranges over (``region.Bands.other_ranges``, ``FLOOR_FROM_REST_RANGE``: the
 chain's links, friction and joints, the rollers, the treadmill), the upper cart and its
-track, and for a gripped fold the lower cart and, where its tables' bands do not fix
-them (``region.bands``), the drop, start speed and launch angle; for the floor machine
+track, and for a gripped fold the lower cart and, in its tables' bands
+(``region.bands``), the drop, start speed and launch angle; for the floor machine
 the drop, start speed, launch angle, upper table offset and bearing drag. A draw the level
 check refuses (the carts' push, the floor's law) is drawn again. Each runs from rest for
 ``--seconds`` (``chainfountain run``, one process per core); the script prints how many
@@ -46,12 +46,10 @@ def _uniform(rng: np.random.Generator, band: tuple[float, float]) -> float | int
     return float(f"{rng.uniform(lo, hi):.5g}")
 
 
-def draw(name: str, n: int, seed: int, geometry: bool = False) -> list[dict[str, float]]:
+def draw(name: str, n: int, seed: int) -> list[dict[str, float]]:
     """``n`` settings inside the region of preset ``name`` (rejection sampling: every field
     the region ranges over drawn uniformly in its band, kept where the level check, which
-    reads the region, admits it). ``geometry``: where the tables' bands fix the drop,
-    start speed and launch angle (``region.SPECIAL_GEOMETRY``), draw them inside the
-    bands too, the region's check off for them and the carts held to their balance."""
+    reads the region, admits it)."""
     base = load(resolve(name))
     rng = np.random.default_rng(seed)
     g, te = base.sim.gravity, base.sim.apparatus.end_tension
@@ -75,24 +73,17 @@ def draw(name: str, n: int, seed: int, geometry: bool = False) -> list[dict[str,
             assert band is not None
             m_lo = base.sim.carts[1].mass
             changes["carts[1].mass"] = round(float(rng.uniform(0.97 * m_lo, 1.1 * m_lo)), 4)
-            if not band.fixed or geometry:
-                v = float(rng.uniform(*band.speed))
-                q_lo, q_hi = band.q
-                changes |= {
-                    "apparatus.speed": round(v, 4),
-                    "apparatus.drop": round(float(rng.uniform(max(q_lo - te, 0.0) * v * v / g,
-                                                              (q_hi - te) * v * v / g)), 4),
-                    "apparatus.launch_angle": _uniform(rng, band.angle)}
-        if geometry and band is not None and band.fixed:
-            changes["apparatus.start_region"] = "unchecked"
+            v = float(rng.uniform(*band.speed))
+            q_lo, q_hi = band.q
+            changes |= {
+                "apparatus.speed": round(v, 4),
+                "apparatus.drop": round(float(rng.uniform(max(q_lo - te, 0.0) * v * v / g,
+                                                          (q_hi - te) * v * v / g)), 4),
+                "apparatus.launch_angle": _uniform(rng, band.angle)}
         try:
-            lvl = with_changes(base, changes)
+            with_changes(base, changes)
         except Exception:  # refused: outside the region (the carts' push, the floor's law)
             continue
-        if "apparatus.start_region" in changes and (
-                region._carts_problem(lvl.sim, band) is not None
-                or region._range_problem(lvl.sim, band.other_ranges(), "it") is not None):
-            continue  # the region's other checks, kept
         out.append(changes)
     return out
 
@@ -117,13 +108,10 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--seconds", type=float, default=30.0)
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--jobs", type=int, default=2)
-    p.add_argument("--geometry", action="store_true",
-                   help="draw the drop, start speed and launch angle inside their bands "
-                   "where the tables fix them (the special case's), the region's check off")
     p.add_argument("--save", type=Path, default=None,
                    help="write the settings and outcomes as JSON (the map reads them)")
     a = p.parse_args(argv)
-    settings = draw(a.preset, a.n, a.seed, a.geometry)
+    settings = draw(a.preset, a.n, a.seed)
     t0 = time.perf_counter()
     with tempfile.TemporaryDirectory() as tmp:
         rows = Parallel(n_jobs=a.jobs)(

@@ -80,19 +80,27 @@ def test_a_gripped_fold_launched_outside_its_angle_or_speed_band_is_refused() ->
                  {**laid, "apparatus.drop": 0.6})  # the region is the start's, not laid
 
 
-def test_level_tables_from_rest_admit_only_their_shipped_geometry_and_other_tables_none(
+def test_level_tables_from_rest_admit_the_folds_geometry_bands_and_other_tables_none(
 ) -> None:
-    """``apparatus_special_gripped`` (level tables) fails in some starts, scattered, over
-    any band of geometry around its shipped one, so each geometry field is refused a step
-    away (the message naming the shipped value), its carts are not; offsets never
-    measured from rest are refused."""
-    for path, step in (("apparatus.drop", 0.01), ("apparatus.speed", 0.05),
-                       ("apparatus.launch_angle", 0.02)):
-        shipped_value = region.SPECIAL_GEOMETRY[path]
-        msg = _refused("apparatus_special_gripped", {path: shipped_value + step})
-        assert path in msg and "scattered" in msg and f"allowed: {shipped_value:.6g}" in msg
-    with_changes(shipped.level("apparatus_special_gripped"),
-                 {"carts[0].mass": 0.015, "carts[1].mass": 0.335})
+    """``apparatus_special_gripped`` (level tables) is admitted over the same inner-half
+    bands of drop, start speed and launch angle as the fold (60 of 60 and 90 of 90 drawn
+    starts held there), and refused just outside; offsets never measured from rest are
+    refused."""
+    name, g, te = "apparatus_special_gripped", 9.81, 0.17
+    v = 3.0
+    q_lo, q_hi = region.FROM_REST_Q
+    for q in (q_lo + 0.002, q_hi - 0.002):
+        with_changes(shipped.level(name), {"apparatus.drop": (q - te) * v * v / g})
+    msg = _refused(name, {"apparatus.drop": (q_hi + 0.01 - te) * v * v / g})
+    assert "apparatus.drop" in msg and "allowed: a drop of" in msg
+    v_lo, v_hi = region.FROM_REST_SPEED
+    msg = _refused(name, {"apparatus.speed": v_hi + 0.05})
+    assert "apparatus.speed" in msg and f"{v_lo:g}-{v_hi:g} m/s" in msg
+    a_lo, a_hi = region.FROM_REST_ANGLE
+    with_changes(shipped.level(name), {"apparatus.launch_angle": a_lo + 0.001})
+    msg = _refused(name, {"apparatus.launch_angle": a_hi + 0.02})
+    assert "apparatus.launch_angle" in msg
+    with_changes(shipped.level(name), {"carts[0].mass": 0.015, "carts[1].mass": 0.335})
     for name, path in (("apparatus_special_gripped", "apparatus.xi3"),
                        ("apparatus_fold_gripped", "apparatus.xi2")):
         msg = _refused(name, {path: 0.4})
@@ -202,6 +210,8 @@ def test_a_floor_machine_started_near_critical_or_with_no_upper_table_is_refused
     ("apparatus_fold_gripped", "apparatus.speed"),
     ("apparatus_fold_gripped", "apparatus.launch_angle"),
     ("apparatus_floor", "apparatus.drop"),
+    ("apparatus_special_gripped", "apparatus.drop"),
+    ("apparatus_special_gripped", "apparatus.launch_angle"),
     ("apparatus_special_gripped", "apparatus.swing_damper"),
     ("apparatus_special_gripped", "chain.link_length"),
 ])
@@ -214,13 +224,6 @@ def test_the_sliders_span_the_admitted_range(name: str, path: str) -> None:
     for x in (lo - 1e-3 * (hi - lo), hi + 1e-3 * (hi - lo)):
         with pytest.raises(LevelError):
             with_changes(level, {path: x})
-
-
-@pytest.mark.parametrize("path", ["apparatus.drop", "apparatus.launch_angle"])
-def test_level_tables_from_rest_pin_their_geometry_sliders(path: str) -> None:
-    level = shipped.level("apparatus_special_gripped")
-    lo, hi = spans.admissible(level, spec_for(level.sim, path), level.sim)
-    assert lo == hi == pytest.approx(float(_get(level, path)), rel=1e-6)
 
 
 def _get(level, path: str) -> float:
@@ -238,17 +241,15 @@ def _draw(name: str, seed: int) -> dict[str, float]:
             changes = {"apparatus.drop": float(rng.uniform(0.4, 0.6)),
                        "apparatus.launch_angle": float(rng.uniform(0.9, 1.2)),
                        "carts[0].mass": float(rng.uniform(0.004, 0.012))}
-        elif region.fixed_geometry(base.sim):  # the special's tables: its carts alone
-            changes = {"carts[0].mass": float(rng.uniform(0.010, 0.028)),
-                       "carts[1].mass": float(rng.uniform(0.32, 0.36))}
         else:
             v = float(rng.uniform(*region.FROM_REST_SPEED))
             q = float(rng.uniform(*region.FROM_REST_Q))
             changes = {"apparatus.speed": v, "apparatus.drop": (q - te) * v * v / g,
                        "apparatus.launch_angle": float(rng.uniform(*region.FROM_REST_ANGLE))}
-            if name == "apparatus_fold_gripped":  # its carts too (measured with them)
-                changes |= {"carts[0].mass": float(rng.uniform(0.010, 0.026)),
-                            "carts[1].mass": float(rng.uniform(0.31, 0.34))}
+            up, lo = ((0.010, 0.026), (0.31, 0.34)) if name == "apparatus_fold_gripped" \
+                else ((0.010, 0.028), (0.32, 0.36))  # the carts about each one's balance
+            changes |= {"carts[0].mass": float(rng.uniform(*up)),
+                        "carts[1].mass": float(rng.uniform(*lo))}
         try:
             level = with_changes(base, changes)
         except LevelError:
@@ -272,7 +273,9 @@ def test_a_setting_drawn_inside_the_region_forms_from_rest_and_holds(name: str) 
             v.append(sim.apparatus.speed)
     assert not sim.apparatus.starting
     law = (braked_fold_speed(level.sim) if name in FOLDS else floor_speeds(level.sim)[0])
-    assert float(np.mean(v)) == pytest.approx(law, rel=0.03), changes
+    # the special case's draws run -3.9 ... +1.1 % of its laws (150 starts, docs/apparatus.md)
+    tol = 0.045 if name == "apparatus_special_gripped" else 0.03
+    assert float(np.mean(v)) == pytest.approx(law, rel=tol), changes
 
 
 @pytest.mark.parametrize("name", FOLDS)
