@@ -172,11 +172,6 @@ class Bands(NamedTuple):
 
 
 SPECIAL_LINKS = (FROM_REST_RANGE["chain.link_length"][0], 0.021)
-# At the special case's tables the geometry ranges over the fold's inner-half bands: 150
-# settings drawn with every field at once, drop, start speed and launch angle included
-# (``python -m research.contact_region.draws apparatus_special_gripped --n 60 --seed 505``
-# and ``--n 90 --seed 606``, 30 s from rest each), all held (145 steady), -3.9 ... +1.1 %
-# of the laws with the brake (mean -2.2 %, sd 0.7 %).
 """The link lengths (m) a gripped fold from rest at the special case's tables is admitted
 with: links longer than 21 mm fail there. Of 150 settings drawn inside the inner half of
 every band at once (``python -m research.contact_region.draws apparatus_special_gripped
@@ -196,7 +191,12 @@ FROM_REST_TABLES: dict[tuple[float, float], Bands] = {
 }
 """The table offsets ``(xi2, xi3)`` at which a gripped fold from rest was measured, and
 its bands there; other offsets are refused (the carts are balanced, and the start
-threads the head, for the tables the machine is built with)."""
+threads the head, for the tables the machine is built with). At the special case's
+tables (``apparatus_special_gripped``) the same inner-half bands of drop, start speed and
+launch angle hold: 150 settings drawn with every field at once
+(``python -m research.contact_region.draws apparatus_special_gripped --n 60 --seed 505``
+and ``--n 90 --seed 606``, 30 s from rest each) all held (145 steady), -3.9 ... +1.1 % of
+the laws with the brake (mean -2.2 %, sd 0.7 %)."""
 
 
 FLOOR_FROM_REST_KH = 0.595
