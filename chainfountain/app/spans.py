@@ -98,8 +98,7 @@ def _accepts(level: Level, path: str, origin: SimConfig | None,
             io.check_consistency(Level(meta=level.meta, sim=cand), "span")
         except LevelError:
             return False
-        return origin is None or \
-            interactive.over_budget(cand, origin) is None
+        return origin is None or interactive.over_budget(cand, origin) is None
     return ok
 
 
