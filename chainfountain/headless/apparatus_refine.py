@@ -14,12 +14,10 @@ chaos makes the two runs different trajectories (compare the moves with the ``_s
 
 from __future__ import annotations
 
-import copy
-import dataclasses
 import math
 from typing import Any
 
-from chainfountain.level.model import Level
+from chainfountain.headless.scene_refine import halved  # noqa: F401 - the level at dt/2
 
 FIGURES = ("T0_bar", "TE_bar", "relation_miss", "vertex_y_rel_error")
 """The flight's figures whose move is given (``apparatus.flight``), besides the speed."""
@@ -29,15 +27,6 @@ METHOD = ("refinement: the level again at half its step (same links, sub-steps, 
           "relative), which hold both window means' statistical errors (_se) besides the "
           "step's")
 """How the moves are made, in words (``apparatus.flight.step.how``)."""
-
-
-def halved(level: Level) -> Level:
-    """``level`` at half its step, nothing else changed (its accuracy off: the step is
-    set)."""
-    sim = copy.deepcopy(level.sim)
-    sim.solver.dt = level.sim.solver.dt / 2.0
-    sim.solver.accuracy = 0.0
-    return dataclasses.replace(level, meta=copy.deepcopy(level.meta), sim=sim)
 
 
 def _finite(x: Any) -> bool:

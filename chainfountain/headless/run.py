@@ -148,10 +148,14 @@ def run_and_record(level: Level, out_dir: Path, duration: float | None = None, *
     sim, rec, wall, ended = simulate(level, duration, seed=seed, progress=progress)
     half = None
     if half_step and kind_of(level.sim).half_step_bars:
-        half = half_step if isinstance(half_step, str) else (
-            f"the run ended early ({ended.reason})" if ended is not None else
-            simulate(apparatus_refine.halved(level), duration, seed=seed, progress=progress,
-                     label=f"{level.meta.name} at dt/2"))
+        if isinstance(half_step, str):
+            half = half_step
+        elif ended is not None:
+            half = f"the run ended early ({ended.reason})"
+        else:
+            fine = apparatus_refine.halved(level)
+            half = (fine, *simulate(fine, duration, seed=seed, progress=progress,
+                                    label=f"{level.meta.name} at dt/2"))
     received: list[int] = []
     with _signals_deferred(received):
         path = _write_outputs(level, out_dir, duration, sim, rec, wall, ended, error_bars,
@@ -179,7 +183,8 @@ def _write_outputs(level: Level, out_dir: Path, duration: float, sim: Simulation
                    error_bars: dict | None = None, snapshot: bool = True,
                    half: tuple | str | None = None) -> Path:
     """Every output of a finished (or stopped) run, raw data first; see :func:`run_level`
-    (``half``: the run at half the step, :func:`simulate`'s tuple, or why there is none)."""
+    (``half``: the run at half the step, its level and :func:`simulate`'s tuple, or why
+    there is none)."""
     lam = level.sim.chain.linear_density
     app = sim.apparatus
     written: list[str] = []
@@ -208,7 +213,7 @@ def _write_outputs(level: Level, out_dir: Path, duration: float, sim: Simulation
         summary.sections["apparatus"]["flight"]["step"] = _attempt(
             analysis_failed, "the step's refinement", _apparatus_step, level, duration,
             summary.sections["apparatus"], half)
-    half_end = half[3] if isinstance(half, tuple) else None
+    half_end = half[4] if isinstance(half, tuple) else None
     if ended is not None:
         summary.ended_early = Ended(
             t_s=_f(sim.time), cause=ended.cause, reason=ended.reason,
@@ -245,11 +250,11 @@ def _apparatus_step(level: Level, duration: float, coarse: dict[str, Any],
     """``apparatus.flight.step`` from the run at half the step, or why there is none."""
     if isinstance(half, str):
         return apparatus_refine.skipped(half)
-    sim, rec, wall, ended = half
+    halved, sim, rec, wall, ended = half
     if ended is not None:
         return apparatus_refine.skipped(f"the run at half the step ended early "
                                         f"({ended.reason})")
-    fine = summarize(apparatus_refine.halved(level), sim, rec, duration, wall)
+    fine = summarize(halved, sim, rec, duration, wall)
     return apparatus_refine.step_section(coarse, fine.sections["apparatus"],
                                          level.sim.solver.dt)
 
