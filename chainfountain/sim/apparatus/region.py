@@ -225,10 +225,10 @@ FLOOR_START_Q = 0.97
 (``apparatus.speed``: the fountain the starter launches, near critical as it nears 1)
 admitted for the floor machine from rest. ``apparatus_floor_heavy`` (15-g cart, 0.5 m),
 30 s from rest: at the level check's edge, 1 - 1e-9 (``v0 = sqrt(g H)``), it stopped 5 s
-in, three starts of three in a real window; at 0.990 (2.226 m/s) two of three stopped at 5.1 s; at 0.969 (2.25 m/s) seeds 0-5
-all held, and at 0.927 (2.3 m/s) seeds 0-5. The lighter carts hold nearer: with every
-field drawn at once (the 300 draws of seeds 303 and 404, upper carts of 2.7-13.5 g) starts
-held up to 0.9991."""
+in, three starts of three in a real window; at 0.990 (2.226 m/s) two of three stopped at
+5.1 s; at 0.969 (2.25 m/s) seeds 0-5 all held, and at 0.927 (2.3 m/s) seeds 0-5. The
+lighter carts hold nearer: with every field drawn at once (the 300 draws of seeds 303 and
+404, upper carts of 2.7-13.5 g) starts held up to 0.9991."""
 
 FLOOR_XI2_MIN = 0.1
 """The least upper table offset ``xi2`` admitted for the floor machine from rest (its
